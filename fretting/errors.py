@@ -1,0 +1,34 @@
+"""Exceptions raised by `fretting`."""
+
+__all__ = ["FrettingError", "GrossSlipError", "HistoryError", "SolverError"]
+
+
+class FrettingError(Exception):
+    """Base class of the errors that `fretting` raises on purpose."""
+
+
+class GrossSlipError(FrettingError, RuntimeError):
+    """No stick zone is left: the contact slides, which force control cannot follow.
+
+    Attributes
+    ----------
+    step : int
+        The step whose load reaches gross slip.
+    Q, sigma : float
+        The loads of that step [N/m], [Pa].
+    """
+
+    def __init__(self, step, Q, sigma, limit):
+        self.step, self.Q, self.sigma = step, Q, sigma
+        super().__init__(
+            f"gross slip at step {step}: Q = {Q:.6g}, sigma = {sigma:.6g} leave no stick zone "
+            f"(|Q| must stay below f P = {limit:.6g})"
+        )
+
+
+class HistoryError(FrettingError, ValueError):
+    """A load history is malformed."""
+
+
+class SolverError(FrettingError, RuntimeError):
+    """An increment could not be solved to the friction conditions."""

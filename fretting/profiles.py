@@ -1,0 +1,218 @@
+"""Contact profiles and their normal-contact solutions (seed paper, eqs 1-2).
+
+Each profile turns the normal load into a contact interval and a pressure. The gap between the
+undeformed bodies is ``h0(x) >= 0``; the pressure solves eq (1) bounded at both ends,
+``E_star h0'(x) = -(2/pi) PV int p(xi) / (xi - x) dxi``, with ``P = int p dx`` (eq 2).
+Positions inside the contact are written ``x = centre + a t`` with ``-1 <= t <= 1``.
+"""
+
+import abc
+
+import numpy as np
+from scipy import fft, optimize, special
+
+from fretting._validate import positive
+
+__all__ = ["Profile", "Hertz", "RoundedFlat", "FlatPunch", "Gap"]
+
+# Root-finding tolerance on lengths and angles, relative: well inside the 1e-10 asked of a.
+_RTOL = 4 * np.finfo(float).eps
+
+
+class Profile(abc.ABC):
+    """Base class: a profile gives the contact interval and the pressure for a normal load."""
+
+    @abc.abstractmethod
+    def half_width(self, P, E_star):
+        """Contact half-width `a` [m] and centre [m] for load `P` [N/m] and modulus `E_star` [Pa]."""
+
+    @abc.abstractmethod
+    def pressure(self, t, a, centre, P, E_star):
+        """Contact pressure [Pa] at the normalised positions ``t`` in (-1, 1)."""
+
+    def peak_pressure(self, a, centre, P, E_star):
+        """Largest contact pressure [Pa], found numerically unless a subclass knows it."""
+        p = lambda t: self.pressure(np.atleast_1d(t), a, centre, P, E_star)  # noqa: E731
+        t = np.linspace(-1, 1, 4097)[1:-1]
+        k = int(np.argmax(p(t)))
+        result = optimize.minimize_scalar(
+            lambda s: -p(s)[0],
+            bounds=(t[max(k - 1, 0)], t[min(k + 1, t.size - 1)]),
+            method="bounded",
+            options={"xatol": 1e-12},
+        )
+        return float(max(-result.fun, p(t[k])[0]))
+
+
+class Hertz(Profile):
+    """Cylinders of relative radius ``R`` [m]: gap ``h0 = x^2 / (2R)``.
+
+    ``a = sqrt(4 P R / (pi E_star))``, ``p = p0 sqrt(1 - t^2)``, ``p0 = 2P / (pi a)`` (eq 6).
+    """
+
+    def __init__(self, R):
+        self.R = positive("R", R)
+
+    def __repr__(self):
+        return f"Hertz(R={self.R!r})"
+
+    def half_width(self, P, E_star):
+        return np.sqrt(4 * P * self.R / (np.pi * E_star)), 0.0
+
+    def pressure(self, t, a, centre, P, E_star):
+        return self.peak_pressure(a, centre, P, E_star) * np.sqrt(1 - np.square(t))
+
+    def peak_pressure(self, a, centre, P, E_star):
+        return 2 * P / (np.pi * a)
+
+
+class FlatPunch(Profile):
+    """Sharp-edged flat of half-width ``a`` [m]: ``p = P / (pi sqrt(a^2 - x^2))``.
+
+    The pressure is unbounded at the edges, so ``p0`` is taken as the pressure at the centre,
+    ``P / (pi a)``.
+    """
+
+    def __init__(self, a):
+        self.a = positive("a", a)
+
+    def __repr__(self):
+        return f"FlatPunch(a={self.a!r})"
+
+    def half_width(self, P, E_star):
+        return self.a, 0.0
+
+    def pressure(self, t, a, centre, P, E_star):
+        return self.peak_pressure(a, centre, P, E_star) / np.sqrt(1 - np.square(t))
+
+    def peak_pressure(self, a, centre, P, E_star):
+        return P / (np.pi * a)
+
+
+class RoundedFlat(Profile):
+    """Flat of half-width ``b`` [m] with corners of radius ``R`` [m].
+
+    Gap ``h0 = (|x| - b)^2 / (2R)`` for ``|x| > b``. Closed form of Ciavarella, Hills & Monno
+    (1998) with ``x = a sin(phi)``, ``sin(phi0) = b/a``:
+    ``P = E_star a^2 (pi - 2 phi0 - sin 2phi0) / (4R)`` and the pressure of `pressure`.
+    """
+
+    def __init__(self, b, R):
+        self.b = positive("b", b)
+        self.R = positive("R", R)
+
+    def __repr__(self):
+        return f"RoundedFlat(b={self.b!r}, R={self.R!r})"
+
+    def _load(self, phi0, E_star):
+        """Normal load [N/m] that makes ``sin(phi0) = b/a``."""
+        a = self.b / np.sin(phi0)
+        return E_star * a**2 * (np.pi - 2 * phi0 - np.sin(2 * phi0)) / (4 * self.R)
+
+    def half_width(self, P, E_star):
+        # The load falls monotonically from infinity to 0 as phi0 goes from 0 to pi/2.
+        phi0 = optimize.brentq(
+            lambda phi: self._load(phi, E_star) / P - 1,
+            1e-300,
+            np.pi / 2,
+            xtol=1e-300,
+            rtol=_RTOL,
+            maxiter=500,
+        )
+        return self.b / np.sin(phi0), 0.0
+
+    def pressure(self, t, a, centre, P, E_star):
+        phi = np.arcsin(t)
+        phi0 = np.arcsin(self.b / a)
+        s, s0 = np.sin(phi), np.sin(phi0)
+        log = lambda u, v: special.xlogy(u, np.abs(v))  # noqa: E731 - u log|v|, 0 when u = 0
+        bracket = (
+            (np.pi - 2 * phi0) * np.cos(phi)
+            + log(s - s0, np.cos((phi + phi0) / 2))
+            - log(s - s0, np.sin((phi - phi0) / 2))
+            - log(s + s0, np.cos((phi - phi0) / 2))
+            + log(s + s0, np.sin((phi + phi0) / 2))
+        )
+        return E_star * a / (2 * np.pi * self.R) * bracket
+
+
+class Gap(Profile):
+    """Any convex profile, symmetric or not, given by its gap ``h0(x) >= 0`` [m].
+
+    Parameters
+    ----------
+    h0 : callable
+        Gap between the undeformed surfaces [m] as a function of ``x`` [m] (vectorised).
+    slope : callable, optional
+        ``h0'(x)`` [-]; by central differences when omitted.
+
+    Notes
+    -----
+    With ``h0'(centre + a t) = sum_n b_n T_n(t)``, eq (1) bounded at both ends gives
+    ``p = (E_star / 2) sum_{n>=1} b_n sin(n theta)`` with ``t = cos(theta)``, the consistency
+    condition ``b_0 = 0`` (which fixes the centre) and ``P = pi a E_star b_1 / 4``.
+    """
+
+    #: Chebyshev points for the expansion of the slope.
+    ORDER = 1024
+
+    def __init__(self, h0, slope=None):
+        if not callable(h0) or (slope is not None and not callable(slope)):
+            raise ValueError("Gap needs callables h0(x) and, optionally, slope(x)")
+        self.h0, self._slope = h0, slope
+
+    def __repr__(self):
+        return f"Gap({self.h0!r})"
+
+    @classmethod
+    def from_table(cls, x, h0):
+        """Profile from a table of gaps ``h0`` [m] at increasing positions ``x`` [m] (cubic spline)."""
+        from scipy.interpolate import CubicSpline
+
+        spline = CubicSpline(np.asarray(x, float), np.asarray(h0, float))
+        return cls(spline, spline.derivative())
+
+    def slope(self, x):
+        if self._slope is not None:
+            return np.asarray(self._slope(x), float)
+        step = 1e-6 * max(np.max(np.abs(x)), np.finfo(float).tiny)
+        return (np.asarray(self.h0(x + step), float) - np.asarray(self.h0(x - step), float)) / (2 * step)
+
+    def _coefficients(self, a, centre):
+        """Chebyshev coefficients ``b_n`` of ``h0'(centre + a t)``."""
+        theta = (np.arange(self.ORDER) + 0.5) * np.pi / self.ORDER
+        coefficients = fft.dct(self.slope(centre + a * np.cos(theta)), type=2) / self.ORDER
+        coefficients[0] /= 2
+        return coefficients
+
+    def _centre(self, a):
+        """Centre that makes the pressure bounded at both ends (``b_0 = 0``)."""
+        b0 = lambda c: self._coefficients(a, c)[0]  # noqa: E731 - increasing in c for convex h0
+        low, high = _bracket(b0, -a, a, lower=-np.inf)
+        return optimize.brentq(b0, low, high, xtol=1e-14 * a, rtol=_RTOL)
+
+    def half_width(self, P, E_star):
+        load = lambda a: np.pi * a * E_star * self._coefficients(a, self._centre(a))[1] / 4  # noqa: E731
+        low, high = _bracket(lambda a: load(a) - P, 0.5, 2.0, lower=0.0)
+        a = optimize.brentq(lambda a: load(a) / P - 1, low, high, xtol=1e-300, rtol=_RTOL)
+        return a, self._centre(a)
+
+    def pressure(self, t, a, centre, P, E_star):
+        coefficients = self._coefficients(a, centre)
+        n = np.arange(1, coefficients.size)
+        theta = np.arccos(np.clip(t, -1, 1))
+        return E_star / 2 * np.sin(np.multiply.outer(theta, n)) @ coefficients[1:]
+
+
+def _bracket(function, low, high, lower):
+    """Widen ``[low, high]`` geometrically until the increasing `function` changes sign."""
+    for _ in range(400):
+        f_low, f_high = function(low), function(high)
+        if f_low <= 0 <= f_high:
+            return low, high
+        width = high - low
+        if f_low > 0:
+            low = low / 2 if lower == 0.0 else low - width
+        if f_high < 0:
+            high = high * 2 if lower == 0.0 else high + width
+    raise ValueError("profile: no contact solution found; is the gap convex with a minimum?")

@@ -1,0 +1,36 @@
+"""The dataset contract: every variable of a result, declared once, and the dataset built from it."""
+
+import numpy as np
+import xarray as xr
+
+__all__ = ["VARIABLES", "build_dataset"]
+
+#: name -> (dims, units, long_name). Units assume SI inputs; any consistent set works.
+VARIABLES = {
+    "Q": (("step",), "N/m", "shear force per unit length"),
+    "sigma": (("step",), "Pa", "differential bulk tension"),
+    "p": (("x",), "Pa", "contact pressure"),
+    "q": (("step", "x"), "Pa", "shear traction"),
+    "slip": (("step", "x"), "m", "relative slip accumulated since the contact was formed"),
+    "stick": (("step", "x"), "1", "point did not slip during the increment ending at this step"),
+    "stick_start": (("step", "zone"), "m", "lower end of each stick zone of the increment (sub-grid)"),
+    "stick_end": (("step", "zone"), "m", "upper end of each stick zone of the increment (sub-grid)"),
+    "dissipation": (("step",), "J/m", "energy dissipated in the increment ending at this step"),
+    "delta_Q": (("step",), "m", "slip part of the generalized displacement conjugate to Q"),
+    "delta_sigma": (("step",), "m2", "slip part of the generalized displacement conjugate to sigma"),
+    "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
+    "cycle": (("step",), "1", "load cycle of the increment ending at this step (0: outside any cycle)"),
+    "cycle_dissipation": (("cycle",), "J/m", "energy dissipated in each load cycle"),
+    "x": (("x",), "m", "position along the contact"),
+    "step": (("step",), "1", "load step (0 is the starting state)"),
+}
+
+
+def build_dataset(data, attrs):
+    """Dataset of the arrays in `data` (names from `VARIABLES`), with units and long names."""
+    variables = {}
+    for name, values in data.items():
+        dims, units, long_name = VARIABLES[name]
+        variables[name] = xr.Variable(dims, np.asarray(values), {"units": units, "long_name": long_name})
+    coords = {name: variables.pop(name) for name in ("x", "step") if name in variables}
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
