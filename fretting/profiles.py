@@ -110,14 +110,13 @@ class RoundedFlat(Profile):
         return E_star * a**2 * (np.pi - 2 * phi0 - np.sin(2 * phi0)) / (4 * self.R)
 
     def half_width(self, P, E_star):
-        # The load falls monotonically from infinity to 0 as phi0 goes from 0 to pi/2.
+        # The load falls monotonically from infinity to 0 as phi0 goes from 0 to pi/2, like
+        # E_star b^2 pi / (4 R phi0^2) for small phi0: start the bracket there.
+        low = min(1.0, np.sqrt(np.pi * E_star * self.b**2 / (4 * self.R * P)))
+        while self._load(low, E_star) < P:
+            low /= 2
         phi0 = optimize.brentq(
-            lambda phi: self._load(phi, E_star) / P - 1,
-            1e-300,
-            np.pi / 2,
-            xtol=1e-300,
-            rtol=_RTOL,
-            maxiter=500,
+            lambda phi: self._load(phi, E_star) / P - 1, low, np.pi / 2, xtol=1e-300, rtol=_RTOL, maxiter=500
         )
         return self.b / np.sin(phi0), 0.0
 

@@ -21,6 +21,7 @@ VARIABLES = {
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
     "cycle": (("step",), "1", "load cycle of the increment ending at this step (0: outside any cycle)"),
     "cycle_dissipation": (("cycle",), "J/m", "energy dissipated in each load cycle"),
+    "episode_start": (("x",), "m", "slip at which each point's current slip episode began, at the last step"),
     "x": (("x",), "m", "position along the contact"),
     "step": (("step",), "1", "load step (0 is the starting state)"),
 }

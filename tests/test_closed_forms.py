@@ -1,0 +1,123 @@
+"""The engine against published closed forms, at default settings.
+
+Targets of the core-engine issue: stick-zone ends within 1e-3 a; traction within 1e-3 f p0
+away from the stick/slip boundaries; slip within 1e-3 of its maximum. "Away" excludes
+0.02 a around each boundary: the traction has a square-root kink there, and the discrete
+boundary sits up to a fraction of a node spacing (0.012 a at the centre with 256 nodes) from
+the true one.
+"""
+
+import numpy as np
+import pytest
+from conftest import final
+
+import fretting as fr
+from fretting import closed_forms as cf
+
+BOUNDARY_BAND = 0.02  # [a], see the module docstring
+
+
+def away_from(x, ends, a):
+    return np.all(np.abs(np.subtract.outer(x, np.asarray(ends))) > BOUNDARY_BAND * a, axis=-1)
+
+
+def zones(result):
+    """Stick zones of the increment ending at `result`'s step, as (start, end) pairs [m]."""
+    pairs = np.stack([result.stick_start.values, result.stick_end.values], axis=-1)
+    return pairs[~np.isnan(pairs[:, 0])]
+
+
+@pytest.mark.parametrize("psi", [0.05, 0.2, 0.5, 0.8, 0.95])
+def test_cattaneo_mindlin(hertz, psi):
+    Q = psi * hertz.f * hertz.P
+    result = final(hertz, Q)
+    x, a = result.x.values, hertz.a
+    b = cf.stick_half_width(hertz, Q)
+    np.testing.assert_allclose(zones(result), [[-b, b]], rtol=0, atol=1e-3 * a)
+    band = away_from(x, [-b, b], a)
+    q_exact = cf.cattaneo_mindlin_traction(hertz, Q, x)
+    assert np.max(np.abs(result.q.values - q_exact)[band]) < 1e-3 * hertz.f * hertz.p0
+    slip_exact = cf.cattaneo_mindlin_slip(hertz, Q, x)
+    assert np.max(np.abs(result.slip.values - slip_exact)) < 1e-3 * slip_exact.max()
+    assert np.all(result.slip.values[np.abs(x) < b - BOUNDARY_BAND * a] == 0)
+
+
+@pytest.mark.parametrize("Q_end", [0.3, -0.2, -0.7])
+def test_mindlin_deresiewicz_unloading(hertz, Q_end):
+    fP = hertz.f * hertz.P
+    Q_star = 0.8 * fP
+    history = fr.History.piecewise_linear([0, Q_star, Q_end * fP], None, [8, 16])
+    result = fr.simulate(hertz, history).isel(step=-1)
+    x, a = result.x.values, hertz.a
+    c = a * np.sqrt(1 - (Q_star - Q_end * fP) / (2 * fP))
+    b = cf.stick_half_width(hertz, Q_star)
+    np.testing.assert_allclose(zones(result), [[-c, c]], rtol=0, atol=1e-3 * a)
+    band = away_from(x, [-c, c, -b, b], a)
+    q_exact = cf.mindlin_deresiewicz_traction(hertz, Q_star, Q_end * fP, x)
+    assert np.max(np.abs(result.q.values - q_exact)[band]) < 1e-3 * hertz.f * hertz.p0
+    slip_exact = cf.mindlin_deresiewicz_slip(hertz, Q_star, Q_end * fP, x)
+    assert np.max(np.abs(result.slip.values - slip_exact)) < 1e-3 * np.abs(slip_exact).max()
+
+
+@pytest.mark.parametrize("tau", [0.3, 1.0, 2.5])
+def test_bulk_tension_alone(hertz, tau):
+    sigma = tau * hertz.f * hertz.p0
+    result = final(hertz, 0.0, sigma)
+    b = cf.bulk_tension_stick_half_width(hertz, sigma)
+    np.testing.assert_allclose(zones(result), [[-b, b]], rtol=0, atol=1e-3 * hertz.a)
+    # Seed section 3.2: the slip and the traction are odd in x.
+    np.testing.assert_allclose(result.slip.values, -result.slip.values[::-1], rtol=0, atol=1e-12 * hertz.a)
+    np.testing.assert_allclose(result.q.values, -result.q.values[::-1], rtol=0, atol=1e-9 * hertz.p0)
+
+
+@pytest.mark.parametrize(("psi", "tau"), [(0.5, 0.5), (0.4, 0.8), (0.7, -0.3), (-0.5, 0.6)])
+def test_nowell_hills_shear_with_tension(hertz, psi, tau):
+    Q, sigma = psi * hertz.f * hertz.P, tau * hertz.f * hertz.p0
+    result = final(hertz, Q, sigma)
+    x, a = result.x.values, hertz.a
+    b = cf.stick_half_width(hertz, Q)
+    e = np.sign(Q) * cf.nowell_hills_offset(hertz, sigma)
+    np.testing.assert_allclose(zones(result), [[e - b, e + b]], rtol=0, atol=1e-3 * a)
+    band = away_from(x, [e - b, e + b], a)
+    q_exact = cf.nowell_hills_traction(hertz, Q, sigma, x)
+    assert np.max(np.abs(result.q.values - q_exact)[band]) < 1e-3 * hertz.f * hertz.p0
+
+
+@pytest.mark.parametrize("psi", [0.2, 0.6, 0.9])
+def test_rounded_flat_ciavarella_jaeger(psi):
+    contact = fr.Contact(fr.RoundedFlat(b=1e-3, R=0.02), 115e9, 0.5, 3e5)
+    Q = psi * contact.f * contact.P
+    result = final(contact, Q)
+    x, a = result.x.values, contact.a
+    q_exact, c = cf.ciavarella_jaeger(contact, Q, x)
+    np.testing.assert_allclose(zones(result), [[-c, c]], rtol=0, atol=1e-3 * a)
+    band = away_from(x, [-c, c], a)
+    assert np.max(np.abs(result.q.values - q_exact)[band]) < 1e-3 * contact.f * contact.p0
+
+
+def test_sharp_flat_punch_never_slips():
+    contact = fr.Contact(fr.FlatPunch(2e-3), 115e9, 0.5, 3e5)
+    fP = contact.f * contact.P
+    history = fr.History.piecewise_linear([0, 0.99 * fP, -0.99 * fP, 0.5 * fP], None, 10)
+    result = fr.simulate(contact, history)
+    assert np.all(result.slip.values == 0)
+    assert np.all(result.stick.values)
+    assert np.all(result.dissipation.values == 0)
+    x = result.x.values
+    q_stuck = np.outer(result.Q.values, 1 / (np.pi * np.sqrt(contact.a**2 - x**2)))
+    np.testing.assert_allclose(result.q.values, q_stuck, rtol=1e-10)  # rounding of 1/sqrt(1 - t^2) at the edges
+
+
+def test_si_and_unit_free_inputs_agree(hertz, unit_hertz):
+    """Normalised by a, f p0 and f p0 a / E_star, the two scenes are the same problem."""
+    history = [0, 0.7, -0.4, 0.5], [0, 0.3, -0.2, 0.6]
+
+    def normalised(contact):
+        fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+        path = fr.History.piecewise_linear(np.array(history[0]) * fP, np.array(history[1]) * fp0, 6)
+        r = fr.simulate(contact, path)
+        slip_scale = fp0 * contact.a / contact.E_star
+        return r.q.values / fp0, r.slip.values / slip_scale, r.stick_end.values / contact.a
+
+    for si, unit_free in zip(normalised(hertz), normalised(unit_hertz), strict=True):
+        np.testing.assert_allclose(si, unit_free, rtol=0, atol=1e-9)

@@ -1,0 +1,173 @@
+"""Invariants of the method-4 state machine: memory, energy, splits, friction conditions."""
+
+import numpy as np
+import pytest
+from conftest import final
+
+import fretting as fr
+
+RANDOM_VERTICES = 12
+
+
+def random_history(contact, seed, steps=5):
+    """A non-proportional (Q, sigma) path with |Q| < 0.8 f P and |sigma| < 1.5 f p0."""
+    rng = np.random.default_rng(seed)
+    Q = rng.uniform(-0.8, 0.8, RANDOM_VERTICES) * contact.f * contact.P
+    sigma = rng.uniform(-1.5, 1.5, RANDOM_VERTICES) * contact.f * contact.p0
+    Q[0] = sigma[0] = 0.0
+    return fr.History.piecewise_linear(Q, sigma, steps)
+
+
+def test_return_point_memory(hertz):
+    """0 -> 0.6 -> 0.2 -> 0.5 -> 0.2 -> 0.6 fP: closing a minor loop restores the state."""
+    fP = hertz.f * hertz.P
+    history = fr.History.piecewise_linear(np.array([0, 0.6, 0.2, 0.5, 0.2, 0.6]) * fP, None, 12)
+    result = fr.simulate(hertz, history)
+    slip = result.slip.values[history.vertex_step]
+    for before, after in ((1, 5), (2, 4)):
+        np.testing.assert_allclose(slip[after], slip[before], rtol=0, atol=1e-9 * np.abs(slip[before]).max())
+    assert np.abs(slip[3] - slip[2]).max() > 1e-3 * np.abs(slip[2]).max()  # the loop did slip
+
+
+def loop_work(result, first, last):
+    """Trapezoidal ``loop Q d(delta_Q) + loop sigma d(delta_sigma)`` over steps first..last."""
+    part = result.isel(step=slice(first, last + 1))
+    return sum(
+        np.trapezoid(part[load].values, part[displacement].values)
+        for load, displacement in (("Q", "delta_Q"), ("sigma", "delta_sigma"))
+    )
+
+
+@pytest.mark.parametrize("tau", [0.0, 0.8])
+def test_loop_area_equals_dissipation(hertz, tau):
+    """Over a closed cycle the work of the loads is the dissipation; the trapezoidal area of
+    the polygonal loop converges to it as the square of the step."""
+    fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
+    Q = np.array([0, 0.7, -0.7, 0.7]) * fP
+    errors = []
+    for steps in (32, 64):
+        history = fr.History.piecewise_linear(Q, tau * fp0 * Q / fP, steps)
+        result = fr.simulate(hertz, history)
+        first, last = history.vertex_step[1], history.vertex_step[3]
+        dissipated = result.dissipation.values[first + 1 : last + 1].sum()
+        errors.append(abs(loop_work(result, first, last) / dissipated - 1))
+    assert errors[1] < 1e-3
+    assert errors[1] < errors[0] / 3
+
+
+def test_dissipation_does_not_depend_on_the_step(hertz):
+    """Along a proportional cycle each point slips one way per half cycle, so the dissipation
+    of the discrete solution does not depend on the number of increments."""
+    fP = hertz.f * hertz.P
+    totals = [
+        fr.simulate(hertz, fr.History.piecewise_linear(np.array([0, 0.5, -0.5, 0.5]) * fP, None, n)).dissipation.sum()
+        for n in (1, 7, 40)
+    ]
+    np.testing.assert_allclose(totals, totals[0], rtol=1e-10)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_friction_conditions_hold_at_every_node(hertz, seed):
+    result = fr.simulate(hertz, random_history(hertz, seed))
+    fp = hertz.f * result.p.values
+    q, slip, stick = result.q.values, result.slip.values, result.stick.values
+    ds = np.diff(slip, axis=0, prepend=0.0)
+    rounding = 1e-10 * hertz.f * hertz.p0
+    assert np.all(np.abs(q) <= fp + rounding)
+    slipping = ~stick
+    assert np.all(np.abs(q - fp * np.sign(ds))[slipping] <= rounding)
+    assert np.all(ds[stick] == 0)
+    assert np.all(result.dissipation.values >= 0)
+    # Non-proportional paths do give opposite slip directions side by side in one increment.
+    opposite = [np.any(d[s] > 0) and np.any(d[s] < 0) for d, s in zip(ds, slipping, strict=True)]
+    assert any(opposite)
+
+
+def split_history(history, k):
+    return fr.History(history.Q[k:], history.sigma[k:], [0])
+
+
+@pytest.mark.parametrize("k", [1, 7, 20, 33, 54])
+def test_chunked_run_equals_whole_run(hertz, k):
+    """run(h) == run(h[:k]) followed by run(h[k:], state=final_state(...)), bit for bit."""
+    history = random_history(hertz, seed=4)
+    whole = fr.simulate(hertz, history)
+    head = fr.simulate(hertz, fr.History(history.Q[: k + 1], history.sigma[: k + 1], [0]))
+    tail = fr.simulate(hertz, split_history(history, k), state=fr.final_state(head))
+    for name in ("q", "slip", "stick", "dissipation", "stick_end", "delta_Q"):
+        joined = np.concatenate([head[name].values, tail[name].values[1:]])
+        width = min(joined.shape[-1], whole[name].shape[-1]) if joined.ndim == 2 else None
+        np.testing.assert_array_equal(joined[..., :width], whole[name].values[..., :width])
+
+
+def test_state_must_match_the_history_start(hertz):
+    head = final(hertz, 0.3 * hertz.f * hertz.P)
+    state = fr.State(float(head.Q), 0.0, head.slip.values, head.slip.values)
+    with pytest.raises(fr.HistoryError, match="history starts at Q = 0.0"):
+        fr.simulate(hertz, fr.History.piecewise_linear([0.0, 1.0]), state=state)
+
+
+def test_gross_slip_names_the_step(hertz):
+    fP = hertz.f * hertz.P
+    history = fr.History.piecewise_linear([0, 0.5 * fP, -1.2 * fP], None, 10)
+    with pytest.raises(fr.GrossSlipError, match="gross slip at step 19") as error:
+        fr.simulate(hertz, history)
+    assert error.value.step == 19 and error.value.Q < -fP
+
+
+def test_elastic_increment_dissipates_exactly_zero(hertz):
+    """After a reversal the first small unloading steps slip nowhere."""
+    fP = hertz.f * hertz.P
+    history = fr.History.piecewise_linear(np.array([0, 0.5, 0.5 - 1e-9]) * fP, None, [4, 1])
+    result = fr.simulate(hertz, history)
+    assert result.dissipation.values[-1] == 0.0
+    assert np.all(result.stick.values[-1])
+    np.testing.assert_array_equal(result.slip.values[-1], result.slip.values[-2])
+
+
+def test_zero_length_segment_and_repeated_vertices(hertz):
+    fP = hertz.f * hertz.P
+    history = fr.History.piecewise_linear(np.array([0, 0.4, 0.4, 0.4]) * fP, None, [3, 2, 1])
+    result = fr.simulate(hertz, history)
+    np.testing.assert_array_equal(result.slip.values[-1], result.slip.values[3])
+    assert np.all(result.dissipation.values[4:] == 0)
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda: fr.History.piecewise_linear([0, np.nan]), "finite"),
+        (lambda: fr.History.piecewise_linear([0, 1], [0]), "one value per vertex"),
+        (lambda: fr.History.piecewise_linear([0, 1], None, 0), "steps_per_segment"),
+        (lambda: fr.History.piecewise_linear([]), "empty"),
+    ],
+)
+def test_bad_history(call, message):
+    with pytest.raises(fr.HistoryError, match=message):
+        call()
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        ((fr.Hertz(1.0), -1.0, 0.5, 1.0), "E_star must be > 0"),
+        ((fr.Hertz(1.0), 1.0, "0.5", 1.0), "f must be a number"),
+        ((fr.Hertz(1.0), 1.0, 0.5, np.inf), "P must be finite"),
+        (("hertz", 1.0, 0.5, 1.0), "profile must be"),
+    ],
+)
+def test_bad_contact(arguments, message):
+    with pytest.raises(ValueError, match=message):
+        fr.Contact(*arguments)
+
+
+def test_dataset_contract(hertz):
+    result = fr.simulate(hertz, fr.History.piecewise_linear([0, 0.5 * hertz.f * hertz.P], None, 4))
+    for name in ("Q", "sigma", "p", "q", "slip", "stick", "dissipation", "delta_Q", "delta_sigma", "vertex_step"):
+        assert name in result.variables
+        assert result[name].attrs["units"] and result[name].attrs["long_name"]
+    assert result.q.dims == ("step", "x") and result.p.dims == ("x",) and result.vertex_step.dims == ("vertex",)
+    assert result.stick.dtype == bool
+    for name in ("a", "p0", "E_star", "f", "P"):
+        assert result.attrs[name] == getattr(hertz, name)
+    assert np.all(result.stick.values[0]) and np.all(result.slip.values[0] == 0)

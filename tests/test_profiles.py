@@ -1,0 +1,79 @@
+"""Normal contact of each profile against its closed form or an independent solution."""
+
+import numpy as np
+import pytest
+from scipy import integrate
+
+import fretting as fr
+
+E_STAR, P = 115e9, 3e5
+
+
+def test_hertz_closed_form():
+    contact = fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P)
+    assert contact.a == pytest.approx(np.sqrt(4 * P * 0.05 / (np.pi * E_STAR)), rel=1e-15)
+    assert contact.p0 == pytest.approx(np.sqrt(P * E_STAR / (np.pi * 0.05)), rel=1e-14)
+    x = np.linspace(-1.5, 1.5, 31) * contact.a
+    p = contact.pressure(x)
+    assert np.all(p[np.abs(x) >= contact.a] == 0)
+    # Normal equilibrium, eq (2).
+    load, _ = integrate.quad(contact.pressure, -contact.a, contact.a, epsabs=0, epsrel=1e-13)
+    assert load == pytest.approx(P, rel=1e-12)
+
+
+def test_rounded_flat_load_round_trip():
+    """a solves P = E_star a^2 (pi - 2 phi0 - sin 2 phi0) / (4R) to 1e-10 relative."""
+    profile = fr.RoundedFlat(b=1e-3, R=0.02)
+    contact = fr.Contact(profile, E_STAR, 0.5, P)
+    phi0 = np.arcsin(profile.b / contact.a)
+    load = E_STAR * contact.a**2 * (np.pi - 2 * phi0 - np.sin(2 * phi0)) / (4 * profile.R)
+    assert load == pytest.approx(P, rel=1e-12)
+
+
+@pytest.mark.parametrize("P", [1e3, 3e5, 3e7])
+def test_rounded_flat_against_general_gap_solver(P):
+    """The closed form of Ciavarella, Hills & Monno against the Chebyshev solution of eq (1)."""
+    b, R = 1e-3, 0.02
+    gap = fr.Gap(
+        lambda x: np.maximum(np.abs(x) - b, 0) ** 2 / (2 * R), lambda x: np.sign(x) * np.maximum(np.abs(x) - b, 0) / R
+    )
+    closed = fr.Contact(fr.RoundedFlat(b, R), E_STAR, 0.5, P)
+    general = fr.Contact(gap, E_STAR, 0.5, P)
+    assert general.a == pytest.approx(closed.a, rel=1e-6)
+    x = np.linspace(-0.99, 0.99, 199) * closed.a
+    np.testing.assert_allclose(general.pressure(x), closed.pressure(x), rtol=0, atol=2e-3 * closed.p0)
+    assert general.p0 == pytest.approx(closed.p0, rel=2e-3)
+
+
+def test_gap_solver_reproduces_shifted_hertz():
+    """An off-centre cylinder: the contact centres on the minimum of the gap."""
+    R, x0 = 0.05, 3e-4
+    gap = fr.Gap(lambda x: (x - x0) ** 2 / (2 * R))
+    hertz = fr.Contact(fr.Hertz(R), E_STAR, 0.5, P)
+    shifted = fr.Contact(gap, E_STAR, 0.5, P)
+    assert shifted.a == pytest.approx(hertz.a, rel=1e-10)
+    assert shifted.centre == pytest.approx(x0, rel=1e-10)
+    x = np.linspace(-0.99, 0.99, 41) * hertz.a
+    np.testing.assert_allclose(shifted.pressure(x + x0), hertz.pressure(x), rtol=0, atol=1e-9 * hertz.p0)
+
+
+def test_gap_from_table_matches_hertz():
+    R = 0.05
+    x = np.linspace(-2e-3, 2e-3, 401)
+    contact = fr.Contact(fr.Gap.from_table(x, x**2 / (2 * R)), E_STAR, 0.5, P)
+    assert contact.a == pytest.approx(np.sqrt(4 * P * R / (np.pi * E_STAR)), rel=1e-10)
+
+
+def test_flat_punch_pressure():
+    contact = fr.Contact(fr.FlatPunch(2e-3), E_STAR, 0.5, P)
+    assert contact.a == 2e-3
+    assert contact.p0 == pytest.approx(P / (np.pi * 2e-3))
+    assert contact.pressure(np.array([0.0]))[0] == pytest.approx(contact.p0)
+
+
+@pytest.mark.parametrize(
+    ("factory", "message"), [(lambda: fr.Hertz(-1), "R must be > 0"), (lambda: fr.RoundedFlat(0, 1), "b must be > 0")]
+)
+def test_bad_profile(factory, message):
+    with pytest.raises(ValueError, match=message):
+        factory()
