@@ -1,0 +1,87 @@
+"""Error against the closed forms, and cost, for several node counts.
+
+Run: python benchmarks/accuracy_vs_nodes.py
+
+Cases (Hertz, R = 50 mm, E = 210 GPa, nu = 0.3, P = 100 N/mm, f = 0.6):
+Cattaneo-Mindlin at Q/fP = 0.05, 0.2, 0.5, 0.8, 0.95 (stick ends, traction, slip); Mindlin-
+Deresiewicz unloading from 0.8 fP to 0.3, -0.2, -0.7 fP (stick ends, traction); bulk tension
+alone at sigma/(f p0) = 0.3, 1, 2.5, 3.5 (stick ends, eq 23). Traction errors exclude 0.02 a
+around each stick/slip boundary. Cost: a 10-vertex random Q/sigma history, 8 steps a segment.
+"""
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import fretting as fr
+from fretting import closed_forms as cf
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from conftest import final, hertz_si  # noqa: E402
+
+BAND = 0.02
+
+
+def away(x, ends, a):
+    return np.all(np.abs(np.subtract.outer(x, np.asarray(ends))) > BAND * a, axis=-1)
+
+
+def errors(contact, nodes):
+    fP, fp0, a = contact.f * contact.P, contact.f * contact.p0, contact.a
+    worst = {"stick ends /a": 0.0, "traction /fp0": 0.0, "slip /max": 0.0}
+
+    def update(key, value):
+        worst[key] = max(worst[key], value)
+
+    for psi in (0.05, 0.2, 0.5, 0.8, 0.95):
+        Q = psi * fP
+        r = final(contact, Q, nodes=nodes)
+        x, b = r.x.values, cf.stick_half_width(contact, Q)
+        update("stick ends /a", abs(r.stick_end.values[0] - b) / a)
+        q_error = np.abs(r.q.values - cf.cattaneo_mindlin_traction(contact, Q, x))
+        update("traction /fp0", q_error[away(x, [-b, b], a)].max() / fp0)
+        slip = cf.cattaneo_mindlin_slip(contact, Q, x)
+        update("slip /max", np.abs(r.slip.values - slip).max() / slip.max())
+    Q_star = 0.8 * fP
+    for Q_end in (0.3 * fP, -0.2 * fP, -0.7 * fP):
+        history = fr.History.piecewise_linear([0, Q_star, Q_end], None, [8, 16])
+        r = fr.simulate(contact, history, nodes=nodes).isel(step=-1)
+        x = r.x.values
+        c = a * np.sqrt(1 - (Q_star - Q_end) / (2 * fP))
+        b = cf.stick_half_width(contact, Q_star)
+        update("stick ends /a", abs(r.stick_end.values[0] - c) / a)
+        q_error = np.abs(r.q.values - cf.mindlin_deresiewicz_traction(contact, Q_star, Q_end, x))
+        update("traction /fp0", q_error[away(x, [-c, c, -b, b], a)].max() / fp0)
+    for tau in (0.3, 1.0, 2.5, 3.5):
+        sigma = tau * fp0
+        r = final(contact, 0.0, sigma, nodes=nodes)
+        update("stick ends /a", abs(r.stick_end.values[0] - cf.bulk_tension_stick_half_width(contact, sigma)) / a)
+    return worst
+
+
+def cost(contact, nodes, repeats=3):
+    rng = np.random.default_rng(0)
+    Q = rng.uniform(-0.8, 0.8, 10) * contact.f * contact.P
+    sigma = rng.uniform(-1.0, 1.0, 10) * contact.f * contact.p0
+    Q[0] = sigma[0] = 0
+    history = fr.History.piecewise_linear(Q, sigma, 8)
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fr.simulate(contact, history, nodes=nodes)
+        times.append(time.perf_counter() - start)
+    return np.median(times) / (len(history) - 1)
+
+
+def main():
+    contact = hertz_si()
+    print(f"{'nodes':>6} {'stick ends /a':>14} {'traction /fp0':>14} {'slip /max':>10} {'ms/step':>8}")
+    for nodes in (128, 256, 384, 512, 768):
+        worst = errors(contact, nodes)
+        print(f"{nodes:>6} " + " ".join(f"{v:>14.2e}" for v in worst.values()) + f" {cost(contact, nodes) * 1e3:>8.2f}")
+
+
+if __name__ == "__main__":
+    main()
