@@ -92,8 +92,8 @@ class _Scene:
         return self.w * np.dot(self.limit, np.abs(ds))
 
 
-def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None):
-    """Follow a load history and record the contact at every step.
+def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None, record=None):
+    """Follow a load history and record the contact.
 
     Parameters
     ----------
@@ -105,6 +105,9 @@ def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None):
         Gauss-Chebyshev collocation nodes.
     state : State, optional
         State to continue from (see `final_state`); its loads must be the history's first.
+    record : array_like of int, optional
+        Steps to store, increasing (default: every step). The dataset's `step` coordinate
+        holds their numbers; `cycle_dissipation` always covers every step.
 
     Returns
     -------
@@ -130,22 +133,36 @@ def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None):
             f"history starts at Q = {float(history.Q[0])!r}, sigma = {float(history.sigma[0])!r}; "
             f"the state is at Q = {float(state.Q)!r}, sigma = {float(state.sigma)!r}"
         )
-    return build_dataset(_run(scene, history, state), _attributes(contact, nodes))
+    steps = _recorded_steps(record, len(history))
+    return build_dataset(_run(scene, history, state, steps), _attributes(contact, nodes))
 
 
-def _run(scene, history, state):
-    n = len(history)
+def _recorded_steps(record, n):
+    if record is None:
+        return np.arange(n)
+    steps = np.asarray(record)
+    if steps.ndim != 1 or not np.issubdtype(steps.dtype, np.integer) or steps.size == 0:
+        raise ValueError(f"record must be a non-empty list of step numbers, found {record!r}")
+    if np.any(np.diff(steps) <= 0) or steps[0] < 0 or steps[-1] >= n:
+        raise ValueError(f"record must list increasing steps between 0 and {n - 1}")
+    return steps
+
+
+def _run(scene, history, state, steps):
     N = scene.grid.N
-    data = {
-        "q": np.empty((n, N)),
-        "slip": np.empty((n, N)),
-        "stick": np.empty((n, N), dtype=bool),
-        "dissipation": np.zeros(n),
+    row = np.full(len(history), -1)
+    row[steps] = np.arange(steps.size)
+    fields = {
+        "q": np.empty((steps.size, N)),
+        "slip": np.empty((steps.size, N)),
+        "stick": np.empty((steps.size, N), dtype=bool),
+        "dissipation": np.empty(steps.size),
     }
+    cycle_dissipation = np.zeros(0 if history.cycle is None else history.cycle[-1] + 1)
     zones = []
     G = scene.G
     g = scene.g_stuck(state.Q, state.sigma) - G @ state.slip
-    for step in range(n):
+    for step in range(len(history)):
         Q, sigma = history.Q[step], history.sigma[step]
         if abs(Q) >= scene.friction_force:
             raise GrossSlipError(step, Q, sigma, scene.friction_force)
@@ -155,32 +172,40 @@ def _run(scene, history, state):
         else:
             ds = np.zeros(N)
         state = state.advance(Q, sigma, ds)
-        data["q"][step] = scene.traction(g)
-        data["slip"][step] = state.slip
-        data["stick"][step] = ds == 0
-        data["dissipation"][step] = scene.dissipation(ds)
-        zones.append(stick_zones(scene.grid.t, state.slip - state.episode_start))
-    width = max(len(z) for z in zones)
-    ends = np.full((n, width, 2), np.nan)
-    for step, z in enumerate(zones):
-        ends[step, : len(z)] = z
-    ends = scene.contact.centre + scene.contact.a * ends
+        dissipation = scene.dissipation(ds)
+        if cycle_dissipation.size:
+            cycle_dissipation[history.cycle[step]] += dissipation
+        k = row[step]
+        if k >= 0:
+            fields["q"][k] = scene.traction(g)
+            fields["slip"][k] = state.slip
+            fields["stick"][k] = ds == 0
+            fields["dissipation"][k] = dissipation
+            zones.append(stick_zones(scene.grid.t, state.slip - state.episode_start))
+    data = fields | _zone_ends(scene, zones)
     if history.cycle is not None:
-        data["cycle"] = history.cycle
-        data["cycle_dissipation"] = np.bincount(history.cycle, data["dissipation"])[1:]
+        data["cycle"] = history.cycle[steps]
+        data["cycle_dissipation"] = cycle_dissipation[1:]
     return data | {
-        "Q": history.Q,
-        "sigma": history.sigma,
+        "Q": history.Q[steps],
+        "sigma": history.sigma[steps],
         "p": scene.contact.pressure(scene.x),
         "x": scene.x,
-        "step": np.arange(n),
-        "stick_start": ends[..., 0],
-        "stick_end": ends[..., 1],
-        "delta_Q": data["slip"].mean(axis=1),
-        "delta_sigma": scene.w * data["slip"] @ scene.grid.t / 4,
+        "step": steps,
+        "delta_Q": fields["slip"].mean(axis=1),
+        "delta_sigma": scene.w * fields["slip"] @ scene.grid.t / 4,
         "vertex_step": history.vertex_step,
         "episode_start": state.episode_start,
     }
+
+
+def _zone_ends(scene, zones):
+    """`stick_start` and `stick_end` [m] from per-step lists of normalised stick intervals."""
+    ends = np.full((len(zones), max(len(z) for z in zones), 2), np.nan)
+    for k, z in enumerate(zones):
+        ends[k, : len(z)] = z
+    ends = scene.contact.centre + scene.contact.a * ends
+    return {"stick_start": ends[..., 0], "stick_end": ends[..., 1]}
 
 
 def stick_zones(t, ds):
