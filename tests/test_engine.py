@@ -204,3 +204,18 @@ def test_recording_a_subset_of_steps(hertz):
     np.testing.assert_allclose(full.cycle_dissipation.values, per_cycle, rtol=1e-14)
     with pytest.raises(ValueError, match="increasing steps"):
         fr.simulate(hertz, history, record=[3, 2])
+
+
+@pytest.mark.parametrize("tau", [0.0, 0.5])
+def test_vertex_states_do_not_depend_on_steps_per_segment(hertz, tau):
+    """Along proportional segments (in-phase Q and sigma, same-direction slip) the state at a
+    vertex is the same whether a segment takes 1, 8 or 1000 increments."""
+    fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
+    Q = np.array([0, 0.6, -0.3, 0.4]) * fP
+    slips = []
+    for steps in (1, 8, 1000):
+        history = fr.History.piecewise_linear(Q, tau * fp0 * Q / fP, steps)
+        slips.append(fr.simulate(hertz, history, record=history.vertex_step).slip.values)
+    scale = np.abs(slips[0]).max()
+    for other in slips[1:]:
+        np.testing.assert_allclose(other, slips[0], rtol=0, atol=1e-9 * scale)
