@@ -3,6 +3,7 @@
 from fretting.contact import Contact
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, SolverError
 from fretting.history import History
+from fretting.methods import partial_slip
 from fretting.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
 from fretting.simulate import DEFAULT_NODES, State, final_state, simulate
 
@@ -21,6 +22,7 @@ __all__ = [
     "SolverError",
     "State",
     "final_state",
+    "partial_slip",
     "simulate",
 ]
 
