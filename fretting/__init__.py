@@ -3,6 +3,8 @@
 from fretting.contact import Contact
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, SolverError
 from fretting.history import History
+from fretting.history_file import HistoryFileError, read_history
+from fretting.io import ResultError, join_results, load, save
 from fretting.methods import partial_slip
 from fretting.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
 from fretting.simulate import DEFAULT_NODES, State, final_state, simulate
@@ -17,12 +19,18 @@ __all__ = [
     "Hertz",
     "History",
     "HistoryError",
+    "HistoryFileError",
     "Profile",
+    "ResultError",
     "RoundedFlat",
     "SolverError",
     "State",
     "final_state",
+    "join_results",
+    "load",
     "partial_slip",
+    "read_history",
+    "save",
     "simulate",
 ]
 

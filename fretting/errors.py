@@ -16,10 +16,12 @@ class GrossSlipError(FrettingError, RuntimeError):
         The step whose load reaches gross slip.
     Q, sigma : float
         The loads of that step [N/m], [Pa].
+    limit : float
+        ``f P`` on the collocation grid [N/m].
     """
 
     def __init__(self, step, Q, sigma, limit):
-        self.step, self.Q, self.sigma = step, Q, sigma
+        self.step, self.Q, self.sigma, self.limit = step, Q, sigma, limit
         super().__init__(
             f"gross slip at step {step}: Q = {Q:.6g}, sigma = {sigma:.6g} leave no stick zone "
             f"(|Q| must stay below f P = {limit:.6g})"

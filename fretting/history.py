@@ -1,13 +1,18 @@
 """Load histories: the trajectory of the shear force Q and the bulk tension sigma."""
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
 
-from fretting._validate import finite_array
+from fretting._validate import finite, finite_array
 from fretting.errors import HistoryError
 
-__all__ = ["History"]
+__all__ = ["History", "RAMP_STEPS"]
+
+#: Steps of the straight ramp that reaches the first point of a sinusoid: a quarter of the
+#: default 64 steps per cycle, the steps a sinusoid takes to rise from its mean to its peak.
+RAMP_STEPS = 16
 
 
 @dataclass(frozen=True, eq=False)
@@ -24,7 +29,8 @@ class History:
         Step at which each vertex of the path is reached.
     cycle : ndarray of int, shape (n_steps,), optional
         Load cycle (1, 2, ...) that the increment ending at each step belongs to; 0 for
-        steps outside any cycle (the starting state, ramps). None for histories without cycles.
+        steps outside any cycle (the starting state, ramps). Each cycle is one run of steps:
+        the non-zero numbers never decrease. None for histories without cycles.
     """
 
     Q: np.ndarray
@@ -43,8 +49,8 @@ class History:
         arrays = {"Q": Q, "sigma": sigma, "vertex_step": vertex_step}
         if self.cycle is not None:
             cycle = np.asarray(self.cycle, dtype=np.int64)
-            if cycle.shape != Q.shape or np.any(np.diff(cycle) < 0) or np.any(cycle < 0):
-                raise HistoryError("cycle must give a non-decreasing cycle number >= 0 for every step")
+            if cycle.shape != Q.shape or np.any(cycle < 0) or np.any(np.diff(cycle[cycle > 0]) < 0):
+                raise HistoryError("cycle must give a cycle number >= 0 for every step, non-zero ones non-decreasing")
             arrays["cycle"] = cycle
         for name, value in arrays.items():
             value.setflags(write=False)
@@ -52,6 +58,76 @@ class History:
 
     def __len__(self):
         return self.Q.size
+
+    def __getitem__(self, steps):
+        """Contiguous steps ``history[start:stop]``, renumbered from 0, with their vertices and cycles.
+
+        Cycle numbers are kept, so that a run continued from step ``k`` with ``history[k:]``
+        numbers its cycles as the whole run does.
+        """
+        if not isinstance(steps, slice) or steps.step not in (None, 1):
+            raise TypeError(f"a History takes contiguous slices of steps, e.g. history[k:], found {steps!r}")
+        start, stop, _ = steps.indices(len(self))
+        if stop <= start:
+            raise HistoryError(f"steps {start}:{stop} of a {len(self)}-step history are empty")
+        inside = (self.vertex_step >= start) & (self.vertex_step < stop)
+        cycle = None if self.cycle is None else self.cycle[start:stop]
+        return History(self.Q[start:stop], self.sigma[start:stop], self.vertex_step[inside] - start, cycle)
+
+    @property
+    def end(self):
+        """Loads ``(Q, sigma)`` at the last step [N/m], [Pa]."""
+        return float(self.Q[-1]), float(self.sigma[-1])
+
+    @property
+    def cycle_count(self):
+        """Number of the last load cycle; 0 for a history without cycles."""
+        return int(_cycles(self).max())
+
+    def as_cycle(self):
+        """The same path counted as one load cycle: every step after the first belongs to cycle 1."""
+        cycle = np.ones(len(self), dtype=np.int64)
+        cycle[0] = 0
+        return History(self.Q, self.sigma, self.vertex_step, cycle)
+
+    @classmethod
+    def concatenate(cls, histories):
+        """One history after the other.
+
+        Parameters
+        ----------
+        histories : iterable of History
+            Each must start exactly where the previous one ends; its step 0, which repeats
+            that point, is dropped.
+
+        Returns
+        -------
+        History
+            Cycles are counted on: those of each history are numbered after the previous ones.
+            None if no history has cycles.
+        """
+        histories = list(histories)
+        if not histories:
+            raise HistoryError("no histories to concatenate")
+        first = histories[0]
+        Q, sigma, vertex_step, cycle = [first.Q], [first.sigma], [first.vertex_step], [_cycles(first)]
+        end, last_vertex, counted = len(first) - 1, first.vertex_step.max(initial=-1), first.cycle_count
+        for number, (previous, history) in enumerate(itertools.pairwise(histories), start=2):
+            if history[:1].end != previous.end:
+                raise HistoryError(
+                    f"history {number} starts at (Q, sigma) = {history[:1].end}, "
+                    f"expected the end of the previous one, {previous.end}"
+                )
+            vertices = history.vertex_step[history.vertex_step > 0] if last_vertex == end else history.vertex_step
+            later = _cycles(history)[1:]
+            Q.append(history.Q[1:])
+            sigma.append(history.sigma[1:])
+            vertex_step.append(vertices + end)
+            cycle.append(np.where(later > 0, later + counted, 0))
+            last_vertex = vertices[-1] + end if vertices.size else last_vertex
+            end, counted = end + len(history) - 1, counted + history.cycle_count
+        has_cycles = any(history.cycle is not None for history in histories)
+        return cls(*map(np.concatenate, (Q, sigma, vertex_step)), np.concatenate(cycle) if has_cycles else None)
 
     @classmethod
     def piecewise_linear(cls, Q, sigma=None, steps_per_segment=16):
@@ -76,11 +152,152 @@ class History:
         fractions = [np.arange(1, n + 1) / n for n in steps]
         return cls(_segments(Q, fractions), _segments(sigma, fractions), np.concatenate([[0], np.cumsum(steps)]))
 
+    @classmethod
+    def sinusoidal(
+        cls,
+        Q_amplitude,
+        sigma_amplitude=0.0,
+        phase_deg=0.0,
+        cycles=1,
+        steps_per_cycle=64,
+        Q_mean=0.0,
+        sigma_mean=0.0,
+        *,
+        start=(0.0, 0.0),
+        ramp_steps=RAMP_STEPS,
+    ):
+        """Sinusoidal load cycles, reached from `start` by a straight ramp when they start elsewhere.
+
+        ``Q = Q_mean + Q_amplitude sin(theta)`` and ``sigma = sigma_mean + sigma_amplitude sin(theta + phase)``,
+        ``theta`` from 0 to ``2 pi`` in each cycle: each cycle ends where it starts. From the unloaded
+        state, the ramp leads to the means (and ``sigma_amplitude sin(phase)`` above them); its steps
+        belong to no cycle.
+
+        Parameters
+        ----------
+        Q_amplitude, sigma_amplitude : float
+            Amplitudes [N/m], [Pa], >= 0.
+        phase_deg : float
+            Phase by which sigma leads Q [deg]: 0 in phase, 90 out of phase, 180 in opposition.
+        cycles : int
+            Number of cycles, >= 1.
+        steps_per_cycle : int
+            Equal increments of ``theta`` per cycle, >= 4; vertices are the cycle ends.
+        Q_mean, sigma_mean : float
+            Means [N/m], [Pa].
+        start : tuple of float
+            ``(Q, sigma)`` the history starts from [N/m], [Pa].
+        ramp_steps : int
+            Steps of the ramp to the first point, >= 1.
+        """
+        amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
+        phase = np.radians(_number("phase_deg", phase_deg))
+        steps = _count("steps_per_cycle", steps_per_cycle, minimum=4)
+        count = _count("cycles", cycles)
+        theta = 2 * np.pi * (np.arange(count * steps + 1) % steps) / steps  # exactly 0 again at each cycle end
+        Q = mean[0] + amplitude[0] * np.sin(theta)
+        sigma = mean[1] + amplitude[1] * np.sin(theta + phase)
+        cycle = np.concatenate([[0], np.repeat(np.arange(1, count + 1), steps)])
+        waves = cls(Q, sigma, np.arange(0, theta.size, steps), cycle)
+        return _reached_from(start, waves, _count("ramp_steps", ramp_steps))
+
+    @classmethod
+    def random_amplitude(
+        cls,
+        cycles,
+        Q_amplitude,
+        sigma_amplitude=0.0,
+        Q_mean=0.0,
+        sigma_mean=0.0,
+        seed=0,
+        steps_per_segment=16,
+        *,
+        start=(0.0, 0.0),
+    ):
+        """Cycles of random amplitude: a straight rise to a peak, then a fall to a valley.
+
+        Cycle ``k`` rises to ``Q_mean + u_k Q_amplitude`` and falls to ``Q_mean - v_k Q_amplitude``,
+        sigma in phase with the same ``u_k`` and ``v_k``, drawn uniformly from [0, 1) by
+        ``numpy.random.default_rng(seed)``. NumPy does not promise the same draws across its
+        versions: keep the generated loads (a result holds them) rather than the seed.
+
+        Parameters
+        ----------
+        cycles : int
+            Number of cycles, >= 1.
+        Q_amplitude, sigma_amplitude : float
+            Largest excursions from the means [N/m], [Pa], >= 0.
+        Q_mean, sigma_mean : float
+            Means [N/m], [Pa].
+        seed : int
+            Seed of the generator, >= 0.
+        steps_per_segment : int
+            Equal increments of each rise and fall, >= 1.
+        start : tuple of float
+            ``(Q, sigma)`` the history starts from [N/m], [Pa]; the first rise starts there.
+        """
+        amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
+        count = _count("cycles", cycles)
+        steps = _count("steps_per_segment", steps_per_segment)
+        excursion = (np.random.default_rng(_count("seed", seed, minimum=0)).random((count, 2)) * [1, -1]).ravel()
+        start = _start(start)
+        path = cls.piecewise_linear(
+            np.concatenate([[start[0]], mean[0] + amplitude[0] * excursion]),
+            np.concatenate([[start[1]], mean[1] + amplitude[1] * excursion]),
+            steps,
+        )
+        cycle = np.concatenate([[0], np.repeat(np.arange(1, count + 1), 2 * steps)])
+        return cls(path.Q, path.sigma, path.vertex_step, cycle)
+
+
+def _reached_from(start, history, ramp_steps):
+    """`history`, preceded by a straight ramp of `ramp_steps` steps from `start` if it starts elsewhere."""
+    start = _start(start)
+    if (history.Q[0], history.sigma[0]) == start:
+        return history
+    ramp = History.piecewise_linear([start[0], history.Q[0]], [start[1], history.sigma[0]], ramp_steps)
+    return History.concatenate([ramp, history])
+
+
+def _cycles(history):
+    """Cycle numbers of every step, zeros for a history without cycles."""
+    return np.zeros(len(history), dtype=np.int64) if history.cycle is None else history.cycle
+
 
 def _segments(vertices, fractions):
     """Values along straight segments; each segment ends exactly on its vertex."""
     pieces = [vertices[i] * (1 - u) + vertices[i + 1] * u for i, u in enumerate(fractions)]
     return np.concatenate([vertices[:1], *pieces])
+
+
+def _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean):
+    """Validated amplitudes (>= 0) and means, each as a pair ``(Q, sigma)``."""
+    amplitude = (_number("Q_amplitude", Q_amplitude, minimum=0.0), _number("sigma_amplitude", sigma_amplitude, 0.0))
+    return amplitude, (_number("Q_mean", Q_mean), _number("sigma_mean", sigma_mean))
+
+
+def _number(name, value, minimum=None):
+    try:
+        number = finite(name, value)
+    except ValueError as error:
+        raise HistoryError(str(error)) from None
+    if minimum is not None and number < minimum:
+        raise HistoryError(f"{name} must be >= {minimum}, found {value!r}")
+    return number
+
+
+def _count(name, value, minimum=1):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise HistoryError(f"{name} must be an integer >= {minimum}, found {value!r}")
+    return int(value)
+
+
+def _start(start):
+    """``start`` as a pair of floats ``(Q, sigma)``."""
+    values = _loads("start", start)
+    if values.size != 2:
+        raise HistoryError(f"start must be a pair (Q, sigma), found {start!r}")
+    return float(values[0]), float(values[1])
 
 
 def _loads(name, values):

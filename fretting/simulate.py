@@ -80,12 +80,16 @@ class _Scene:
         return g / np.sqrt(1 - self.grid.t**2)
 
     def delta_Q(self, slip):
-        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] (formulation.md section 5)."""
-        return np.mean(slip)
+        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of each row of `slip` (formulation.md section 5)."""
+        return np.mean(slip, axis=-1)
 
     def delta_sigma(self, slip):
-        """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2] (formulation.md section 5)."""
-        return self.w * np.dot(slip, self.grid.t) / 4
+        """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2] of each row of `slip` (formulation.md section 5).
+
+        A row-wise sum, not a matrix product, so that a row's value does not depend on how
+        many rows there are (a run split in parts equals the whole run bit for bit).
+        """
+        return self.w * np.sum(slip * self.grid.t, axis=-1) / 4
 
     def dissipation(self, ds):
         """``int f p |ds| dx`` [J/m]."""
@@ -158,7 +162,7 @@ def _run(scene, history, state, steps):
         "stick": np.empty((steps.size, N), dtype=bool),
         "dissipation": np.empty(steps.size),
     }
-    cycle_dissipation = np.zeros(0 if history.cycle is None else history.cycle[-1] + 1)
+    cycle_dissipation = np.zeros(0 if history.cycle is None else history.cycle.max() + 1)
     zones = []
     G = scene.G
     g = scene.g_stuck(state.Q, state.sigma) - G @ state.slip
@@ -169,9 +173,9 @@ def _run(scene, history, state, steps):
         if step > 0 or (Q, sigma) != (state.Q, state.sigma):
             increment = solve_increment(G, scene.g_stuck(Q, sigma) - G @ state.slip, scene.limit)
             g, ds = increment.g, increment.ds
-        else:
+            state = state.advance(Q, sigma, ds)
+        else:  # the starting state itself: nothing moves, and its slip episodes go on
             ds = np.zeros(N)
-        state = state.advance(Q, sigma, ds)
         dissipation = scene.dissipation(ds)
         if cycle_dissipation.size:
             cycle_dissipation[history.cycle[step]] += dissipation
@@ -186,14 +190,15 @@ def _run(scene, history, state, steps):
     if history.cycle is not None:
         data["cycle"] = history.cycle[steps]
         data["cycle_dissipation"] = cycle_dissipation[1:]
+        data["cycle_number"] = np.arange(1, cycle_dissipation.size)
     return data | {
         "Q": history.Q[steps],
         "sigma": history.sigma[steps],
         "p": scene.contact.pressure(scene.x),
         "x": scene.x,
         "step": steps,
-        "delta_Q": fields["slip"].mean(axis=1),
-        "delta_sigma": scene.w * fields["slip"] @ scene.grid.t / 4,
+        "delta_Q": scene.delta_Q(fields["slip"]),
+        "delta_sigma": scene.delta_sigma(fields["slip"]),
         "vertex_step": history.vertex_step,
         "episode_start": state.episode_start,
     }

@@ -20,7 +20,8 @@ VARIABLES = {
     "delta_sigma": (("step",), "m2", "slip part of the generalized displacement conjugate to sigma"),
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
     "cycle": (("step",), "1", "load cycle of the increment ending at this step (0: outside any cycle)"),
-    "cycle_dissipation": (("cycle",), "J/m", "energy dissipated in each load cycle"),
+    "cycle_dissipation": (("cycle_number",), "J/m", "energy dissipated in each load cycle"),
+    "cycle_number": (("cycle_number",), "1", "load cycle (1, 2, ...)"),
     "episode_start": (("x",), "m", "slip at which each point's current slip episode began, at the last step"),
     "x": (("x",), "m", "position along the contact"),
     "step": (("step",), "1", "load step (0 is the starting state)"),
@@ -33,5 +34,5 @@ def build_dataset(data, attrs):
     for name, values in data.items():
         dims, units, long_name = VARIABLES[name]
         variables[name] = xr.Variable(dims, np.asarray(values), {"units": units, "long_name": long_name})
-    coords = {name: variables.pop(name) for name in ("x", "step") if name in variables}
+    coords = {name: variables.pop(name) for name in ("x", "step", "cycle_number") if name in variables}
     return xr.Dataset(variables, coords=coords, attrs=attrs)

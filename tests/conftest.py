@@ -7,6 +7,17 @@ import fretting as fr
 
 E_SI, NU_SI = 210e9, 0.3
 
+#: The contact table of a history file for a Hertz scene (f = 0.7).
+HERTZ_TOML = """\
+[contact]
+profile = "hertz"
+R = 0.05
+E = 210e9
+nu = 0.3
+f = 0.7
+P = 1e5
+"""
+
 
 def hertz_si():
     """R = 50 mm, E = 210 GPa, nu = 0.3, P = 100 N/mm, f = 0.6."""

@@ -1,0 +1,260 @@
+"""The command line: ``fretting run | validate | info | plot`` (also ``python -m fretting``).
+
+Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
+failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
+"""
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from tqdm import tqdm
+
+from fretting import __version__
+from fretting.errors import FrettingError, GrossSlipError, HistoryError
+from fretting.history_file import read_history_source
+from fretting.io import ResultError, join_results, load, save, source_attributes
+from fretting.simulate import DEFAULT_NODES, final_state, simulate
+
+__all__ = ["main"]
+
+EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
+
+#: Steps run at a time: how often the progress bar moves and a checkpoint can be written.
+CHUNK_STEPS = 200
+
+#: Seconds between checkpoints by default: a few percent of the run time spent writing them.
+CHECKPOINT_SECONDS = 60.0
+
+#: Seconds a run lasts before its progress bar appears: short runs show none.
+PROGRESS_DELAY = 2.0
+
+
+def main(argv=None):
+    """Run the command line with the arguments `argv` (``sys.argv[1:]`` when None); return the exit code."""
+    args = _parser().parse_args(argv)
+    try:
+        args.command(args)
+    except KeyboardInterrupt as interrupt:
+        return _fail(args, interrupt, f"interrupted{f': {interrupt}' if interrupt.args else ''}", EXIT_INTERRUPTED)
+    except GrossSlipError as error:
+        return _fail(args, error, f"{args.file}: {error}", EXIT_GROSS_SLIP)
+    except OSError as error:
+        return _fail(args, error, f"{error.filename or args.file}: {error.strerror or error}", EXIT_INPUT)
+    except (HistoryError, ResultError) as error:
+        return _fail(args, error, str(error), EXIT_INPUT)
+    except FrettingError as error:
+        return _fail(args, error, f"{args.file}: {error}", EXIT_FAILURE)
+    return 0
+
+
+def _fail(args, error, message, code):
+    if args.debug:
+        raise error
+    print(f"fretting: error: {message}", file=sys.stderr)
+    return code
+
+
+def _parser():
+    parser = argparse.ArgumentParser(
+        prog="fretting", description="Partial-slip half-plane contacts under shear and bulk-tension histories."
+    )
+    parser.add_argument("--version", action="version", version=f"fretting {__version__}")
+    commands = parser.add_subparsers(title="commands", required=True, metavar="COMMAND")
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("--debug", action="store_true", help="show the traceback of an error")
+
+    run = commands.add_parser("run", parents=[common], help="run a history file and write its result")
+    run.add_argument("file", metavar="HISTORY", help="history file (TOML)")
+    run.add_argument("-o", "--output", metavar="OUT", help="result file (default: results/<history stem>.h5)")
+    run.add_argument("--resume", action="store_true", help="continue an interrupted run from its checkpoint")
+    run.add_argument(
+        "--nodes", type=_at_least(4, int), default=DEFAULT_NODES, help=f"collocation nodes (default {DEFAULT_NODES})"
+    )
+    run.add_argument(
+        "--checkpoint-interval",
+        type=_at_least(0, float),
+        default=CHECKPOINT_SECONDS,
+        metavar="SECONDS",
+        help=f"seconds between checkpoints (default {CHECKPOINT_SECONDS:g}; 0: after every {CHUNK_STEPS} steps)",
+    )
+    run.set_defaults(command=_run)
+
+    validate = commands.add_parser("validate", parents=[common], help="check a history file without running it")
+    validate.add_argument("file", metavar="HISTORY", help="history file (TOML)")
+    validate.set_defaults(command=_validate)
+
+    info = commands.add_parser("info", parents=[common], help="describe a result file")
+    info.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    info.set_defaults(command=_info)
+
+    plot = commands.add_parser("plot", parents=[common], help="draw a result as PNG files")
+    plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    plot.add_argument("-o", "--output", metavar="DIR", help="directory of the figures (default: the result's)")
+    plot.set_defaults(command=_plot)
+    return parser
+
+
+def _at_least(minimum, kind):
+    """Argument type: a number of `kind` >= `minimum`."""
+
+    def convert(text):
+        try:
+            value = kind(text)
+        except ValueError:
+            value = None
+        if value is None or not value >= minimum:
+            raise argparse.ArgumentTypeError(f"found {text!r}, expected a {kind.__name__} >= {minimum}")
+        return value
+
+    return convert
+
+
+def _run(args):
+    source = read_history_source(args.file)
+    output = Path(args.output) if args.output else Path("results") / f"{source.path.stem}.h5"
+    checkpoint = output.with_name(f"{output.name}.checkpoint")
+    if checkpoint.exists() and not args.resume:
+        raise ResultError(
+            f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
+        )
+    parts = [_resumable(checkpoint, source, args.nodes)] if args.resume and checkpoint.exists() else []
+    history, attributes = source.history, source_attributes(source)
+    done = parts[0].sizes["step"] - 1 if parts else 0
+    written = time.monotonic()
+    with tqdm(
+        total=len(history) - 1,
+        initial=done,
+        unit="step",
+        delay=PROGRESS_DELAY,
+        disable=not sys.stderr.isatty(),
+        file=sys.stderr,
+    ) as progress:
+        try:
+            for part in _chunks(source.contact, history, args.nodes, parts[-1] if parts else None):
+                parts.append(part)
+                progress.update(part.sizes["step"] - 1)
+                if time.monotonic() - written >= args.checkpoint_interval:
+                    parts = [join_results(parts)]
+                    save(parts[0].assign_attrs(attributes), checkpoint)
+                    written = time.monotonic()
+        except KeyboardInterrupt:
+            if parts:
+                save(join_results(parts).assign_attrs(attributes), checkpoint)
+                raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
+            raise
+        except GrossSlipError:
+            checkpoint.unlink(missing_ok=True)  # resuming would only reach it again
+            raise
+    result = join_results(parts)
+    save(result.assign_attrs(attributes), output)
+    checkpoint.unlink(missing_ok=True)
+    print(f"{output}: {result.sizes['step'] - 1} steps, {_cycles(result)} cycles, {_dissipated(result)}")
+
+
+def _chunks(contact, history, nodes, done):
+    """Results of successive chunks of `history`, each continuing from the previous one or from `done`."""
+    start = 0 if done is None else done.sizes["step"] - 1
+    previous = done
+    while previous is None or start < len(history) - 1:
+        stop = min(start + CHUNK_STEPS, len(history) - 1)
+        state = None if previous is None else final_state(previous)
+        try:
+            previous = simulate(contact, history[start : stop + 1], nodes=nodes, state=state)
+        except GrossSlipError as error:
+            raise GrossSlipError(start + error.step, error.Q, error.sigma, error.limit) from None
+        yield previous
+        start = stop
+
+
+def _resumable(checkpoint, source, nodes):
+    """The partial result in `checkpoint`, checked to belong to this history file and these settings."""
+    done = load(checkpoint)
+    steps = done.sizes["step"]
+    if done.attrs.get("history_sha256") != source.sha256:
+        raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
+    if done.attrs.get("nodes") != nodes:
+        raise ResultError(f"{checkpoint}: found {done.attrs.get('nodes')} nodes, expected {nodes} (see --nodes)")
+    history = source.history
+    same = steps <= len(history) and all(
+        np.array_equal(done[name].values, getattr(history, name)[:steps]) for name in ("Q", "sigma")
+    )
+    if not same:
+        raise ResultError(f"{checkpoint}: found loads that {source.path} no longer gives (NumPy's random draws?)")
+    return done
+
+
+def _validate(args):
+    source = read_history_source(args.file)
+    contact, history = source.contact, source.history
+    print(f"{source.path}: {contact.profile!r}, a = {contact.a:.4g} m, p0 = {contact.p0:.4g} Pa")
+    print(f"  {len(history) - 1} steps, {history.vertex_step.size} vertices, {history.cycle_count} cycles")
+    print(f"  {_peaks(history.Q, history.sigma, contact.f, contact.P, contact.p0)}")
+    fP = contact.f * contact.P
+    sliding = np.flatnonzero(np.abs(history.Q) >= fP)
+    if sliding.size:
+        step = int(sliding[0])
+        raise GrossSlipError(step, float(history.Q[step]), float(history.sigma[step]), fP)
+
+
+def _info(args):
+    result = load(args.file)
+    attrs = result.attrs
+    versions = json.loads(attrs.get("versions", "{}"))
+    lines = {
+        "history": f"{attrs.get('history_file', '?')} (sha256 {attrs.get('history_sha256', '?')})",
+        "contact": f"{attrs['profile']}, E_star = {attrs['E_star']:.4g} Pa, f = {attrs['f']:.4g}, "
+        f"P = {attrs['P']:.4g} N/m",
+        "solution": f"a = {attrs['a']:.4g} m, centre = {attrs['centre']:.4g} m, p0 = {attrs['p0']:.4g} Pa",
+        "model": f"{attrs['model']}, {attrs['nodes']} nodes",
+        "steps": f"{result.sizes['step'] - 1} steps, {result.sizes['vertex']} vertices, {_cycles(result)} cycles",
+        "loads": _peaks(result.Q.values, result.sigma.values, attrs["f"], attrs["P"], attrs["p0"]),
+        "energy": _dissipated(result),
+        "created": attrs.get("created", "?"),
+        "versions": ", ".join(f"{name} {version}" for name, version in versions.items()),
+    }
+    print(args.file)
+    for name, text in lines.items():
+        print(f"  {name:<9} {text}")
+
+
+def _plot(args):
+    import matplotlib  # here, not at the top: the other commands do without its start-up time
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from fretting import plots
+
+    result = load(args.file)
+    directory = Path(args.output) if args.output else Path(args.file).parent
+    directory.mkdir(parents=True, exist_ok=True)
+    figures = {"traction": plots.traction, "slip": plots.slip, "hysteresis": plots.hysteresis}
+    if _cycles(result):
+        figures["energy"] = plots.cycle_energy
+    for name, draw in figures.items():
+        figure = Figure(figsize=(6.4, 4.4), layout="constrained")
+        draw(result, ax=figure.subplots())
+        path = directory / f"{Path(args.file).stem}_{name}.png"
+        figure.savefig(path, dpi=150)
+        print(path)
+
+
+def _peaks(Q, sigma, f, P, p0):
+    """The largest loads of a history, relative to those of gross slip."""
+    psi, tau = np.abs(Q).max() / (f * P), np.abs(sigma).max() / (f * p0)
+    return f"max |Q| / (f P) = {psi:.3g}, max |sigma| / (f p0) = {tau:.3g}"
+
+
+def _cycles(result):
+    return result.cycle_dissipation.size if "cycle_dissipation" in result else 0
+
+
+def _dissipated(result):
+    total = f"dissipated {float(result.dissipation.sum()):.4g} J/m"
+    if _cycles(result):
+        return f"{total}, {float(result.cycle_dissipation[-1]):.4g} J/m in the last cycle"
+    return total

@@ -1,0 +1,236 @@
+"""The command line: run, validate, info, plot; one-line errors and exit codes; nothing lost; resume."""
+
+import hashlib
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+import xarray as xr
+from conftest import HERTZ_TOML as CONTACT
+
+import fretting as fr
+from fretting import cli
+from fretting.history_file import read_history
+from fretting.io import load
+
+NODES = "32"
+
+
+SHEAR = """
+[[loading]]
+kind = "linear"
+Q = [30e3]
+steps_per_segment = 10
+
+[[loading]]
+kind = "repeat"
+count = 3
+blocks = [{ kind = "linear", Q = [-30e3, 30e3], steps_per_segment = 12, cycle = true }]
+"""
+
+
+@pytest.fixture
+def workdir(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+def write(path, text):
+    path.write_text(text)
+    return path
+
+
+def run(*arguments):
+    return cli.main([str(argument) for argument in arguments])
+
+
+def data_of(result):
+    """`result` without the attributes that differ between runs (the time and the versions)."""
+    copy = result.copy()
+    copy.attrs = {name: value for name, value in result.attrs.items() if name not in ("created", "versions")}
+    return copy
+
+
+def test_run_writes_a_self_describing_result(workdir, capsys):
+    history = write(workdir / "shear.toml", CONTACT + SHEAR)
+    assert run("run", "shear.toml", "--nodes", NODES) == 0
+    out, err = capsys.readouterr()
+    assert out.startswith(f"{os.path.join('results', 'shear.h5')}: 82 steps, 3 cycles") and err == ""
+    result = load(workdir / "results" / "shear.h5")
+    assert result.attrs["history_toml"] == history.read_text()
+    assert result.attrs["history_sha256"] == hashlib.sha256(history.read_bytes()).hexdigest()
+    assert result.attrs["history_file"] == "shear.toml" and result.attrs["nodes"] == int(NODES)
+    contact, loads = read_history(history)
+    expected = fr.simulate(contact, loads, nodes=int(NODES))  # one chunk: the same computation
+    engine = result.copy()
+    engine.attrs = {name: result.attrs[name] for name in expected.attrs}
+    xr.testing.assert_identical(engine, expected)
+    assert [path.name for path in (workdir / "results").iterdir()] == ["shear.h5"]  # no checkpoint, no temporary
+
+
+def test_validate_info_and_plot(workdir, capsys):
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    assert run("validate", "shear.toml") == 0
+    assert "82 steps, 8 vertices, 3 cycles" in capsys.readouterr().out
+    assert run("run", "shear.toml", "-o", "out/shear.h5", "--nodes", NODES) == 0
+    capsys.readouterr()
+    assert run("info", "out/shear.h5") == 0
+    info = capsys.readouterr().out
+    assert "history   shear.toml (sha256 " in info and "32 nodes" in info and "max |Q| / (f P) = 0.429" in info
+    assert run("plot", "out/shear.h5", "-o", "figures") == 0
+    names = sorted(path.name for path in (workdir / "figures").iterdir())
+    assert names == [f"shear_{name}.png" for name in ("energy", "hysteresis", "slip", "traction")]
+    assert all((workdir / "figures" / name).read_bytes().startswith(b"\x89PNG") for name in names)
+
+
+def test_plot_without_cycles(workdir, capsys):
+    write(workdir / "ramp.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3]\nsigma = [50e6]\n')
+    assert run("run", "ramp.toml", "--nodes", NODES) == 0
+    assert run("plot", "results/ramp.h5") == 0
+    assert sorted(path.name for path in (workdir / "results").glob("*.png")) == [
+        "ramp_hysteresis.png",
+        "ramp_slip.png",
+        "ramp_traction.png",
+    ]
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        (None, "bad.toml: No such file or directory"),
+        (CONTACT + "[[loading]\n", "bad.toml:8: TOML syntax"),
+        (CONTACT + SHEAR.replace("steps_per_segment = 10", "step = 10"), "bad.toml:12: loading[1].step: unknown key"),
+        (CONTACT.replace('"hertz"', '"sphere"'), 'bad.toml:2: contact.profile: found "sphere", expected one of'),
+        (CONTACT.replace("f = 0.7", "f = -0.7") + SHEAR, "bad.toml:6: contact.f: found -0.7, expected a number > 0"),
+        (CONTACT.replace("E = 210e9", "E = true") + SHEAR, "bad.toml:4: contact.E: found true, expected a number"),
+        (CONTACT, "bad.toml: found no [[loading]] blocks, expected at least one"),
+    ],
+    ids=["missing", "syntax", "unknown-key", "unknown-profile", "negative", "non-numeric", "empty"],
+)
+@pytest.mark.parametrize("command", ["run", "validate"])
+def test_bad_input_is_one_line_and_exit_2(workdir, capsys, command, text, words):
+    if text is not None:
+        write(workdir / "bad.toml", text)
+    assert run(command, "bad.toml") == 2
+    out, err = capsys.readouterr()
+    assert err.startswith("fretting: error: ") and words in err
+    assert err.count("\n") == 1 and "Traceback" not in err and out == ""
+    assert not (workdir / "results").exists()
+
+
+def test_gross_slip_exit_3_leaves_the_old_result(workdir, capsys):
+    write(workdir / "slide.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3, -80e3]\nsteps_per_segment = 10\n')
+    (workdir / "results").mkdir()
+    (workdir / "results" / "slide.h5").write_bytes(b"an earlier result")
+    assert run("validate", "slide.toml") == 3
+    assert "gross slip at step 20: Q = -80000" in capsys.readouterr().err
+    assert run("run", "slide.toml", "--nodes", NODES) == 3
+    err = capsys.readouterr().err
+    assert err.startswith("fretting: error: slide.toml: gross slip at step 20") and err.count("\n") == 1
+    assert (workdir / "results" / "slide.h5").read_bytes() == b"an earlier result"
+    assert [path.name for path in (workdir / "results").iterdir()] == ["slide.h5"]
+
+
+def test_gross_slip_in_a_later_chunk_names_the_whole_history_step(workdir, capsys, monkeypatch):
+    monkeypatch.setattr(cli, "CHUNK_STEPS", 4)
+    write(workdir / "slide.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3, -80e3]\nsteps_per_segment = 10\n')
+    assert run("run", "slide.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 3
+    assert "gross slip at step 20: Q = -80000" in capsys.readouterr().err
+    assert not (workdir / "results" / "slide.h5.checkpoint").exists()
+
+
+def test_debug_shows_the_exception(workdir):
+    write(workdir / "bad.toml", CONTACT)
+    with pytest.raises(fr.HistoryError, match="no \\[\\[loading\\]\\] blocks"):
+        run("validate", "bad.toml", "--debug")
+
+
+@pytest.mark.parametrize("nodes", ["3", "many"])
+def test_bad_arguments(workdir, capsys, nodes):
+    with pytest.raises(SystemExit) as exit_:
+        run("run", "x.toml", "--nodes", nodes)
+    assert exit_.value.code == 2 and "--nodes" in capsys.readouterr().err
+
+
+def test_bad_result_file(workdir, capsys):
+    write(workdir / "notes.h5", "not a result")
+    assert run("info", "notes.h5") == 2
+    assert capsys.readouterr().err.startswith("fretting: error: notes.h5: ")
+
+
+def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeypatch):
+    """Ctrl-C in the third chunk: a checkpoint of two chunks; --resume then equals an uninterrupted run."""
+    monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    assert run("run", "shear.toml", "-o", "whole.h5", "--nodes", NODES) == 0
+    calls = []
+
+    def interrupted(*arguments, **options):
+        calls.append(1)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+        return fr.simulate(*arguments, **options)
+
+    monkeypatch.setattr(cli, "simulate", interrupted)
+    assert run("run", "shear.toml", "-o", "part.h5", "--nodes", NODES, "--checkpoint-interval", "1e6") == 130
+    err = capsys.readouterr().err
+    assert err == "fretting: error: interrupted: progress kept in part.h5.checkpoint; continue with --resume\n"
+    assert load(workdir / "part.h5.checkpoint").sizes["step"] == 41 and not (workdir / "part.h5").exists()
+
+    assert run("run", "shear.toml", "-o", "part.h5", "--nodes", NODES) == 2  # not without --resume
+    assert "--resume" in capsys.readouterr().err
+    assert run("run", "shear.toml", "-o", "part.h5", "--nodes", NODES, "--resume") == 0
+    xr.testing.assert_identical(data_of(load(workdir / "part.h5")), data_of(load(workdir / "whole.h5")))
+    assert not (workdir / "part.h5.checkpoint").exists()
+
+
+def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
+    monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
+    history = write(workdir / "shear.toml", CONTACT + SHEAR)
+    monkeypatch.setattr(cli, "simulate", _interrupt_after(2))
+    assert run("run", "shear.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 130
+    monkeypatch.setattr(cli, "simulate", fr.simulate)
+    assert run("run", "shear.toml", "--nodes", "40", "--resume") == 2
+    assert "found 32 nodes, expected 40" in capsys.readouterr().err
+    write(history, history.read_text() + "# edited\n")
+    assert run("run", "shear.toml", "--nodes", NODES, "--resume") == 2
+    assert "found a run of another version of shear.toml" in capsys.readouterr().err
+
+
+def _interrupt_after(calls):
+    made = []
+
+    def simulate(*arguments, **options):
+        if len(made) == calls:
+            raise KeyboardInterrupt
+        made.append(1)
+        return fr.simulate(*arguments, **options)
+
+    return simulate
+
+
+def test_resume_after_a_killed_process_equals_an_uninterrupted_run(workdir):
+    """SIGKILL a real `python -m fretting run` once its first checkpoint exists, then --resume it."""
+    text = CONTACT + '[[loading]]\nkind = "sine"\nQ_amplitude = 35e3\nsigma_amplitude = 1e8\nphase_deg = 90\n'
+    write(workdir / "long.toml", text + "cycles = 100\nsteps_per_cycle = 40\n")
+    command = [sys.executable, "-m", "fretting", "run", "long.toml", "-o", "killed.h5", "--nodes", NODES]
+    process = subprocess.Popen([*command, "--checkpoint-interval", "0"], stderr=subprocess.PIPE)
+    checkpoint = workdir / "killed.h5.checkpoint"
+    deadline = time.monotonic() + 60
+    while not checkpoint.exists() and process.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.005)
+    process.send_signal(signal.SIGKILL)
+    _, err = process.communicate()
+    assert process.returncode == -signal.SIGKILL, err.decode()
+    done = load(checkpoint).sizes["step"]
+    assert 1 < done < 4017 and not (workdir / "killed.h5").exists()
+
+    assert run("run", "long.toml", "-o", "killed.h5", "--nodes", NODES, "--resume") == 0
+    assert run("run", "long.toml", "-o", "whole.h5", "--nodes", NODES) == 0
+    resumed, whole = load(workdir / "killed.h5"), load(workdir / "whole.h5")
+    xr.testing.assert_identical(data_of(resumed), data_of(whole))
+    assert resumed.sizes["step"] == 4017 and np.all(resumed.cycle_dissipation.values > 0)

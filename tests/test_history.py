@@ -1,0 +1,153 @@
+"""Load histories: sinusoids, random amplitudes, cycles, slices and concatenation."""
+
+import numpy as np
+import pytest
+
+import fretting as fr
+from fretting.history import RAMP_STEPS
+
+History = fr.History
+
+
+def test_sinusoid_values_phase_and_cycles():
+    history = History.sinusoidal(3.0, 2.0, phase_deg=90, cycles=2, steps_per_cycle=8, Q_mean=1.0, sigma_mean=-1.0)
+    ramp = RAMP_STEPS  # from (0, 0) to the first point, (Q_mean, sigma_mean + sigma_amplitude)
+    assert len(history) == ramp + 2 * 8 + 1
+    theta = 2 * np.pi * np.arange(17) / 8
+    np.testing.assert_allclose(history.Q[ramp:], 1.0 + 3.0 * np.sin(theta), atol=1e-15)
+    np.testing.assert_allclose(history.sigma[ramp:], -1.0 + 2.0 * np.cos(theta), atol=1e-15)  # leads Q by 90 deg
+    np.testing.assert_array_equal(history.cycle, [0] * (ramp + 1) + [1] * 8 + [2] * 8)
+    np.testing.assert_array_equal(history.vertex_step, [0, ramp, ramp + 8, ramp + 16])
+    np.testing.assert_allclose(history.Q[: ramp + 1], np.linspace(0, 1.0, ramp + 1), rtol=1e-15)
+
+
+def test_sinusoid_cycles_close_exactly():
+    history = History.sinusoidal(0.7, 0.3, phase_deg=33, cycles=3, steps_per_cycle=12)
+    ends = history.vertex_step[1:]
+    for loads in (history.Q, history.sigma):
+        assert np.all(loads[ends] == loads[ends[0]])  # bit for bit: every cycle ends where it starts
+
+
+def test_sinusoid_from_its_first_point_needs_no_ramp():
+    history = History.sinusoidal(2.0, 5.0, steps_per_cycle=4)  # theta = 0 is (0, 0)
+    np.testing.assert_allclose(history.Q, [0, 2, 0, -2, 0], atol=1e-15)
+    assert history.cycle[0] == 0 and np.all(history.cycle[1:] == 1)
+
+
+@pytest.mark.parametrize(
+    "arguments",
+    [
+        {"Q_amplitude": -1.0},
+        {"Q_amplitude": 1.0, "cycles": 0},
+        {"Q_amplitude": 1.0, "steps_per_cycle": 3},
+        {"Q_amplitude": 1.0, "steps_per_cycle": 8.0},
+        {"Q_amplitude": "1"},
+        {"Q_amplitude": 1.0, "sigma_mean": np.nan},
+        {"Q_amplitude": 1.0, "ramp_steps": 0},
+        {"Q_amplitude": 1.0, "start": (0.0,)},
+    ],
+)
+def test_sinusoid_rejects_bad_parameters(arguments):
+    with pytest.raises(fr.HistoryError):
+        History.sinusoidal(**arguments)
+
+
+def test_random_amplitude_peaks_valleys_and_cycles():
+    history = History.random_amplitude(6, 2.0, 4.0, Q_mean=1.0, sigma_mean=10.0, seed=7, steps_per_segment=3)
+    peaks, valleys = history.vertex_step[1::2], history.vertex_step[2::2]
+    assert len(history) == 6 * 2 * 3 + 1
+    assert np.all((history.Q[peaks] >= 1.0) & (history.Q[peaks] < 3.0))
+    assert np.all((history.Q[valleys] <= 1.0) & (history.Q[valleys] > -1.0))
+    turns = history.vertex_step[1:]  # sigma in phase with Q: the same random fraction of its amplitude
+    np.testing.assert_allclose((history.sigma[turns] - 10.0) / 4.0, (history.Q[turns] - 1.0) / 2.0, rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(history.cycle, np.repeat(np.arange(7), [1] + [6] * 6))
+    again = History.random_amplitude(6, 2.0, 4.0, Q_mean=1.0, sigma_mean=10.0, seed=7, steps_per_segment=3)
+    np.testing.assert_array_equal(again.Q, history.Q)
+    other = History.random_amplitude(6, 2.0, 4.0, Q_mean=1.0, sigma_mean=10.0, seed=8, steps_per_segment=3)
+    assert not np.array_equal(other.Q, history.Q)
+
+
+def test_as_cycle():
+    history = History.piecewise_linear([0, 1, -1], steps_per_segment=2).as_cycle()
+    np.testing.assert_array_equal(history.cycle, [0, 1, 1, 1, 1])
+
+
+def test_concatenate_numbers_cycles_on_and_joins_vertices():
+    first = History.sinusoidal(1.0, cycles=2, steps_per_cycle=4)
+    ramp = History.piecewise_linear([0.0, 0.5], steps_per_segment=2)
+    second = History.sinusoidal(1.0, cycles=1, steps_per_cycle=4, Q_mean=0.5, start=(0.5, 0.0))
+    history = History.concatenate([first, ramp, second])
+    np.testing.assert_array_equal(history.Q, np.concatenate([first.Q, ramp.Q[1:], second.Q[1:]]))
+    np.testing.assert_array_equal(history.cycle, [0] + [1] * 4 + [2] * 4 + [0, 0] + [3] * 4)
+    np.testing.assert_array_equal(history.vertex_step, [0, 4, 8, 10, 14])  # each junction once
+    assert history.cycle_count == 3
+
+
+def test_concatenate_without_cycles_and_single():
+    history = History.piecewise_linear([0, 1], steps_per_segment=3)
+    back = History.piecewise_linear([1, 0], steps_per_segment=2)
+    joined = History.concatenate([history, history[-1:], back])
+    np.testing.assert_array_equal(joined.Q, np.concatenate([history.Q, back.Q[1:]]))
+    assert joined.cycle is None
+    np.testing.assert_array_equal(History.concatenate([history]).Q, history.Q)
+
+
+def test_concatenate_rejects_a_jump():
+    with pytest.raises(fr.HistoryError, match="history 2 starts at"):
+        History.concatenate([History.piecewise_linear([0, 1]), History.piecewise_linear([0, 2])])
+    with pytest.raises(fr.HistoryError, match="no histories"):
+        History.concatenate([])
+
+
+def test_slices_keep_vertices_and_cycle_numbers():
+    history = History.sinusoidal(1.0, cycles=3, steps_per_cycle=4)
+    tail = history[6:]
+    np.testing.assert_array_equal(tail.Q, history.Q[6:])
+    np.testing.assert_array_equal(tail.vertex_step, [2, 6])  # steps 8 and 12 of the whole
+    np.testing.assert_array_equal(tail.cycle, history.cycle[6:])
+    middle = history[5:7]
+    assert len(middle) == 2 and middle.vertex_step.size == 0
+    assert len(history[-1:]) == 1
+
+
+@pytest.mark.parametrize("key", [3, slice(0, 4, 2)])
+def test_only_contiguous_slices(key):
+    with pytest.raises(TypeError, match="contiguous"):
+        History.piecewise_linear([0, 1], steps_per_segment=4)[key]
+
+
+def test_empty_slice():
+    with pytest.raises(fr.HistoryError, match="empty"):
+        History.piecewise_linear([0, 1], steps_per_segment=4)[3:3]
+
+
+def test_cycles_may_pause_but_not_go_back():
+    History([0, 1, 2, 3, 4], [0] * 5, [0], cycle=[0, 1, 0, 0, 2])  # a ramp between cycles 1 and 2
+    with pytest.raises(fr.HistoryError, match="cycle"):
+        History([0, 1, 2], [0] * 3, [0], cycle=[0, 2, 1])
+    with pytest.raises(fr.HistoryError, match="cycle"):
+        History([0, 1, 2], [0] * 3, [0], cycle=[0, -1, 1])
+
+
+def test_engine_counts_energy_per_cycle(hertz):
+    """Cycles 2 and 3 of a steady shear cycle dissipate the same energy; the first less (it starts unloaded)."""
+    fP = hertz.f * hertz.P
+    history = History.sinusoidal(0.5 * fP, cycles=3, steps_per_cycle=32)
+    result = fr.simulate(hertz, history, nodes=64)
+    np.testing.assert_array_equal(result.cycle.values, history.cycle)
+    energy = result.cycle_dissipation.values
+    assert energy.shape == (3,)
+    assert energy[1] == pytest.approx(energy[2], rel=1e-9)
+    assert energy[0] < energy[1]
+    assert energy.sum() == pytest.approx(float(result.dissipation.sum()), rel=1e-12)
+
+
+def test_engine_counts_cycles_of_a_history_that_ends_outside_them(hertz):
+    """Cycles, then an unloading ramp outside any cycle."""
+    fP = hertz.f * hertz.P
+    waves = History.sinusoidal(0.4 * fP, cycles=2, steps_per_cycle=16, Q_mean=0.2 * fP)
+    history = History.concatenate([waves, History.piecewise_linear([0.2 * fP, 0.0], steps_per_segment=4)])
+    assert history.cycle[-1] == 0 and history.cycle_count == 2
+    result = fr.simulate(hertz, history, nodes=48)
+    assert result.cycle_dissipation.shape == (2,)
+    assert float(result.cycle_dissipation.sum()) < float(result.dissipation.sum())  # the ramps dissipate too

@@ -1,0 +1,126 @@
+"""Result files: round trip, compression, atomic replacement, and results joined bit for bit."""
+
+import datetime
+import itertools
+import json
+
+import h5py
+import numpy as np
+import pytest
+import xarray as xr
+
+import fretting as fr
+from fretting.io import ResultError, join_results, load, save
+
+NODES = 48
+
+
+@pytest.fixture(scope="module")
+def history():
+    """Non-proportional, with a ramp, cycles, a pause between cycles and random amplitudes."""
+    contact = _contact()
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    waves = fr.History.sinusoidal(0.5 * fP, 0.6 * fp0, phase_deg=90, cycles=2, steps_per_cycle=24)
+    random = fr.History.random_amplitude(3, 0.6 * fP, 0.5 * fp0, seed=11, steps_per_segment=5, start=waves.end)
+    return fr.History.concatenate([waves, random])
+
+
+@pytest.fixture(scope="module")
+def whole(history):
+    return fr.simulate(_contact(), history, nodes=NODES)
+
+
+def _contact():
+    return fr.Contact(fr.Hertz(0.05), 210e9 / (2 * (1 - 0.3**2)), 0.7, 1e5)
+
+
+def without_provenance(result):
+    """`result` without the attributes that `save` adds."""
+    copy = result.copy()
+    copy.attrs = {name: value for name, value in result.attrs.items() if name not in ("created", "versions")}
+    return copy
+
+
+def test_round_trip_is_identical(tmp_path, whole):
+    assert whole.sizes["zone"] > 1 and whole.cycle_dissipation.size == 5
+    path = tmp_path / "result.h5"
+    save(whole, path)
+    loaded = load(path)
+    xr.testing.assert_identical(without_provenance(loaded), whole)
+    assert loaded.stick.dtype == bool
+    assert loaded.cycle.dims == ("step",) and loaded.cycle_dissipation.dims == whole.cycle_dissipation.dims
+
+
+def test_file_is_compressed_hdf5_with_provenance(tmp_path, whole):
+    path = tmp_path / "result.h5"
+    save(whole, path)
+    with h5py.File(path, "r") as file:
+        assert file["q"].compression == "gzip" and file["stick"].compression == "gzip"
+        np.testing.assert_array_equal(file["Q"][:], whole.Q.values)
+    attrs = load(path).attrs
+    created = datetime.datetime.fromisoformat(attrs["created"])
+    assert abs(datetime.datetime.now(datetime.UTC) - created) < datetime.timedelta(minutes=5)
+    versions = json.loads(attrs["versions"])
+    assert versions["numpy"] == np.__version__ and versions["fretting"] == fr.__version__
+    assert {"xarray", "h5netcdf", "h5py", "scipy", "hdf5", "python"} <= set(versions)
+
+
+def test_load_closes_the_file(tmp_path, whole):
+    path = tmp_path / "result.h5"
+    save(whole, path)
+    load(path)
+    h5py.File(path, "w").close()  # HDF5 refuses to truncate a file that is still open
+
+
+@pytest.mark.parametrize("failure", [OSError("disk full"), KeyboardInterrupt()])
+def test_failed_write_leaves_the_old_file(tmp_path, whole, monkeypatch, failure):
+    path = tmp_path / "result.h5"
+    path.write_bytes(b"the previous result")
+
+    def half_written(dataset, target, **options):
+        target.write_bytes(b"half a file")
+        raise failure
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", half_written)
+    with pytest.raises(type(failure)):
+        save(whole, path)
+    assert path.read_bytes() == b"the previous result"
+    assert [child.name for child in tmp_path.iterdir()] == ["result.h5"]
+
+
+def test_load_rejects_other_files(tmp_path):
+    other = tmp_path / "other.nc"
+    xr.Dataset({"Q": ("step", [1.0])}).to_netcdf(other, engine="h5netcdf")
+    with pytest.raises(ResultError, match="found no variable sigma, expected a result of fretting"):
+        load(other)
+    text = tmp_path / "text.h5"
+    text.write_text("not HDF5")
+    with pytest.raises(ResultError, match="text.h5: found no netCDF-4 data"):
+        load(text)
+    with pytest.raises(FileNotFoundError):
+        load(tmp_path / "none.h5")
+
+
+@pytest.mark.parametrize("splits", [[1], [24, 25], [7, 30, 31, 58], list(range(3, 79, 9))])
+def test_run_in_parts_equals_the_whole_run(history, whole, splits):
+    """Bit for bit, including the sub-grid stick ends, the vertices and the cycle energies."""
+    contact = _contact()
+    bounds = [0, *splits, len(history) - 1]
+    parts = [fr.simulate(contact, history[: bounds[1] + 1], nodes=NODES)]
+    for start, stop in itertools.pairwise(bounds[1:]):
+        parts.append(fr.simulate(contact, history[start : stop + 1], nodes=NODES, state=fr.final_state(parts[-1])))
+    xr.testing.assert_identical(join_results(parts), whole)
+
+
+def test_join_of_one_part_and_of_a_repeated_end(whole):
+    xr.testing.assert_identical(join_results([whole]), whole)
+    last = fr.History(whole.Q.values[-1:], whole.sigma.values[-1:], [0], whole.cycle.values[-1:])
+    repeated = fr.simulate(_contact(), last, nodes=NODES, state=fr.final_state(whole))
+    xr.testing.assert_identical(join_results([whole, repeated]), whole)
+
+
+def test_join_rejects_parts_that_do_not_continue(whole):
+    with pytest.raises(ResultError, match="not where the previous one ends"):
+        join_results([whole.isel(step=slice(0, 10)), whole.isel(step=slice(20, 30))])
+    with pytest.raises(ResultError, match="no results"):
+        join_results([])
