@@ -95,11 +95,12 @@ def nowell_hills_traction(contact, Q, sigma, x):
 
 
 def ciavarella_jaeger(contact, Q, x):
-    """Traction [Pa] and stick half-width [m] of any symmetric profile under monotonic ``Q`` [N/m].
+    """Traction [Pa] of any symmetric profile under monotonic ``Q`` [N/m], and its corrective contact.
 
     Ciavarella (1998), Jaeger (1998), section 2 of the seed: ``q = f (p(x; P) - p(x; P_c))`` with
-    ``Q = f (P - P_c)``; the stick zone is the contact of the corrective load ``P_c``.
+    ``Q = f (P - P_c)``; the stick zone is the contact of the corrective load ``P_c``, so its
+    half-width is the returned contact's ``a``.
     """
     corrective = Contact(contact.profile, contact.E_star, contact.f, contact.P - abs(Q) / contact.f)
     q = contact.f * (contact.pressure(x) - corrective.pressure(x))
-    return np.sign(Q) * q, corrective.a
+    return np.sign(Q) * q, corrective

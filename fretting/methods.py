@@ -253,11 +253,11 @@ def _method_1(contact, Q, *, nodes=DEFAULT_NODES, modes=MODES):
     ``h0' + (2 / (pi E_star)) PV int p_c / (xi - x) dxi``, with ``h0'`` from eq (1) at ``P``.
     """
     t = _grid(nodes)
-    q, c = closed_forms.ciavarella_jaeger(contact, Q, contact.centre + contact.a * t)
+    q, corrective = closed_forms.ciavarella_jaeger(contact, Q, contact.centre + contact.a * t)
+    c = corrective.a
     stick = np.abs(t) * contact.a < c
     if c >= contact.a:
         return _Solution(t, c, q, stick, np.zeros_like(t))
-    corrective = Contact(contact.profile, contact.E_star, contact.f, contact.P - Q / contact.f)
     p_c = corrective.pressure(corrective.centre + c * np.cos(_second_kind_angles(modes)))
     b = np.concatenate([[0.0], -2 * contact.f / contact.E_star * _sine_coefficients(p_c)])
     return _Solution(t, c, q, stick, _slip(contact, _pressure_coefficients(contact, modes), c, b, t))
