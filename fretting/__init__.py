@@ -1,6 +1,6 @@
 """fretting: partial-slip half-plane contacts under arbitrary shear and bulk-tension histories."""
 
-from fretting.contact import Contact
+from fretting.contact import Contact, plane_strain_modulus
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, SolverError
 from fretting.history import History
 from fretting.history_file import HistoryFileError, read_history
@@ -29,6 +29,7 @@ __all__ = [
     "join_results",
     "load",
     "partial_slip",
+    "plane_strain_modulus",
     "read_history",
     "save",
     "simulate",

@@ -5,7 +5,15 @@ import numpy as np
 from fretting._validate import positive
 from fretting.profiles import Profile
 
-__all__ = ["Contact"]
+__all__ = ["Contact", "plane_strain_modulus"]
+
+
+def plane_strain_modulus(E, nu):
+    """``E_star = E / (2 (1 - nu^2))`` [Pa] of two bodies of Young's modulus `E` [Pa], Poisson's ratio `nu`.
+
+    The composite modulus of the seed paper (section 2) for elastically similar bodies.
+    """
+    return E / (2 * (1 - nu**2))
 
 
 class Contact:

@@ -75,6 +75,11 @@ class History:
         return History(self.Q[start:stop], self.sigma[start:stop], self.vertex_step[inside] - start, cycle)
 
     @property
+    def start(self):
+        """Loads ``(Q, sigma)`` at step 0 [N/m], [Pa]."""
+        return float(self.Q[0]), float(self.sigma[0])
+
+    @property
     def end(self):
         """Loads ``(Q, sigma)`` at the last step [N/m], [Pa]."""
         return float(self.Q[-1]), float(self.sigma[-1])
@@ -113,9 +118,9 @@ class History:
         Q, sigma, vertex_step, cycle = [first.Q], [first.sigma], [first.vertex_step], [_cycles(first)]
         end, last_vertex, counted = len(first) - 1, first.vertex_step.max(initial=-1), first.cycle_count
         for number, (previous, history) in enumerate(itertools.pairwise(histories), start=2):
-            if history[:1].end != previous.end:
+            if history.start != previous.end:
                 raise HistoryError(
-                    f"history {number} starts at (Q, sigma) = {history[:1].end}, "
+                    f"history {number} starts at (Q, sigma) = {history.start}, "
                     f"expected the end of the previous one, {previous.end}"
                 )
             vertices = history.vertex_step[history.vertex_step > 0] if last_vertex == end else history.vertex_step
@@ -253,9 +258,9 @@ class History:
 def _reached_from(start, history, ramp_steps):
     """`history`, preceded by a straight ramp of `ramp_steps` steps from `start` if it starts elsewhere."""
     start = _start(start)
-    if (history.Q[0], history.sigma[0]) == start:
+    if history.start == start:
         return history
-    ramp = History.piecewise_linear([start[0], history.Q[0]], [start[1], history.sigma[0]], ramp_steps)
+    ramp = History.piecewise_linear(*zip(start, history.start, strict=True), ramp_steps)
     return History.concatenate([ramp, history])
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fretting.contact import Contact
+from fretting.contact import Contact, plane_strain_modulus
 from fretting.errors import HistoryError
 from fretting.history import RAMP_STEPS, History
 from fretting.profiles import FlatPunch, Gap, Hertz, RoundedFlat
@@ -182,7 +182,7 @@ def _contact(table):
     if "E_star" in table.data:
         E_star = table.get("E_star", _positive)
     elif "E" in table.data or "nu" in table.data:
-        E_star = table.get("E", _positive) / (2 * (1 - table.get("nu", _poisson) ** 2))
+        E_star = plane_strain_modulus(table.get("E", _positive), table.get("nu", _poisson))
     else:
         raise table.error(None, "missing key 'E_star', expected E_star or both E and nu")
     profile, f, P = read_profile(table), table.get("f", _positive), table.get("P", _positive)

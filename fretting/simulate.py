@@ -132,9 +132,10 @@ def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None, record=None):
         state = State.virgin(nodes)
     elif state.slip.shape != (nodes,):
         raise ValueError(f"state has {state.slip.size} nodes, the simulation {nodes}")
-    elif (state.Q, state.sigma) != (history.Q[0], history.sigma[0]):
+    elif (state.Q, state.sigma) != history.start:
+        Q, sigma = history.start
         raise HistoryError(
-            f"history starts at Q = {float(history.Q[0])!r}, sigma = {float(history.sigma[0])!r}; "
+            f"history starts at Q = {Q!r}, sigma = {sigma!r}; "
             f"the state is at Q = {float(state.Q)!r}, sigma = {float(state.sigma)!r}"
         )
     steps = _recorded_steps(record, len(history))

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import fretting as fr
+from fretting.contact import plane_strain_modulus
 
 E_SI, NU_SI = 210e9, 0.3
 
@@ -21,7 +22,7 @@ P = 1e5
 
 def hertz_si():
     """R = 50 mm, E = 210 GPa, nu = 0.3, P = 100 N/mm, f = 0.6."""
-    return fr.Contact(fr.Hertz(0.05), E_SI / (2 * (1 - NU_SI**2)), 0.6, 1e5)
+    return fr.Contact(fr.Hertz(0.05), plane_strain_modulus(E_SI, NU_SI), 0.6, 1e5)
 
 
 @pytest.fixture

@@ -31,7 +31,7 @@ def whole(history):
 
 
 def _contact():
-    return fr.Contact(fr.Hertz(0.05), 210e9 / (2 * (1 - 0.3**2)), 0.7, 1e5)
+    return fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.7, 1e5)
 
 
 def without_provenance(result):
