@@ -116,6 +116,10 @@ def join_results(parts):
     parts = list(parts)
     if not parts:
         raise ResultError("no results to join")
+    for number, part in enumerate(parts, start=1):
+        # Energy per cycle is summed again over the joined steps, so every step must be there.
+        if np.any(np.diff(part.step.values) != 1):
+            raise ResultError(f"part {number} records only some of its steps, expected every step (record=None)")
     zones = max(part.sizes["zone"] for part in parts)
     pieces, vertices, end = [parts[0]], [parts[0].vertex_step.values], parts[0].sizes["step"] - 1
     for previous, part in itertools.pairwise(parts):

@@ -124,3 +124,12 @@ def test_join_rejects_parts_that_do_not_continue(whole):
         join_results([whole.isel(step=slice(0, 10)), whole.isel(step=slice(20, 30))])
     with pytest.raises(ResultError, match="no results"):
         join_results([])
+
+
+def test_join_refuses_parts_that_skip_steps():
+    """Energy per cycle is summed over the joined steps: a part with steps left out would be wrong."""
+    contact = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.7, 1e5)
+    history = fr.History.sinusoidal(0.5 * contact.f * contact.P, cycles=2, steps_per_cycle=8)
+    sparse = fr.simulate(contact, history, nodes=32, record=[0, 5, len(history) - 1])
+    with pytest.raises(fr.ResultError, match="part 1 records only some of its steps"):
+        fr.join_results([sparse])
