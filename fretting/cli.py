@@ -26,7 +26,8 @@ EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
 #: Steps run at a time: how often the progress bar moves and a checkpoint can be written.
 CHUNK_STEPS = 200
 
-#: Seconds between checkpoints by default: a few percent of the run time spent writing them.
+#: Seconds between checkpoints by default: at most a minute of work lost in a crash. Each
+#: checkpoint rewrites the partial result whole.
 CHECKPOINT_SECONDS = 60.0
 
 #: Seconds a run lasts before its progress bar appears: short runs show none.

@@ -24,7 +24,8 @@ __all__ = ["ENGINE", "ResultError", "join_results", "load", "provenance", "save"
 #: The xarray backend, named explicitly so that files never depend on what else is installed.
 ENGINE = "h5netcdf"
 
-#: zlib level 4 with byte shuffling: nearly the size of level 9 at a fraction of its time.
+#: zlib level 4 with byte shuffling. On results/hertz_shear_cycling.h5 level 9 saves 0.7 % of the
+#: bytes (1.99 MB) and takes 1.3 times as long (0.107 s against 0.081 s).
 COMPRESSION = {"zlib": True, "complevel": 4, "shuffle": True}
 
 #: Distributions whose versions a result records.
