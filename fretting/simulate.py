@@ -45,9 +45,8 @@ class State:
         """The contact just formed: no load and no slip."""
         return cls(0.0, 0.0, np.zeros(nodes), np.zeros(nodes))
 
-    def advance(self, Q, sigma, ds):
-        """State after the slip increment `ds` [m] under the loads `Q`, `sigma`."""
-        slip = self.slip + ds
+    def advance(self, Q, sigma, slip, ds):
+        """State with the new `slip` [m], reached by the increment `ds` [m], under the loads `Q`, `sigma`."""
         episode = self.slip - self.episode_start
         reversed_ = np.sign(ds) * np.sign(episode) < 0
         episode_start = np.where(ds == 0, slip, np.where(reversed_, self.slip, self.episode_start))
@@ -173,9 +172,9 @@ def _run(scene, history, state, steps):
         if abs(Q) >= scene.friction_force:
             raise GrossSlipError(step, Q, sigma, scene.friction_force)
         if step > 0 or (Q, sigma) != (state.Q, state.sigma):
-            increment = solve_increment(G, scene.g_stuck(Q, sigma) - G @ state.slip, scene.limit)
+            increment = solve_increment(G, scene.g_stuck(Q, sigma), scene.limit, state.slip)
             g, ds = increment.g, increment.ds
-            state = state.advance(Q, sigma, ds)
+            state = state.advance(Q, sigma, increment.slip, ds)
         else:  # the starting state itself: nothing moves, and its slip episodes go on
             ds = np.zeros(N)
         dissipation = scene.dissipation(ds)

@@ -61,71 +61,80 @@ class Grid:
 
 @dataclass(frozen=True, eq=False)
 class Increment:
-    """Solution of one increment: slip increment ``ds`` [m] and traction ``g`` [Pa] at the nodes."""
+    """Solution of one increment: new slip [m], its increment ``ds`` [m] and the traction ``g`` [Pa] at the nodes."""
 
+    slip: np.ndarray
     ds: np.ndarray
     g: np.ndarray
     iterations: int
 
 
-def solve_increment(G, g_trial, limit):
+def solve_increment(G, g_stuck, limit, slip=None):
     """Slip increment that restores the friction conditions at every node.
 
     Parameters
     ----------
     G : ndarray, shape (N, N)
-        Slip-to-traction matrix [Pa/m], ``g = g_trial - G ds``.
-    g_trial : ndarray, shape (N,)
-        ``sqrt(1 - t^2) q`` [Pa] if no node slipped during the increment.
+        Slip-to-traction matrix [Pa/m], ``g = g_stuck - G slip``.
+    g_stuck : ndarray, shape (N,)
+        ``sqrt(1 - t^2) q_st`` [Pa], the fully stuck traction at the new loads.
     limit : ndarray, shape (N,)
         ``f p sqrt(1 - t^2)`` [Pa], positive.
+    slip : ndarray, shape (N,), optional
+        Slip [m] before the increment (default zero).
 
     Returns
     -------
     Increment
-        ``ds = 0`` exactly at the nodes that stick.
+        ``ds = 0`` exactly at the nodes that stick. The new slip of the slipping nodes is solved
+        for from the loads and the slip of the stuck nodes alone, never as old slip plus an
+        increment, so a state that repeats a cycle later repeats bit for bit (the periodic
+        shortcut of `fretting.simulate` relies on it).
     """
+    slip = np.zeros_like(g_stuck) if slip is None else slip
     tolerance = ROUNDING * limit.max()
-    ds = np.zeros_like(g_trial)
-    direction = np.zeros(g_trial.size, dtype=np.int8)  # +1, -1: slipping; 0: stuck
-    g = g_trial
+    new = slip
+    direction = np.zeros(g_stuck.size, dtype=np.int8)  # +1, -1: slipping; 0: stuck
+    g = g_stuck - G @ slip
     single = False
-    for iteration in range(1, 4 * g_trial.size + 2):
+    for iteration in range(1, 4 * g_stuck.size + 2):
         excess = np.abs(g) - limit
         released = np.flatnonzero((direction == 0) & (excess > tolerance))
         if released.size == 0:
-            return Increment(ds, g, iteration - 1)
+            return Increment(new, new - slip, g, iteration - 1)
         if single or released.size == np.count_nonzero(direction == 0):
             released = released[[np.argmax(excess[released])]]
         direction[released] = np.sign(g[released])
-        ds, blocked = _minimise(G, g_trial, limit, ds, direction)
+        new, blocked = _minimise(G, g_stuck, limit, slip, new, direction)
         single = bool(np.intersect1d(blocked, released).size)
-        g = g_trial - G @ ds
+        g = g_stuck - G @ new
     raise SolverError("the active set did not settle: the increment has no solution on this grid")
 
 
-def _minimise(G, g_trial, limit, ds, direction):
-    """Minimise ``J`` from `ds` with stuck nodes and slip directions fixed where they hold.
+def _minimise(G, g_stuck, limit, slip, new, direction):
+    """Minimise ``J`` from the slip `new` with stuck nodes and slip directions fixed where they hold.
 
-    Steps toward the quadratic's minimiser on the slipping nodes; a node whose slip would
-    change sign on the way stops at zero and joins the stuck nodes (`direction` is updated in
-    place). Returns the new ``ds`` and the nodes that stuck this way.
+    Steps toward the quadratic's minimiser on the slipping nodes; a node whose slip increment
+    would change sign on the way stops at its old slip and joins the stuck nodes (`direction`
+    is updated in place). Returns the new slip and the nodes that stuck this way.
     """
     blocked = []
     while True:
         slipping = np.flatnonzero(direction)
-        if slipping.size == direction.size:
+        stuck = np.flatnonzero(direction == 0)
+        if stuck.size == 0:
             raise SolverError("every node would slip although |Q| < f P")
-        target = np.zeros_like(ds)
-        rhs = g_trial[slipping] - direction[slipping] * limit[slipping]
+        rhs = g_stuck[slipping] - G[np.ix_(slipping, stuck)] @ slip[stuck] - direction[slipping] * limit[slipping]
+        target = slip.copy()
         target[slipping] = linalg.solve(G[np.ix_(slipping, slipping)], rhs, assume_a="pos")
-        wrong = slipping[direction[slipping] * target[slipping] < 0]
+        ds, target_ds = new - slip, target - slip
+        wrong = slipping[direction[slipping] * target_ds[slipping] < 0]
         if wrong.size == 0:
             return target, np.array(blocked, dtype=int)
-        fractions = ds[wrong] / (ds[wrong] - target[wrong])
+        fractions = ds[wrong] / (ds[wrong] - target_ds[wrong])
         alpha = fractions.min()
-        ds = ds + alpha * (target - ds)
+        new = slip + (ds + alpha * (target_ds - ds))
         stops = wrong[fractions <= alpha]
-        ds[stops] = 0.0
+        new[stops] = slip[stops]
         direction[stops] = 0
         blocked.extend(stops)
