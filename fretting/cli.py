@@ -17,14 +17,18 @@ from fretting import __version__
 from fretting.errors import FrettingError, GrossSlipError, HistoryError
 from fretting.history_file import read_history_source
 from fretting.io import ResultError, join_results, load, save, source_attributes
-from fretting.simulate import DEFAULT_NODES, final_state, simulate
+from fretting.simulate import DEFAULT_NODES, RECORD_ALL_STEPS, RECORDED_ENDS, final_state, recorded_steps, simulate
 
 __all__ = ["main"]
 
 EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
 
-#: Steps run at a time: how often the progress bar moves and a checkpoint can be written.
+#: Steps of the first chunk run at a time: how often the progress bar moves and a checkpoint
+#: can be written. A chunk that takes less than CHUNK_SECONDS doubles the next one's steps, so
+#: that runs whose cycles repeat (copied, not solved) are not cut into many short runs, each of
+#: which solves its first cycles anew.
 CHUNK_STEPS = 200
+CHUNK_SECONDS = 1.0
 
 #: Seconds between checkpoints by default: at most a minute of work lost in a crash. Each
 #: checkpoint rewrites the partial result whole.
@@ -76,11 +80,18 @@ def _parser():
         "--nodes", type=_at_least(4, int), default=DEFAULT_NODES, help=f"collocation nodes (default {DEFAULT_NODES})"
     )
     run.add_argument(
+        "--record",
+        choices=("default", "all"),
+        default="default",
+        help=f"steps whose fields are stored: default every step of histories up to {RECORD_ALL_STEPS} steps, "
+        f"else the first and last {RECORDED_ENDS}; energy and slip range per cycle always cover every cycle",
+    )
+    run.add_argument(
         "--checkpoint-interval",
         type=_at_least(0, float),
         default=CHECKPOINT_SECONDS,
         metavar="SECONDS",
-        help=f"seconds between checkpoints (default {CHECKPOINT_SECONDS:g}; 0: after every {CHUNK_STEPS} steps)",
+        help=f"seconds between checkpoints (default {CHECKPOINT_SECONDS:g}; 0: after every chunk of steps)",
     )
     run.set_defaults(command=_run)
 
@@ -124,7 +135,8 @@ def _run(args):
         )
     parts = [_resumable(checkpoint, source, args.nodes)] if args.resume and checkpoint.exists() else []
     history, attributes = source.history, source_attributes(source)
-    done = parts[0].sizes["step"] - 1 if parts else 0
+    record = recorded_steps(None if args.record == "default" else args.record, len(history))
+    done = parts[0].attrs["steps"] - 1 if parts else 0
     written = time.monotonic()
     with tqdm(
         total=len(history) - 1,
@@ -135,9 +147,9 @@ def _run(args):
         file=sys.stderr,
     ) as progress:
         try:
-            for part in _chunks(source.contact, history, args.nodes, parts[-1] if parts else None):
+            for part in _chunks(source.contact, history, args.nodes, record, parts[-1] if parts else None):
                 parts.append(part)
-                progress.update(part.sizes["step"] - 1)
+                progress.update(part.attrs["steps"] - 1)
                 if time.monotonic() - written >= args.checkpoint_interval:
                     parts = [join_results(parts)]
                     save(parts[0].assign_attrs(attributes), checkpoint)
@@ -153,35 +165,41 @@ def _run(args):
     result = join_results(parts)
     save(result.assign_attrs(attributes), output)
     checkpoint.unlink(missing_ok=True)
-    print(f"{output}: {result.sizes['step'] - 1} steps, {_cycles(result)} cycles, {_dissipated(result)}")
+    print(f"{output}: {result.attrs['steps'] - 1} steps, {_cycles(result)} cycles, {_dissipated(result)}")
 
 
-def _chunks(contact, history, nodes, done):
-    """Results of successive chunks of `history`, each continuing from the previous one or from `done`."""
-    start = 0 if done is None else done.sizes["step"] - 1
-    previous = done
+def _chunks(contact, history, nodes, record, done):
+    """Results of successive chunks of `history`, each continuing from the previous one or from `done`.
+
+    Each chunk records the steps of `record` (numbers in the whole history) that it reaches.
+    """
+    start = 0 if done is None else done.attrs["steps"] - 1
+    previous, steps = done, CHUNK_STEPS
     while previous is None or start < len(history) - 1:
-        stop = min(start + CHUNK_STEPS, len(history) - 1)
+        stop = min(start + steps, len(history) - 1)
+        began = time.monotonic()
         state = None if previous is None else final_state(previous)
+        first = start + 1 if previous is not None else 0  # a later chunk's step 0 is the last one's end
+        mine = record[(record >= first) & (record <= stop)] - start
         try:
-            previous = simulate(contact, history[start : stop + 1], nodes=nodes, state=state)
+            previous = simulate(contact, history[start : stop + 1], nodes=nodes, state=state, record=mine)
         except GrossSlipError as error:
             raise GrossSlipError(start + error.step, error.Q, error.sigma, error.limit) from None
         yield previous
         start = stop
+        steps = 2 * steps if time.monotonic() - began < CHUNK_SECONDS else max(steps // 2, CHUNK_STEPS)
 
 
 def _resumable(checkpoint, source, nodes):
     """The partial result in `checkpoint`, checked to belong to this history file and these settings."""
     done = load(checkpoint)
-    steps = done.sizes["step"]
     if done.attrs.get("history_sha256") != source.sha256:
         raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
     if done.attrs.get("nodes") != nodes:
         raise ResultError(f"{checkpoint}: found {done.attrs.get('nodes')} nodes, expected {nodes} (see --nodes)")
-    history = source.history
-    same = steps <= len(history) and all(
-        np.array_equal(done[name].values, getattr(history, name)[:steps]) for name in ("Q", "sigma")
+    history, steps = source.history, done.step.values
+    same = done.attrs["steps"] <= len(history) and all(
+        np.array_equal(done[name].values, getattr(history, name)[steps]) for name in ("Q", "sigma")
     )
     if not same:
         raise ResultError(f"{checkpoint}: found loads that {source.path} no longer gives (NumPy's random draws?)")
@@ -211,7 +229,8 @@ def _info(args):
         f"P = {attrs['P']:.4g} N/m",
         "solution": f"a = {attrs['a']:.4g} m, centre = {attrs['centre']:.4g} m, p0 = {attrs['p0']:.4g} Pa",
         "model": f"{attrs['model']}, {attrs['nodes']} nodes",
-        "steps": f"{result.sizes['step'] - 1} steps, {result.sizes['vertex']} vertices, {_cycles(result)} cycles",
+        "steps": f"{result.attrs['steps'] - 1} steps ({result.sizes['step']} recorded), "
+        f"{result.sizes['vertex']} vertices, {_cycles(result)} cycles",
         "loads": _peaks(result.Q.values, result.sigma.values, attrs["f"], attrs["P"], attrs["p0"]),
         "energy": _dissipated(result),
         "created": attrs.get("created", "?"),
@@ -255,7 +274,7 @@ def _cycles(result):
 
 
 def _dissipated(result):
-    total = f"dissipated {float(result.dissipation.sum()):.4g} J/m"
+    total = f"dissipated {float(result.total_dissipation):.4g} J/m"
     if _cycles(result):
         return f"{total}, {float(result.cycle_dissipation[-1]):.4g} J/m in the last cycle"
     return total

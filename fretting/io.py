@@ -6,7 +6,6 @@ The files are netCDF-4 (HDF5), readable by h5py, xarray and the netCDF tools.
 import datetime
 import errno
 import importlib.metadata
-import itertools
 import json
 import os
 import platform
@@ -32,8 +31,8 @@ COMPRESSION = {"zlib": True, "complevel": 4, "shuffle": True}
 DEPENDENCIES = ("fretting", "numpy", "scipy", "xarray", "h5netcdf", "h5py")
 
 #: Variables and attributes that every result has.
-REQUIRED_VARIABLES = ("Q", "sigma", "p", "q", "slip", "stick", "dissipation", "delta_Q", "vertex_step")
-REQUIRED_ATTRIBUTES = ("a", "centre", "p0", "E_star", "f", "P", "profile", "model", "nodes")
+REQUIRED_VARIABLES = ("Q", "sigma", "p", "q", "slip", "stick", "dissipation", "delta_Q", "vertex_step", "state_slip")
+REQUIRED_ATTRIBUTES = ("a", "centre", "p0", "E_star", "f", "P", "profile", "model", "nodes", "steps")
 
 
 class ResultError(FrettingError, ValueError):
@@ -105,32 +104,31 @@ def join_results(parts):
     parts : sequence of xarray.Dataset
         Results of `simulate`: the first one of a history's first steps, each later one run with
         ``state=final_state(previous)`` on the slice of the history that starts at the previous
-        one's last step.
+        one's last step. Each may record any of its steps.
 
     Returns
     -------
     xarray.Dataset
-        The result of the uninterrupted run, bit for bit: each later part's step 0, which
-        repeats the previous one's last step, is dropped; steps, vertex steps and cycles are
-        numbered as in the whole history. Attributes are the first part's.
+        The result of the uninterrupted run with the union of the recorded steps, bit for bit:
+        a later part's step 0, which repeats the previous one's last step, is dropped; steps,
+        vertex steps and cycles are numbered as in the whole history; a cycle that spans
+        parts is taken from the last part that has it (its tally carries on from part to
+        part); the state is the last part's. Attributes are the first part's.
     """
     parts = list(parts)
     if not parts:
         raise ResultError("no results to join")
-    for number, part in enumerate(parts, start=1):
-        # Energy per cycle is summed again over the joined steps, so every step must be there.
-        if np.any(np.diff(part.step.values) != 1):
-            raise ResultError(f"part {number} records only some of its steps, expected every step (record=None)")
-    zones = max(part.sizes["zone"] for part in parts)
-    pieces, vertices, end = [parts[0]], [parts[0].vertex_step.values], parts[0].sizes["step"] - 1
-    for previous, part in itertools.pairwise(parts):
-        if _loads_at(part, 0) != _loads_at(previous, -1):
-            raise ResultError(f"a part starts at (Q, sigma) = {_loads_at(part, 0)}, not where the previous one ends")
-        later = part.isel(step=slice(1, None))
-        pieces.append(later.assign_coords(step=later.step + end))
-        vertices.append(part.vertex_step.values[part.vertex_step.values > 0] + end)
-        end += part.sizes["step"] - 1
+    pieces, vertices, end = [], [], 0
+    for number, part in enumerate(parts):
+        if number:
+            _check_continues(parts[number - 1], part)
+        piece = part.isel(step=part.step.values > 0) if number else part
+        pieces.append(piece.assign_coords(step=piece.step + end))
+        vertex_step = part.vertex_step.values
+        vertices.append((vertex_step[vertex_step > 0] if number else vertex_step) + end)
+        end += part.attrs["steps"] - 1
     stepwise = [name for name, variable in parts[0].data_vars.items() if "step" in variable.dims]
+    zones = max(part.sizes["zone"] for part in parts)
     joined = xr.concat(
         [piece[stepwise].pad(zone=(0, zones - piece.sizes["zone"])) for piece in pieces],
         dim="step",
@@ -140,18 +138,26 @@ def join_results(parts):
         join="exact",
         combine_attrs="override",
     )
-    last = parts[-1]  # holds the variables of the last step, such as the state's episode_start
-    totals = {"vertex_step": np.concatenate(vertices)}
-    if "cycle_dissipation" in last:
-        totals["cycle_dissipation"] = np.bincount(joined.cycle.values, joined.dissipation.values)[1:]
-        totals["cycle_number"] = np.arange(1, totals["cycle_dissipation"].size + 1)
-    rest = [name for name in last.data_vars if name not in stepwise and name not in totals]
+    last = parts[-1]
+    rest = [name for name, variable in last.data_vars.items() if not {"step", "cycle_number"} & set(variable.dims)]
     joined = joined.assign({name: last[name] for name in rest})
-    return joined.assign({name: (last[name].dims, values, last[name].attrs) for name, values in totals.items()})
+    joined = joined.assign(vertex_step=(last.vertex_step.dims, np.concatenate(vertices), last.vertex_step.attrs))
+    if "cycle_number" in last.dims:
+        per_cycle = [name for name, variable in last.data_vars.items() if "cycle_number" in variable.dims]
+        cycles = xr.concat([part[per_cycle] for part in parts], dim="cycle_number", combine_attrs="override")
+        numbers = cycles.cycle_number.values
+        latest = np.append(numbers[1:] != numbers[:-1], True)  # a cycle spanning parts: its last tally
+        joined = joined.assign(cycles.isel(cycle_number=latest).variables)
+    return joined.assign_attrs(steps=end + 1)
 
 
-def _loads_at(result, step):
-    return float(result.Q[step]), float(result.sigma[step])
+def _check_continues(previous, part):
+    """Refuse `part` unless it starts where `previous` ends (checked where its step 0 is recorded)."""
+    end = float(previous.state_Q), float(previous.state_sigma)
+    if 0 in part.step.values:
+        start = float(part.Q.sel(step=0)), float(part.sigma.sel(step=0))
+        if start != end:
+            raise ResultError(f"a part starts at (Q, sigma) = {start}, not where the previous one ends, {end}")
 
 
 def provenance():

@@ -1,6 +1,7 @@
 """The incremental state machine: follow a load history with method 4 of the seed paper."""
 
-from dataclasses import dataclass
+import itertools
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -10,7 +11,16 @@ from fretting.history import History
 from fretting.solver import Grid, solve_increment
 from fretting.variables import build_dataset
 
-__all__ = ["State", "simulate", "final_state", "DEFAULT_NODES"]
+__all__ = [
+    "DEFAULT_NODES",
+    "RECORD_ALL_STEPS",
+    "RECORDED_ENDS",
+    "State",
+    "Tally",
+    "final_state",
+    "recorded_steps",
+    "simulate",
+]
 
 #: Collocation nodes by default: worst errors 3.7e-4 a (stick-zone ends), 2.6e-4 f p0 (traction)
 #: and 4.5e-4 of the maximum slip on the closed forms of benchmarks/accuracy_vs_nodes.py; the
@@ -18,9 +28,58 @@ __all__ = ["State", "simulate", "final_state", "DEFAULT_NODES"]
 DEFAULT_NODES = 384
 
 
+#: Default recording: every step of histories up to this many steps; of longer ones the first
+#: and the last RECORDED_ENDS steps (64 cycles of 64 steps). At 384 nodes 20,000 recorded steps take 130 MB.
+RECORD_ALL_STEPS = 20_000
+RECORDED_ENDS = 4096
+
+
+@dataclass(frozen=True, eq=False)
+class Tally:
+    """What the cycle in progress has done so far.
+
+    Attributes
+    ----------
+    number : int
+        Load cycle (0: the steps outside any cycle, which are not tallied).
+    dissipation : float
+        Energy dissipated [J/m].
+    w : ndarray, shape (N,)
+        Energy dissipated per unit area [J/m^2] at the nodes.
+    slip_min, slip_max : ndarray, shape (N,)
+        Extremes of the slip [m] over the cycle, its starting state included.
+    """
+
+    number: int
+    dissipation: float
+    w: np.ndarray
+    slip_min: np.ndarray
+    slip_max: np.ndarray
+
+    @classmethod
+    def begin(cls, number, slip):
+        """Nothing done yet in cycle `number`, which starts from `slip` [m]."""
+        return cls(number, 0.0, np.zeros(slip.size), slip, slip)
+
+    def add(self, dissipation, w, slip):
+        """The tally after an increment that dissipated `dissipation` [J/m], `w` [J/m^2] and left `slip` [m]."""
+        return Tally(
+            self.number,
+            self.dissipation + dissipation,
+            self.w + w,
+            np.minimum(self.slip_min, slip),
+            np.maximum(self.slip_max, slip),
+        )
+
+    @property
+    def slip_amplitude(self):
+        """Half the range of the slip over the cycle [m]."""
+        return (self.slip_max - self.slip_min) / 2
+
+
 @dataclass(frozen=True, eq=False)
 class State:
-    """Everything the contact remembers of its history.
+    """Everything the contact remembers of its history, and the tally of the cycle in progress.
 
     Attributes
     ----------
@@ -29,55 +88,86 @@ class State:
     sigma : float
         Bulk tension [Pa].
     slip : ndarray, shape (N,)
-        Accumulated slip [m] at the collocation nodes, ascending in x.
+        Accumulated slip [m] at the nodes, ascending in x.
     episode_start : ndarray, shape (N,)
         Slip [m] at which each node's current episode of slip in one direction began (equal
         to `slip` where the node sticks). Only the sub-grid stick-zone ends use it.
+    tally : Tally
+        Energy and slip range of the cycle in progress, so that a run continued from this
+        state reports that cycle whole.
+    dissipated : float
+        Energy dissipated since the contact was formed [J/m], summed step by step.
     """
 
     Q: float
     sigma: float
     slip: np.ndarray
     episode_start: np.ndarray
+    tally: Tally
+    dissipated: float = 0.0
 
     @classmethod
     def virgin(cls, nodes):
         """The contact just formed: no load and no slip."""
-        return cls(0.0, 0.0, np.zeros(nodes), np.zeros(nodes))
+        slip = np.zeros(nodes)
+        return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip))
 
     def advance(self, Q, sigma, slip, ds):
         """State with the new `slip` [m], reached by the increment `ds` [m], under the loads `Q`, `sigma`."""
         episode = self.slip - self.episode_start
         reversed_ = np.sign(ds) * np.sign(episode) < 0
         episode_start = np.where(ds == 0, slip, np.where(reversed_, self.slip, self.episode_start))
-        return State(Q, sigma, slip, episode_start)
+        return replace(self, Q=Q, sigma=sigma, slip=slip, episode_start=episode_start)
+
+    def repeats(self, other):
+        """True if this state is `other`'s memory bit for bit: the same loads and slip fields."""
+        return (
+            (self.Q, self.sigma) == (other.Q, other.sigma)
+            and np.array_equal(self.slip, other.slip)
+            and np.array_equal(self.episode_start, other.episode_start)
+        )
 
 
 def final_state(result):
     """State at the last step of a result of `simulate`, to continue the history from."""
-    last = result.isel(step=-1)
-    return State(float(last.Q), float(last.sigma), np.array(last.slip.values), np.array(result.episode_start.values))
+    tally = Tally(
+        int(result.state_cycle),
+        float(result.state_cycle_dissipation),
+        result.state_w.values.copy(),
+        result.state_slip_min.values.copy(),
+        result.state_slip_max.values.copy(),
+    )
+    return State(
+        float(result.state_Q),
+        float(result.state_sigma),
+        result.state_slip.values.copy(),
+        result.state_episode_start.values.copy(),
+        tally,
+        float(result.total_dissipation),
+    )
 
 
 class _Scene:
-    """A contact discretised on a grid: the fixed arrays that every increment uses."""
+    """A contact discretised on Gauss-Chebyshev nodes: the fixed arrays that every increment uses."""
 
     def __init__(self, contact, nodes):
         self.contact = contact
         self.grid = Grid(nodes)
-        self.x = contact.centre + contact.a * self.grid.t
+        self.t = self.grid.t
+        self.x = contact.centre + contact.a * self.t
         self.G = contact.E_star / contact.a * self.grid.stiffness
-        self.limit = contact.f * contact.pressure_weighted(self.grid.t)
+        self.limit = contact.f * contact.pressure_weighted(self.t)
         self.w = contact.a * self.grid.weight  # quadrature weight of int F / sqrt(a^2 - x^2) dx times a
+        self.area = self.w * np.sqrt(1 - self.t**2)  # quadrature weight of int F dx [m]
         self.friction_force = self.w * self.limit.sum()  # f P on the grid
 
     def g_stuck(self, Q, sigma):
         """``sqrt(1 - t^2) q_st`` [Pa], the fully stuck traction of eqs (9) and (20)."""
         a = self.contact.a
-        return (Q / np.pi + sigma * a * self.grid.t / 4) / a
+        return (Q / np.pi + sigma * a * self.t / 4) / a
 
     def traction(self, g):
-        return g / np.sqrt(1 - self.grid.t**2)
+        return g / np.sqrt(1 - self.t**2)
 
     def delta_Q(self, slip):
         """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of each row of `slip` (formulation.md section 5)."""
@@ -89,11 +179,15 @@ class _Scene:
         A row-wise sum, not a matrix product, so that a row's value does not depend on how
         many rows there are (a run split in parts equals the whole run bit for bit).
         """
-        return self.w * np.sum(slip * self.grid.t, axis=-1) / 4
+        return self.w * np.sum(slip * self.t, axis=-1) / 4
 
     def dissipation(self, ds):
         """``int f p |ds| dx`` [J/m]."""
         return self.w * np.dot(self.limit, np.abs(ds))
+
+    def dissipation_density(self, ds):
+        """``f p |ds|`` [J/m^2] at the nodes."""
+        return self.traction(self.limit) * np.abs(ds)
 
 
 def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None, record=None):
@@ -109,9 +203,11 @@ def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None, record=None):
         Gauss-Chebyshev collocation nodes.
     state : State, optional
         State to continue from (see `final_state`); its loads must be the history's first.
-    record : array_like of int, optional
-        Steps to store, increasing (default: every step). The dataset's `step` coordinate
-        holds their numbers; `cycle_dissipation` always covers every step.
+    record : array_like of int or "all", optional
+        Steps whose fields and loads are stored, increasing; the dataset's `step` coordinate
+        holds their numbers. Default: every step of histories of up to `RECORD_ALL_STEPS`
+        steps, else the first and the last `RECORDED_ENDS` steps. Energy and slip range per
+        cycle and the final state always cover every step.
 
     Returns
     -------
@@ -138,76 +234,227 @@ def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None, record=None):
             f"history starts at Q = {Q!r}, sigma = {sigma!r}; "
             f"the state is at Q = {float(state.Q)!r}, sigma = {float(state.sigma)!r}"
         )
-    steps = _recorded_steps(record, len(history))
-    return build_dataset(_run(scene, history, state, steps), _attributes(contact, nodes))
+    steps = recorded_steps(record, len(history))
+    attributes = _attributes(contact, nodes) | {"steps": len(history)}
+    return build_dataset(_Run(scene, history, steps).follow(state), attributes)
 
 
-def _recorded_steps(record, n):
+def recorded_steps(record, n):
+    """Step numbers to record of an `n`-step history (see `simulate`)."""
     if record is None:
+        if n <= RECORD_ALL_STEPS:
+            return np.arange(n)
+        return np.concatenate([np.arange(RECORDED_ENDS), np.arange(n - RECORDED_ENDS, n)])
+    if isinstance(record, str) and record == "all":
         return np.arange(n)
     steps = np.asarray(record)
-    if steps.ndim != 1 or not np.issubdtype(steps.dtype, np.integer) or steps.size == 0:
-        raise ValueError(f"record must be a non-empty list of step numbers, found {record!r}")
-    if np.any(np.diff(steps) <= 0) or steps[0] < 0 or steps[-1] >= n:
+    if steps.ndim != 1 or not (steps.size == 0 or np.issubdtype(steps.dtype, np.integer)):
+        raise ValueError(f'record must be a list of step numbers or "all", found {record!r}')
+    if np.any(np.diff(steps) <= 0) or np.any(steps < 0) or np.any(steps >= n):
         raise ValueError(f"record must list increasing steps between 0 and {n - 1}")
-    return steps
+    return steps.astype(np.int64)
 
 
-def _run(scene, history, state, steps):
-    N = scene.grid.N
-    row = np.full(len(history), -1)
-    row[steps] = np.arange(steps.size)
-    fields = {
-        "q": np.empty((steps.size, N)),
-        "slip": np.empty((steps.size, N)),
-        "stick": np.empty((steps.size, N), dtype=bool),
-        "dissipation": np.empty(steps.size),
-    }
-    cycle_dissipation = np.zeros(0 if history.cycle is None else history.cycle.max() + 1)
-    zones = []
-    G = scene.G
-    g = scene.g_stuck(state.Q, state.sigma) - G @ state.slip
-    for step in range(len(history)):
-        Q, sigma = history.Q[step], history.sigma[step]
+@dataclass(frozen=True, eq=False)
+class _Outcome:
+    """One increment: the traction ``g`` after it, its slip increment ``ds`` and the state it leaves."""
+
+    g: np.ndarray
+    ds: np.ndarray
+    dissipation: float
+    state: State
+
+
+@dataclass(frozen=True, eq=False)
+class _Cycle:
+    """A complete cycle: its first step, the state before it and the outcome of each of its increments."""
+
+    first: int
+    before: State
+    outcomes: list
+
+
+class _Run:
+    """One pass over a history: increments, the rows of the recorded steps and one row per cycle.
+
+    A cycle whose loads repeat those of the cycle just completed, from a state that repeats
+    the state before that cycle bit for bit, would repeat its increments bit for bit (the
+    increment depends on the loads and the state only); such cycles are copied instead of
+    solved, and marked in `cycle_copied`.
+    """
+
+    def __init__(self, scene, history, steps):
+        self.scene, self.history, self.steps = scene, history, steps
+        self.cycle = history.cycle if history.cycle is not None else np.zeros(len(history), dtype=np.int64)
+        self.row = np.full(len(history), -1)
+        self.row[steps] = np.arange(steps.size)
+        N = scene.x.size
+        self.fields = {
+            "q": np.empty((steps.size, N)),
+            "slip": np.empty((steps.size, N)),
+            "stick": np.empty((steps.size, N), dtype=bool),
+            "dissipation": np.empty(steps.size),
+        }
+        self.zones = [()] * steps.size
+        self.cycles = []  # (number, tally, repeated) of every cycle the run touches
+
+    def follow(self, state):
+        """Data of the run from `state` (whose loads are the history's first)."""
+        previous = None  # the last cycle solved whole in this run: the one a repeating cycle copies
+        before, outcomes = None, []  # state before the cycle in progress (if it began here), its increments
+        repeated = False  # the cycle in progress is a copy
+        step = 0
+        while step < len(self.history):
+            number = int(self.cycle[step])
+            if number != state.tally.number:  # the increment to `step` begins a new stretch
+                if state.tally.number:
+                    self.cycles.append((state.tally.number, state.tally, repeated))
+                    if before is not None and not repeated:
+                        previous = _Cycle(step - len(outcomes), before, outcomes)
+                state = replace(state, tally=Tally.begin(number, state.slip))
+                before, outcomes, repeated = state, [], False
+                copies = self._repeats(previous, state, step) if number else 0
+                if copies:
+                    state = self._copy(previous, step, copies)
+                    step += copies * len(previous.outcomes)
+                    repeated = True
+                    continue
+            outcome = self._increment(step, state)
+            state = outcome.state
+            outcomes.append(outcome)
+            self._record(step, outcome)
+            step += 1
+        if state.tally.number:
+            self.cycles.append((state.tally.number, state.tally, repeated))
+        return self._data(state)
+
+    def _increment(self, step, state):
+        scene = self.scene
+        Q, sigma = self.history.Q[step], self.history.sigma[step]
         if abs(Q) >= scene.friction_force:
             raise GrossSlipError(step, Q, sigma, scene.friction_force)
-        if step > 0 or (Q, sigma) != (state.Q, state.sigma):
-            increment = solve_increment(G, scene.g_stuck(Q, sigma), scene.limit, state.slip)
-            g, ds = increment.g, increment.ds
-            state = state.advance(Q, sigma, increment.slip, ds)
-        else:  # the starting state itself: nothing moves, and its slip episodes go on
-            ds = np.zeros(N)
+        if step == 0 and (Q, sigma) == (state.Q, state.sigma):  # the starting state: nothing moves
+            ds = np.zeros(state.slip.size)
+            return _Outcome(scene.g_stuck(Q, sigma) - scene.G @ state.slip, ds, 0.0, state)
+        increment = solve_increment(scene.G, scene.g_stuck(Q, sigma), scene.limit, state.slip)
+        ds = increment.ds
         dissipation = scene.dissipation(ds)
-        if cycle_dissipation.size:
-            cycle_dissipation[history.cycle[step]] += dissipation
-        k = row[step]
-        if k >= 0:
-            fields["q"][k] = scene.traction(g)
-            fields["slip"][k] = state.slip
-            fields["stick"][k] = ds == 0
-            fields["dissipation"][k] = dissipation
-            zones.append(stick_zones(scene.grid.t, state.slip - state.episode_start))
-    data = fields | _zone_ends(scene, zones)
-    if history.cycle is not None:
-        data["cycle"] = history.cycle[steps]
-        data["cycle_dissipation"] = cycle_dissipation[1:]
-        data["cycle_number"] = np.arange(1, cycle_dissipation.size)
-    return data | {
-        "Q": history.Q[steps],
-        "sigma": history.sigma[steps],
-        "p": scene.contact.pressure(scene.x),
-        "x": scene.x,
-        "step": steps,
-        "delta_Q": scene.delta_Q(fields["slip"]),
-        "delta_sigma": scene.delta_sigma(fields["slip"]),
-        "vertex_step": history.vertex_step,
-        "episode_start": state.episode_start,
+        tally = state.tally
+        if tally.number:
+            tally = tally.add(dissipation, scene.dissipation_density(ds), increment.slip)
+        dissipated = state.dissipated + dissipation
+        new = replace(state.advance(Q, sigma, increment.slip, ds), tally=tally, dissipated=dissipated)
+        return _Outcome(increment.g, ds, dissipation, new)
+
+    def _repeats(self, previous, state, step):
+        """Number of whole cycles from `step` that repeat the complete cycle `previous` bit for bit.
+
+        They must follow `previous` directly, start from its starting state, have its loads
+        and its number of steps, and the last of them must end where a new stretch begins.
+        """
+        if previous is None or not state.repeats(previous.before):
+            return 0
+        length = len(previous.outcomes)
+        if previous.first + length != step:
+            return 0
+        n, cycle = len(self.history), self.cycle
+        later, earlier = slice(step, n), slice(step - length, n - length)
+        same = (
+            (self.history.Q[later] == self.history.Q[earlier])
+            & (self.history.sigma[later] == self.history.sigma[earlier])
+            & (cycle[later] == cycle[earlier] + 1)
+        )
+        copies = (same.size if same.all() else int(np.argmin(same))) // length
+        stop = step + copies * length
+        if copies and stop < n and cycle[stop] == cycle[stop - 1]:
+            copies -= 1  # the last one goes on beyond the steps of `previous`
+        return copies
+
+    def _copy(self, previous, step, copies):
+        """Copy the cycle `previous` over `copies` cycles from `step`; the state after the last copy.
+
+        The last copy's row is left to be closed as the cycle in progress.
+        """
+        length = len(previous.outcomes)
+        last = previous.outcomes[-1].state
+        first = int(self.cycle[step])
+        self.cycles.extend((number, last.tally, True) for number in range(first, first + copies - 1))
+        rows = self.row[step : step + copies * length]
+        for offset in np.flatnonzero(rows >= 0):
+            self._record(step + offset, previous.outcomes[offset % length])
+        per_step = np.array([outcome.dissipation for outcome in previous.outcomes])
+        # summed step by step, in order, as solving the cycles would: np.cumsum adds sequentially
+        dissipated = np.cumsum(np.concatenate([[last.dissipated], np.tile(per_step, copies)]))[-1]
+        return replace(last, tally=replace(last.tally, number=first + copies - 1), dissipated=float(dissipated))
+
+    def _record(self, step, outcome):
+        k = self.row[step]
+        if k < 0:
+            return
+        state = outcome.state
+        self.fields["q"][k] = self.scene.traction(outcome.g)
+        self.fields["slip"][k] = state.slip
+        self.fields["stick"][k] = outcome.ds == 0
+        self.fields["dissipation"][k] = outcome.dissipation
+        self.zones[k] = stick_zones(self.scene.t, state.slip - state.episode_start)
+
+    def _data(self, state):
+        scene, history, steps = self.scene, self.history, self.steps
+        data = self.fields | _zone_ends(scene, self.zones)
+        if history.cycle is not None:
+            data["cycle"] = history.cycle[steps]
+            data |= _cycle_rows(self.cycles, scene.x.size)
+        tally = state.tally
+        return data | {
+            "Q": history.Q[steps],
+            "sigma": history.sigma[steps],
+            "p": scene.contact.pressure(scene.x),
+            "x": scene.x,
+            "step": steps,
+            "delta_Q": scene.delta_Q(self.fields["slip"]),
+            "delta_sigma": scene.delta_sigma(self.fields["slip"]),
+            "vertex_step": history.vertex_step,
+            "state_Q": state.Q,
+            "state_sigma": state.sigma,
+            "state_slip": state.slip,
+            "state_episode_start": state.episode_start,
+            "state_cycle": tally.number,
+            "state_cycle_dissipation": tally.dissipation,
+            "state_w": tally.w,
+            "state_slip_min": tally.slip_min,
+            "state_slip_max": tally.slip_max,
+            "total_dissipation": state.dissipated,
+        }
+
+
+def _cycle_rows(cycles, N):
+    """Per-cycle variables from the ``(number, tally, repeated)`` of every cycle of a run.
+
+    Copied cycles share their tally, so each distinct tally is turned into rows once.
+    """
+    numbers = np.array([number for number, _, _ in cycles], dtype=np.int64)
+    repeated = np.array([copy for _, _, copy in cycles], dtype=bool)
+    tallies = [tally for _, tally, _ in cycles]
+    new = np.ones(len(tallies), dtype=bool)
+    new[1:] = [later is not earlier for earlier, later in itertools.pairwise(tallies)]
+    distinct = [tally for tally, first in zip(tallies, new, strict=True) if first]
+    copies = np.diff(np.append(np.flatnonzero(new), len(tallies)))
+
+    def rows(values, dtype, width):
+        return np.repeat(np.array(values, dtype=dtype).reshape(len(distinct), width), copies, axis=0)
+
+    return {
+        "cycle_number": numbers,
+        "cycle_dissipation": rows([t.dissipation for t in distinct], float, 1)[:, 0],
+        "cycle_copied": repeated,
+        "w": rows([t.w for t in distinct], np.float32, N),
+        "slip_amplitude": rows([t.slip_amplitude for t in distinct], np.float32, N),
     }
 
 
 def _zone_ends(scene, zones):
     """`stick_start` and `stick_end` [m] from per-step lists of normalised stick intervals."""
-    ends = np.full((len(zones), max(len(z) for z in zones), 2), np.nan)
+    ends = np.full((len(zones), max((len(z) for z in zones), default=0), 2), np.nan)
     for k, z in enumerate(zones):
         ends[k, : len(z)] = z
     ends = scene.contact.centre + scene.contact.a * ends

@@ -1,6 +1,7 @@
 """The command line: run, validate, info, plot; one-line errors and exit codes; nothing lost; resume."""
 
 import hashlib
+import importlib
 import os
 import signal
 import subprocess
@@ -49,8 +50,8 @@ def run(*arguments):
 
 
 def data_of(result):
-    """`result` without the attributes that differ between runs (the time and the versions)."""
-    copy = result.copy()
+    """`result` without what differs between runs: the time, the versions and which cycles were copied."""
+    copy = result.drop_vars("cycle_copied", errors="ignore")
     copy.attrs = {name: value for name, value in result.attrs.items() if name not in ("created", "versions")}
     return copy
 
@@ -165,6 +166,7 @@ def test_bad_result_file(workdir, capsys):
 def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeypatch):
     """Ctrl-C in the third chunk: a checkpoint of two chunks; --resume then equals an uninterrupted run."""
     monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
+    monkeypatch.setattr(cli, "CHUNK_SECONDS", 0.0)  # chunks of 20 steps each
     write(workdir / "shear.toml", CONTACT + SHEAR)
     assert run("run", "shear.toml", "-o", "whole.h5", "--nodes", NODES) == 0
     calls = []
@@ -201,6 +203,35 @@ def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
     assert "found a run of another version of shear.toml" in capsys.readouterr().err
 
 
+def test_long_runs_record_their_ends_and_every_cycle_and_resume(workdir, capsys, monkeypatch):
+    """Past the recording threshold only the first and last steps keep their fields; energy and
+    slip range per cycle cover every cycle; an interrupted run resumes to the same result."""
+    engine = importlib.import_module("fretting.simulate")
+    monkeypatch.setattr(engine, "RECORD_ALL_STEPS", 100)
+    monkeypatch.setattr(engine, "RECORDED_ENDS", 30)
+    monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
+    text = CONTACT + SHEAR.replace("count = 3", "count = 40")
+    write(workdir / "long.toml", text)
+    assert run("run", "long.toml", "-o", "whole.h5", "--nodes", NODES) == 0
+    whole = load(workdir / "whole.h5")
+    contact, history = read_history(workdir / "long.toml")
+    direct = fr.simulate(contact, history, nodes=int(NODES))
+    direct = data_of(direct)
+    xr.testing.assert_identical(data_of(whole)[list(direct.variables)].drop_attrs(), direct.drop_attrs())
+    steps = len(history)
+    np.testing.assert_array_equal(whole.step.values, [*range(30), *range(steps - 30, steps)])
+    assert whole.sizes["cycle_number"] == 40 and np.all(whole.cycle_dissipation.values > 0)
+    assert whole.w.dims == ("cycle_number", "x")
+
+    monkeypatch.setattr(cli, "simulate", _interrupt_after(3))
+    assert run("run", "long.toml", "-o", "resumed.h5", "--nodes", NODES, "--checkpoint-interval", "0") == 130
+    monkeypatch.setattr(cli, "simulate", fr.simulate)
+    assert run("run", "long.toml", "-o", "resumed.h5", "--nodes", NODES, "--resume") == 0
+    xr.testing.assert_identical(data_of(load(workdir / "resumed.h5")), data_of(whole))
+    assert run("run", "long.toml", "-o", "all.h5", "--nodes", NODES, "--record", "all") == 0
+    assert load(workdir / "all.h5").sizes["step"] == steps
+
+
 def _interrupt_after(calls):
     made = []
 
@@ -226,7 +257,7 @@ def test_resume_after_a_killed_process_equals_an_uninterrupted_run(workdir):
     process.send_signal(signal.SIGKILL)
     _, err = process.communicate()
     assert process.returncode == -signal.SIGKILL, err.decode()
-    done = load(checkpoint).sizes["step"]
+    done = load(checkpoint).attrs["steps"]
     assert 1 < done < 4017 and not (workdir / "killed.h5").exists()
 
     assert run("run", "long.toml", "-o", "killed.h5", "--nodes", NODES, "--resume") == 0

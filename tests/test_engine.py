@@ -1,8 +1,10 @@
 """Invariants of the method-4 state machine: memory, energy, splits, friction conditions."""
 
+import itertools
+
 import numpy as np
 import pytest
-from conftest import final
+import xarray as xr
 
 import fretting as fr
 
@@ -101,8 +103,7 @@ def test_chunked_run_equals_whole_run(hertz, k):
 
 
 def test_state_must_match_the_history_start(hertz):
-    head = final(hertz, 0.3 * hertz.f * hertz.P)
-    state = fr.State(float(head.Q), 0.0, head.slip.values, head.slip.values)
+    state = fr.final_state(fr.simulate(hertz, fr.History.piecewise_linear([0, 0.3 * hertz.f * hertz.P], None, 4)))
     with pytest.raises(fr.HistoryError, match="history starts at Q = 0.0"):
         fr.simulate(hertz, fr.History.piecewise_linear([0.0, 1.0]), state=state)
 
@@ -219,3 +220,38 @@ def test_vertex_states_do_not_depend_on_steps_per_segment(hertz, tau):
     scale = np.abs(slips[0]).max()
     for other in slips[1:]:
         np.testing.assert_allclose(other, slips[0], rtol=0, atol=1e-9 * scale)
+
+
+@pytest.mark.parametrize("phase_deg", [0.0, 90.0])
+def test_copied_cycles_equal_solved_ones(hertz, phase_deg):
+    """Cycles whose loads and starting state repeat are copied; solving each one instead (a run
+    cut into one part per cycle cannot copy) gives the same result bit for bit."""
+    fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
+    history = fr.History.sinusoidal(0.6 * fP, 0.4 * fp0, phase_deg=phase_deg, cycles=8, steps_per_cycle=16)
+    whole = fr.simulate(hertz, history, nodes=64)
+    assert whole.cycle_copied.values.sum() >= 3
+    bounds = [0, *np.flatnonzero(np.diff(history.cycle)), len(history) - 1]
+    parts = [fr.simulate(hertz, history[: bounds[1] + 1], nodes=64)]
+    for start, stop in itertools.pairwise(bounds[1:]):
+        parts.append(fr.simulate(hertz, history[start : stop + 1], nodes=64, state=fr.final_state(parts[-1])))
+    solved = fr.join_results(parts)
+    assert not solved.cycle_copied.values.any()
+    xr.testing.assert_identical(solved.drop_vars("cycle_copied"), whole.drop_vars("cycle_copied"))
+
+
+def test_energy_density_and_slip_amplitude_per_cycle(hertz):
+    """`w` sums f p |ds| over each cycle's increments, `slip_amplitude` is half the slip range
+    over the cycle and its starting state; both are kept for every cycle."""
+    fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
+    history = fr.History.sinusoidal(0.5 * fP, 0.3 * fp0, phase_deg=90, cycles=3, steps_per_cycle=24)
+    result = fr.simulate(hertz, history, nodes=64)
+    slip, cycle, p = result.slip.values, result.cycle.values, result.p.values
+    density = hertz.f * p * np.abs(np.diff(slip, axis=0, prepend=slip[:1]))
+    for k, number in enumerate(result.cycle_number.values):
+        mine = np.flatnonzero(cycle == number)
+        around = slip[mine[0] - 1 : mine[-1] + 1]
+        np.testing.assert_allclose(result.w.values[k], density[mine].sum(axis=0), rtol=1e-6, atol=0)
+        amplitude = (around.max(axis=0) - around.min(axis=0)) / 2
+        np.testing.assert_allclose(result.slip_amplitude.values[k], amplitude, rtol=1e-6, atol=0)
+    total = float(result.dissipation.sum())
+    assert float(result.total_dissipation) == pytest.approx(total, rel=1e-14)

@@ -119,17 +119,25 @@ def test_join_of_one_part_and_of_a_repeated_end(whole):
     xr.testing.assert_identical(join_results([whole, repeated]), whole)
 
 
-def test_join_rejects_parts_that_do_not_continue(whole):
+def test_join_rejects_parts_that_do_not_continue(history):
+    first = fr.simulate(_contact(), history[:11], nodes=NODES)
+    elsewhere = fr.simulate(_contact(), history[20:31], nodes=NODES)
     with pytest.raises(ResultError, match="not where the previous one ends"):
-        join_results([whole.isel(step=slice(0, 10)), whole.isel(step=slice(20, 30))])
+        join_results([first, elsewhere])
     with pytest.raises(ResultError, match="no results"):
         join_results([])
 
 
-def test_join_refuses_parts_that_skip_steps():
-    """Energy per cycle is summed over the joined steps: a part with steps left out would be wrong."""
-    contact = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.7, 1e5)
-    history = fr.History.sinusoidal(0.5 * contact.f * contact.P, cycles=2, steps_per_cycle=8)
-    sparse = fr.simulate(contact, history, nodes=32, record=[0, 5, len(history) - 1])
-    with pytest.raises(fr.ResultError, match="part 1 records only some of its steps"):
-        fr.join_results([sparse])
+@pytest.mark.parametrize("record", [[], [0], [5, 33, 34, 78], "every fifth"])
+def test_parts_recording_some_steps_join_into_the_whole_run(history, record):
+    """Each part records its share of the steps; energy and slip range per cycle still cover every step."""
+    contact = _contact()
+    steps = np.arange(0, len(history), 5) if record == "every fifth" else np.array(record, dtype=int)
+    whole = fr.simulate(contact, history, nodes=NODES, record=steps)
+    bounds = [0, 7, 30, 31, 58, len(history) - 1]
+    parts = []
+    for start, stop in itertools.pairwise(bounds):
+        mine = steps[(steps >= start) & (steps <= stop)] - start
+        state = fr.final_state(parts[-1]) if parts else None
+        parts.append(fr.simulate(contact, history[start : stop + 1], nodes=NODES, state=state, record=mine))
+    xr.testing.assert_identical(join_results(parts), whole)
