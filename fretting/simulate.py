@@ -5,8 +5,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from fretting._validate import positive
 from fretting.contact import Contact
-from fretting.errors import GrossSlipError, HistoryError
+from fretting.errors import GrossSlipError, HistoryError, SolverError
+from fretting.galerkin import DEFAULT_RTOL, GalerkinScene, element_targets, initial_theta, refine
 from fretting.history import History
 from fretting.solver import Grid, solve_increment
 from fretting.variables import build_dataset
@@ -22,7 +24,15 @@ __all__ = [
     "simulate",
 ]
 
-#: Collocation nodes by default: worst errors 3.7e-4 a (stick-zone ends), 2.6e-4 f p0 (traction)
+MODEL = "method 4: dislocation correction to the fully adhered solution"
+GALERKIN = "P1 Galerkin in theta on a mesh adapted to rtol"
+COLLOCATION = "Gauss-Chebyshev collocation"
+
+#: Refinements of the Galerkin mesh before `adapted_mesh` gives up: each at least halves an
+#: element, and 60 halvings take pi below 1e-17.
+REFINEMENTS = 60
+
+#: Collocation nodes of the Gauss-Chebyshev model: worst errors 3.7e-4 a (stick-zone ends), 2.6e-4 f p0 (traction)
 #: and 4.5e-4 of the maximum slip on the closed forms of benchmarks/accuracy_vs_nodes.py; the
 #: tests hold them to 1e-3. 256 nodes miss that (1.2e-3).
 DEFAULT_NODES = 384
@@ -97,6 +107,8 @@ class State:
         state reports that cycle whole.
     dissipated : float
         Energy dissipated since the contact was formed [J/m], summed step by step.
+    theta : ndarray, shape (N,), optional
+        Galerkin mesh [rad] on which the fields live (None: Gauss-Chebyshev collocation).
     """
 
     Q: float
@@ -105,12 +117,13 @@ class State:
     episode_start: np.ndarray
     tally: Tally
     dissipated: float = 0.0
+    theta: np.ndarray | None = None
 
     @classmethod
-    def virgin(cls, nodes):
-        """The contact just formed: no load and no slip."""
-        slip = np.zeros(nodes)
-        return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip))
+    def virgin(cls, scene):
+        """The contact of `scene` just formed: no load and no slip."""
+        slip = np.zeros(scene.x.size)
+        return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip), theta=getattr(scene, "theta", None))
 
     def advance(self, Q, sigma, slip, ds):
         """State with the new `slip` [m], reached by the increment `ds` [m], under the loads `Q`, `sigma`."""
@@ -144,6 +157,7 @@ def final_state(result):
         result.state_episode_start.values.copy(),
         tally,
         float(result.total_dissipation),
+        result.theta.values[::-1].copy() if "theta" in result else None,  # ascending in theta
     )
 
 
@@ -190,7 +204,7 @@ class _Scene:
         return self.traction(self.limit) * np.abs(ds)
 
 
-def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None, record=None):
+def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, record=None):
     """Follow a load history and record the contact.
 
     Parameters
@@ -199,10 +213,17 @@ def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None, record=None):
     history : History
         Step 0 is the starting state. Without `state` the contact starts just formed,
         unloaded; a non-zero first vertex is then reached in one increment.
-    nodes : int
-        Gauss-Chebyshev collocation nodes.
+    nodes : int, optional
+        Gauss-Chebyshev collocation nodes of the fixed grid (default `DEFAULT_NODES`).
+    rtol : float, optional
+        Solve by P1 Galerkin instead, on a mesh refined where the stick and slip zones of the
+        history need it for this relative accuracy of the energy per cycle (`adapted_mesh`,
+        e.g. `DEFAULT_RTOL`): for slip or stick zones narrower than the grid's node spacing.
+    mesh : array_like, optional
+        Galerkin mesh ``theta`` [rad] to use as it is (see `adapted_mesh`).
     state : State, optional
         State to continue from (see `final_state`); its loads must be the history's first.
+        The run keeps its mesh or grid.
     record : array_like of int or "all", optional
         Steps whose fields and loads are stored, increasing; the dataset's `step` coordinate
         holds their numbers. Default: every step of histories of up to `RECORD_ALL_STEPS`
@@ -223,20 +244,60 @@ def simulate(contact, history, *, nodes=DEFAULT_NODES, state=None, record=None):
         raise ValueError(f"contact must be a fretting.Contact, found {contact!r}")
     if not isinstance(history, History):
         raise ValueError(f"history must be a fretting.History, found {history!r}")
-    scene = _Scene(contact, nodes)
-    if state is None:
-        state = State.virgin(nodes)
-    elif state.slip.shape != (nodes,):
-        raise ValueError(f"state has {state.slip.size} nodes, the simulation {nodes}")
-    elif (state.Q, state.sigma) != history.start:
+    if state is not None and (state.Q, state.sigma) != history.start:
         Q, sigma = history.start
         raise HistoryError(
             f"history starts at Q = {Q!r}, sigma = {sigma!r}; "
             f"the state is at Q = {float(state.Q)!r}, sigma = {float(state.sigma)!r}"
         )
+    scene = _scene(contact, history, rtol, nodes, mesh, state)
     steps = recorded_steps(record, len(history))
-    attributes = _attributes(contact, nodes) | {"steps": len(history)}
-    return build_dataset(_Run(scene, history, steps).follow(state), attributes)
+    data = _Run(scene, history, steps).follow(State.virgin(scene) if state is None else state)
+    return build_dataset(data, _attributes(scene, rtol) | {"steps": len(history)})
+
+
+def _scene(contact, history, rtol, nodes, mesh, state):
+    """The discretisation a run asks for: the state's, a grid, a given mesh or a mesh adapted to `rtol`."""
+    asked = [name for name, value in (("nodes", nodes), ("rtol", rtol), ("mesh", mesh)) if value is not None]
+    if len(asked) > 1:
+        raise ValueError(f"give one of nodes (Gauss-Chebyshev), rtol or mesh (Galerkin), found {' and '.join(asked)}")
+    if state is not None:
+        if state.theta is not None and asked:
+            raise ValueError(f"the state has its own Galerkin mesh: give no {asked[0]}")
+        if state.theta is not None:
+            return GalerkinScene(contact, state.theta)
+        if asked not in ([], ["nodes"]) or (nodes is not None and nodes != state.slip.size):
+            raise ValueError(f"the state has its own grid of {state.slip.size} nodes: give no {asked[0]}")
+        return _Scene(contact, state.slip.size)
+    if mesh is not None:
+        return GalerkinScene(contact, mesh)
+    if rtol is not None:
+        return GalerkinScene(contact, adapted_mesh(contact, history, rtol))
+    return _Scene(contact, DEFAULT_NODES if nodes is None else nodes)
+
+
+def adapted_mesh(contact, history, rtol=DEFAULT_RTOL):
+    """Galerkin mesh ``theta`` [rad] that resolves every stick and slip zone of `history` to `rtol`.
+
+    Runs the history (from the contact just formed) on a mesh graded toward the edges, refines
+    every element that `fretting.galerkin.element_targets` finds too coarse at any increment,
+    and runs it again until no element is; each run copies repeating cycles as `simulate` does.
+    """
+    rtol = positive("rtol", rtol)
+    theta = initial_theta()
+    for _ in range(REFINEMENTS):
+        scene = GalerkinScene(contact, theta)
+        targets = np.full(theta.size - 1, np.inf)
+
+        def observe(ds, theta=theta, targets=targets):
+            np.minimum(targets, element_targets(theta, ds, rtol), out=targets)
+
+        _Run(scene, history, np.zeros(0, dtype=np.int64), observe).follow(State.virgin(scene))
+        refined = refine(theta, targets)
+        if refined is theta:
+            return theta
+        theta = refined
+    raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
 
 
 def recorded_steps(record, n):
@@ -283,8 +344,8 @@ class _Run:
     solved, and marked in `cycle_copied`.
     """
 
-    def __init__(self, scene, history, steps):
-        self.scene, self.history, self.steps = scene, history, steps
+    def __init__(self, scene, history, steps, observe=None):
+        self.scene, self.history, self.steps, self.observe = scene, history, steps, observe
         self.cycle = history.cycle if history.cycle is not None else np.zeros(len(history), dtype=np.int64)
         self.row = np.full(len(history), -1)
         self.row[steps] = np.arange(steps.size)
@@ -336,8 +397,11 @@ class _Run:
         if step == 0 and (Q, sigma) == (state.Q, state.sigma):  # the starting state: nothing moves
             ds = np.zeros(state.slip.size)
             return _Outcome(scene.g_stuck(Q, sigma) - scene.G @ state.slip, ds, 0.0, state)
-        increment = solve_increment(scene.G, scene.g_stuck(Q, sigma), scene.limit, state.slip)
+        guess = np.sign(state.slip - state.episode_start).astype(np.int8)  # the last increment's directions
+        increment = solve_increment(scene.G, scene.g_stuck(Q, sigma), scene.limit, state.slip, guess)
         ds = increment.ds
+        if self.observe is not None:
+            self.observe(ds)
         dissipation = scene.dissipation(ds)
         tally = state.tally
         if tally.number:
@@ -405,26 +469,30 @@ class _Run:
             data["cycle"] = history.cycle[steps]
             data |= _cycle_rows(self.cycles, scene.x.size)
         tally = state.tally
-        return data | {
-            "Q": history.Q[steps],
-            "sigma": history.sigma[steps],
-            "p": scene.contact.pressure(scene.x),
-            "x": scene.x,
-            "step": steps,
-            "delta_Q": scene.delta_Q(self.fields["slip"]),
-            "delta_sigma": scene.delta_sigma(self.fields["slip"]),
-            "vertex_step": history.vertex_step,
-            "state_Q": state.Q,
-            "state_sigma": state.sigma,
-            "state_slip": state.slip,
-            "state_episode_start": state.episode_start,
-            "state_cycle": tally.number,
-            "state_cycle_dissipation": tally.dissipation,
-            "state_w": tally.w,
-            "state_slip_min": tally.slip_min,
-            "state_slip_max": tally.slip_max,
-            "total_dissipation": state.dissipated,
-        }
+        return (
+            data
+            | {
+                "Q": history.Q[steps],
+                "sigma": history.sigma[steps],
+                "p": scene.contact.pressure(scene.x),
+                "x": scene.x,
+                "step": steps,
+                "delta_Q": scene.delta_Q(self.fields["slip"]),
+                "delta_sigma": scene.delta_sigma(self.fields["slip"]),
+                "vertex_step": history.vertex_step,
+                "state_Q": state.Q,
+                "state_sigma": state.sigma,
+                "state_slip": state.slip,
+                "state_episode_start": state.episode_start,
+                "state_cycle": tally.number,
+                "state_cycle_dissipation": tally.dissipation,
+                "state_w": tally.w,
+                "state_slip_min": tally.slip_min,
+                "state_slip_max": tally.slip_max,
+                "total_dissipation": state.dissipated,
+            }
+            | ({} if state.theta is None else {"theta": state.theta[::-1]})
+        )
 
 
 def _cycle_rows(cycles, N):
@@ -498,8 +566,9 @@ def _boundary(t, ds, inner, side):
     return float((t[inner] + t[outer]) / 2)
 
 
-def _attributes(contact, nodes):
-    return {
+def _attributes(scene, rtol):
+    contact = scene.contact
+    attributes = {
         "a": contact.a,
         "p0": contact.p0,
         "E_star": contact.E_star,
@@ -507,6 +576,8 @@ def _attributes(contact, nodes):
         "P": contact.P,
         "centre": contact.centre,
         "profile": repr(contact.profile),
-        "model": "method 4: dislocation correction to the fully adhered solution",
-        "nodes": nodes,
+        "nodes": scene.x.size,
     }
+    if isinstance(scene, GalerkinScene):
+        return attributes | {"model": f"{MODEL}, {GALERKIN}", "rtol": rtol}
+    return attributes | {"model": f"{MODEL}, {COLLOCATION}"}

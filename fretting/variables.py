@@ -41,6 +41,7 @@ VARIABLES = {
     "state_slip_max": (("x",), "m", "greatest slip so far in the cycle in progress"),
     "total_dissipation": ((), "J/m", "energy dissipated since the contact was formed, up to the last step"),
     "x": (("x",), "m", "position along the contact"),
+    "theta": (("x",), "rad", "Galerkin mesh angle of each node: x = centre + a cos(theta)"),
     "step": (("step",), "1", "load step (0 is the starting state)"),
 }
 

@@ -1,0 +1,672 @@
+"""Method 4 of the seed paper by P1 Galerkin on a locally refinable mesh in ``theta``.
+
+Positions in the contact are ``x = centre + a cos(theta)``, ``theta`` in ``[0, pi]``. The slip
+``s(theta)`` is piecewise linear in ``theta`` on any mesh ``0 = theta_0 < ... < theta_M = pi``,
+``s = sum_k s_k phi_k`` with hat functions ``phi_k``; both edge nodes are unknowns.
+
+Elastic energy. With ``s = sum_n s_n cos(n theta)`` the dislocation traction of eq (A.4) does the
+work ``int q_d s dx = -(pi E_star / 4) sum_n n s_n^2`` (formulation.md section 4), so the elastic
+bilinear form is ``B(u, v) = (pi E_star / 4) sum_n n u_n v_n``. Since
+``Cl1(theta - phi) - Cl1(theta + phi) = 2 sum_m sin(m theta) sin(m phi) / m`` with the Clausen
+function ``Cl1(x) = -ln|2 sin(x/2)| = sum_m cos(m x) / m``,
+
+    B(u, v) = (E_star / (2 pi)) int int u'(theta) v'(phi) [Cl1(theta - phi) - Cl1(theta + phi)] dtheta dphi.
+
+Hats have constant derivatives on each element, so the stiffness ``K_kl = B(phi_k, phi_l)``
+needs the mean of ``Cl1(theta -+ phi)`` over each pair of elements. ``F = zeta(3) - Cl3`` has
+``F'' = Cl1``, so the integral over a rectangle is a four-corner combination of ``F``; away from
+the singularities of ``Cl1`` that combination cancels, and a Taylor series about the
+rectangle's centre takes over. The means are then right to about 1e-14 for elements of similar
+size and to ``~ 1e-16`` times the ratio of the sizes otherwise: at most 4e-10 on the meshes
+that `element_targets` settles on, with elements down to 3e-6 rad.
+
+Loads. The fully stuck traction of eqs (9) and (20) does the work
+``F_k = int q_st phi_k dx = int (Q / pi + sigma a cos(theta) / 4) phi_k dtheta``, that is
+``Q dQ_k + sigma dsig_k``, in closed form; by reciprocity (formulation.md section 5)
+``delta_Q = dQ . s`` and ``delta_sigma = dsig . s`` exactly. The friction term
+``int f p |ds| dx`` is lumped to ``sum_k L_k |ds_k|``, ``L_k = int f p phi_k dx`` (exact while
+``ds`` keeps its sign on each element). An increment is then the problem that
+`fretting.solver.solve_increment` solves,
+``min 1/2 ds^T K ds - g_trial^T ds + sum_k L_k |ds_k|`` with ``g_trial = F(Q', sigma') - K s``,
+and its ``g_k = int q phi_k dx`` are hat moments of the traction.
+
+Mesh. `element_targets` reads the stick and slip zones of an increment and asks for element
+sizes; `refine` bisects (old nodes stay nodes, so a P1 slip field carries over exactly) and
+grades neighbours to a size ratio of at most 2. A driver runs its history, reduces the targets
+of every increment with ``np.minimum``, refines, and runs again until `refine` returns the
+same mesh, starting from `initial_theta`.
+"""
+
+import numpy as np
+from numpy.polynomial import polynomial
+from scipy import special
+
+from fretting.profiles import Gap, RoundedFlat
+
+__all__ = [
+    "DEFAULT_RTOL",
+    "GalerkinScene",
+    "boundary_fraction",
+    "clausen1",
+    "clausen3_complement",
+    "element_targets",
+    "initial_theta",
+    "refine",
+    "stiffness",
+    "uniform_theta",
+    "zone_fraction",
+]
+
+#: Terms of the zeta series of ``Cl3``: at ``|x| = pi`` term ``k`` is below ``4^-k / k^3``,
+#: under 1e-19 of ``F(pi) = 2.10`` at ``k = 26``.
+CLAUSEN_TERMS = 26
+
+#: Pairs of elements whose centres lie farther than this many mean element sizes from a
+#: singularity of ``Cl1`` use the Taylor series: its terms fall by ``(1/8)^2`` each, and the
+#: four-corner formula nearer in loses at most ``~ 9^2`` rounding errors of ``F``.
+FAR_PAIRS = 8.0
+#: Even Taylor orders ``0, 2, ..., 2 (TAYLOR_TERMS - 1)`` of the far-pair series: the next term
+#: is below ``8^-16 / 2000``, i.e. 1e-18.
+TAYLOR_TERMS = 8
+
+#: Gauss-Legendre points per element for the friction limit: exact for the polynomial part
+#: of degree 15, far beyond the smoothness of the pressures on one element.
+GAUSS_POINTS = 8
+#: Ratio of the geometric pieces toward a point where the pressure has a singular derivative
+#: (the ends of a rounded flat): each piece then lies its own length from the singularity,
+#: where 8-point Gauss converges like 5.8^-16 = 6e-13.
+GRADING_RATIO = 0.5
+#: Levels of geometric pieces: the innermost ``2^-24`` of an element carries an error
+#: ``~ d^2 ln d``, below 1e-13 of it.
+GRADING_LEVELS = 24
+#: Below this half-width ``w`` [rad] ``(sin w - w cos w) / w`` is summed as its Taylor series,
+#: whose terms fall by ``w^2 / 20`` each: 12 terms reach 1e-20 at ``w = 0.5``.
+SMALL_HALF_WIDTH = 0.5
+_J1_TERMS = 12
+
+#: Relative accuracy asked by default of the energy dissipated in an increment (`element_targets`):
+#: the energy per cycle of the Hertz benchmark then errs by at most 4e-5 for Q*/fP from 0.05
+#: to 0.95, stick ends by 7e-4 a, tractions by 3e-4 f p0.
+DEFAULT_RTOL = 1e-4
+#: Elements of the initial uniform mesh, the coarsest any zone gets: with 32 the slip of the
+#: large zones at Q/fP = 0.999 errs by 1.3e-3 of its maximum, with 64 by 4e-4.
+INITIAL_ELEMENTS = 64
+#: Size [rad] of the edge elements of the initial mesh: edge slip zones down to about this
+#: width in theta (5e-9 a in x) make the edge node slip, and are then refined.
+EDGE_SIZE = 1e-4
+#: Smallest element size [rad] that `element_targets` asks for, so that refinement ends even
+#: where a zone never resolves.
+MIN_SIZE = 1e-7
+#: Elements across every stick or slip zone, at least: the slip is then within 6e-4 of its
+#: maximum (8 leave 7.4e-4 at Q/fP = 0.05).
+ZONE_ELEMENTS = 10
+#: Relative energy error left inside zones of ``ZONE_ELEMENTS`` elements (the floor seen at
+#: Q*/fP = 0.95 when 1e-5 is asked); it falls like the square of the element size.
+ZONE_ERROR = 1e-4
+#: The worst relative energy error of an increment is about ``BOUNDARY_ERROR (size / w)^(5/2)``
+#: with ``size`` the element holding a stick/slip boundary and ``w`` the narrower zone beside
+#: it. Fitted with a margin: over 60 amplitudes Q*/fP in [0.05, 0.95] the worst energy per
+#: cycle errs by 3.2e-4 with rtol = 1e-3 and 3.7e-5 with 1e-4 (9, the bare fit, let 4 exceed 1e-4).
+BOUNDARY_ERROR = 40.0
+#: The element holding a boundary spans at most ``BOUNDARY_SPAN rtol a`` in x: the boundary
+#: extrapolated from the slip (`fretting.simulate.stick_zones`) then errs by ~ 0.15 of that.
+BOUNDARY_SPAN = 50.0
+#: Around a boundary elements grow at most like this fraction of their distance from it, so
+#: that the square-root kink of the traction is seen through gently graded elements.
+BOUNDARY_GRADING = 0.5
+#: A zone seen at fewer nodes has an unreliable width: its elements are only bisected.
+MIN_ZONE_NODES = 3
+#: Bisections asked of an element in one pass at most (a factor 4 in size).
+LEVELS_PER_PASS = 2
+#: Largest size ratio of neighbouring elements.
+GRADING = 2.0
+#: Rounding allowance on that ratio: bisected elements are halves up to rounding.
+GRADING_SLACK = 1e-9
+
+
+# --- Clausen functions --------------------------------------------------------------------
+
+
+def clausen1(x):
+    """``Cl1(x) = -ln|2 sin(x/2)| = sum_m cos(m x) / m`` [-], logarithmic at multiples of ``2 pi``."""
+    return -np.log(2 * np.abs(np.sin(np.asarray(x, dtype=float) / 2)))
+
+
+def _clausen_coefficients(terms):
+    """``zeta(2k) / (k (2k+1) (2k+2))``, ``k = 1 .. terms``: the series of `clausen3_complement` [-]."""
+    k = np.arange(1, terms + 1)
+    return special.zeta(2.0 * k) / (k * (2 * k + 1) * (2 * k + 2))
+
+
+_CLAUSEN_COEFFICIENTS = _clausen_coefficients(CLAUSEN_TERMS)
+
+
+def clausen3_complement(x):
+    """``F(x) = zeta(3) - Cl3(x)`` [-] with ``Cl3(x) = sum_m cos(m x) / m^3``: ``F'' = Cl1``, ``F(0) = 0``.
+
+    For ``|x| <= pi`` (the rest by symmetry and period ``2 pi``), the series of ``Cl2`` about 0
+    integrated once more,
+    ``F(x) = x^2 (3/2 - ln|x|) / 2 + sum_k zeta(2k) x^(2k+2) / (k (2k+1) (2k+2) (2 pi)^(2k))``,
+    accurate to a few units of rounding relative to ``F`` itself, also for tiny ``x``.
+    """
+    y = np.abs(np.asarray(x, dtype=float)) % (2 * np.pi)
+    y = np.where(y > np.pi, 2 * np.pi - y, y)
+    square = y * y
+    series = polynomial.polyval(square / (2 * np.pi) ** 2, np.concatenate([[0.0], _CLAUSEN_COEFFICIENTS]))
+    logarithmic = square * (1.5 - np.log(np.where(y > 0, y, 1.0))) / 2
+    return logarithmic + square * series
+
+
+def _clausen1_even_derivative_polynomials(terms):
+    """Coefficients in ``c = cot(x/2)`` of ``d^(2j) Cl1 / dx^(2j)``, ``j = 1 .. terms - 1``.
+
+    ``Cl1' = -c/2`` and ``dc/dx = -(1 + c^2)/2``, so each derivative is a polynomial in ``c``.
+    """
+    derivative = np.array([0.0, -0.5])
+    half_one_plus_c2 = np.array([-0.5, 0.0, -0.5])
+    even = []
+    for order in range(2, 2 * terms - 1):
+        derivative = polynomial.polymul(polynomial.polyder(derivative), half_one_plus_c2)
+        if order % 2 == 0:
+            even.append(derivative)
+    return even
+
+
+_EVEN_DERIVATIVES = _clausen1_even_derivative_polynomials(TAYLOR_TERMS)
+_FACTORIALS = special.factorial(np.arange(2 * TAYLOR_TERMS + 1), exact=False)
+
+
+def _taylor_weights(h_e, h_f):
+    """Weights ``m_j`` [rad^(2j)] of ``mean = sum_j Cl1^(2j)(centre) m_j`` over elements of sizes `h_e`, `h_f`.
+
+    The second difference of ``F`` over the rectangle, expanded about its centre, leaves the
+    even terms ``m_j = 2 (A^(j+1) - B^(j+1)) / ((2j+2)! h_e h_f)`` with ``A = ((h_e + h_f)/2)^2``,
+    ``B = ((h_e - h_f)/2)^2``; as ``A - B = h_e h_f`` this is ``2 sum_i A^i B^(j-i) / (2j+2)!``,
+    which does not cancel.
+    """
+    A, B = ((h_e + h_f) / 2) ** 2, ((h_e - h_f) / 2) ** 2
+    weights, power_sum = [], np.zeros_like(A)
+    A_power = np.ones_like(A)
+    for j in range(TAYLOR_TERMS):
+        power_sum = power_sum * B + A_power if j else np.ones_like(A)
+        A_power = A_power * A
+        weights.append(2 * power_sum / _FACTORIALS[2 * j + 2])
+    return weights
+
+
+def _pair_means(lo, hi, plus):
+    """Mean of ``Cl1(theta - phi)`` (or ``Cl1(theta + phi)`` if `plus`) over every pair of elements.
+
+    Parameters
+    ----------
+    lo, hi : ndarray, shape (M,)
+        Ends of the elements [rad], ``0 <= lo < hi <= pi``.
+    plus : bool
+        Kernel of the sum; pairs nearer ``2 pi`` than 0 are reflected, ``theta -> pi - theta``,
+        so that their small arguments are differences of nodes computed without rounding.
+
+    Returns
+    -------
+    ndarray, shape (M, M)
+        Symmetric matrix of means [-].
+    """
+    h = hi - lo
+    centre = (lo + hi) / 2
+    sign = 1.0 if plus else -1.0
+    u = centre[:, None] + sign * centre[None, :]
+    if plus:
+        reflect = u > np.pi
+        u = np.where(reflect, 2 * np.pi - u, u)
+    u = np.abs(u)
+    h_e, h_f = np.broadcast_arrays(h[:, None], h[None, :])
+    near = u < FAR_PAIRS * (h_e + h_f) / 2
+    means = np.empty(u.shape)
+
+    far = ~near
+    c = 1 / np.tan(u[far] / 2)
+    weights = _taylor_weights(h_e[far], h_f[far])
+    total = clausen1(u[far]) * weights[0]
+    for poly, weight in zip(_EVEN_DERIVATIVES, weights[1:], strict=True):
+        total += polynomial.polyval(c, poly) * weight
+    means[far] = total
+
+    e, f = np.nonzero(near)
+    if plus:
+        flip = reflect[e, f]
+        a1 = np.where(flip, np.pi - hi[e], lo[e])
+        a2 = np.where(flip, np.pi - lo[e], hi[e])
+        b1 = np.where(flip, np.pi - hi[f], lo[f])
+        b2 = np.where(flip, np.pi - lo[f], hi[f])
+        corners = (a2 + b2, a1 + b1, a2 + b1, a1 + b2)
+    else:
+        a1, a2, b1, b2 = lo[e], hi[e], lo[f], hi[f]
+        corners = (a2 - b1, a1 - b2, a1 - b1, a2 - b2)
+    F = [clausen3_complement(v) for v in corners]
+    means[e, f] = (F[0] + F[1] - F[2] - F[3]) / (h[e] * h[f])
+    return means
+
+
+def stiffness(theta, E_star):
+    """``K_kl = B(phi_k, phi_l)`` [Pa] of the hats on the mesh `theta` (ascending, 0 to pi).
+
+    ``K = (E_star / (2 pi)) C^T (means(theta - phi) - means(theta + phi)) C`` with ``C`` the
+    element difference of nodal values: symmetric, positive semi-definite, ``K 1 = 0``.
+    """
+    lo, hi = theta[:-1], theta[1:]
+    kernel = _pair_means(lo, hi, plus=False) - _pair_means(lo, hi, plus=True)
+    padded = np.pad(kernel, 1)
+    return E_star / (2 * np.pi) * np.diff(np.diff(padded, axis=0), axis=1)
+
+
+# --- one-dimensional integrals of hats --------------------------------------------------------
+
+
+def _j1(w):
+    """``(sin w - w cos w) / w`` [-] without cancellation for small half-widths ``w``."""
+    w = np.asarray(w, dtype=float)
+    small = w < SMALL_HALF_WIDTH
+    k = np.arange(1, _J1_TERMS + 1)
+    coefficients = np.concatenate([[0.0], (-1.0) ** (k + 1) * 2 * k / special.factorial(2 * k + 1)])
+    series = polynomial.polyval(w * w, coefficients)
+    direct = (np.sin(w) - w * np.cos(w)) / np.where(small, 1.0, w)
+    return np.where(small, series, direct)
+
+
+def _hat_trig_integrals(theta):
+    """``int cos(theta) phi_k dtheta`` and ``int sin(theta) phi_k dtheta`` [-] per node (theta order).
+
+    On an element of centre ``m`` and half-width ``w`` the rising hat gives
+    ``cos m sin w - sin m j(w)`` and ``sin m sin w + cos m j(w)``, the falling one the same with
+    ``-j``; ``j(w) = (sin w - w cos w) / w``.
+    """
+    m = (theta[:-1] + theta[1:]) / 2
+    w = np.diff(theta) / 2
+    j = _j1(w)
+    sin_w = np.sin(w)
+    cos_rise, cos_fall = np.cos(m) * sin_w - np.sin(m) * j, np.cos(m) * sin_w + np.sin(m) * j
+    sin_rise, sin_fall = np.sin(m) * sin_w + np.cos(m) * j, np.sin(m) * sin_w - np.cos(m) * j
+    return _assemble(cos_fall, cos_rise), _assemble(sin_fall, sin_rise)
+
+
+def _assemble(fall, rise):
+    """Nodal sums of per-element integrals of the falling (left node) and rising (right node) hats."""
+    nodal = np.zeros(fall.size + 1)
+    nodal[:-1] += fall
+    nodal[1:] += rise
+    return nodal
+
+
+def _pressure_breakpoints(contact):
+    """Angles [rad] where ``p sqrt(1 - t^2)`` has a singular derivative: the ends of a rounded flat."""
+    if isinstance(contact.profile, RoundedFlat):
+        t = contact.profile.b / contact.a
+        return np.arccos([t, -t])
+    return np.array([])
+
+
+def _pressure_wavelength(contact):
+    """Shortest wavelength [rad] in ``p sqrt(1 - t^2)`` as a function of theta (inf if it is smooth).
+
+    A `Gap` pressure is a sine series of ``Gap.ORDER`` terms, whose top terms matter when the
+    gap's curvature jumps.
+    """
+    return 2 * np.pi / contact.profile.ORDER if isinstance(contact.profile, Gap) else np.inf
+
+
+def _quadrature_pieces(theta, breakpoints, wavelength):
+    """Subintervals ``(lo, hi, element)`` covering the mesh, on which 8-point Gauss is accurate.
+
+    Elements are cut into equal pieces of at most half a `wavelength`. An element that holds a
+    breakpoint, or lies within its own size of one, is instead cut into pieces that halve in
+    length toward it, so that each piece lies at least its own length from the singularity.
+    """
+    lo, hi = theta[:-1], theta[1:]
+    graded = np.zeros(lo.size, dtype=bool)
+    pieces = []
+    for point in breakpoints:
+        nearest = np.clip(point, lo, hi)
+        for k in np.flatnonzero(np.abs(nearest - point) < hi - lo):
+            graded[k] = True
+            for far_end in (lo[k], hi[k]):
+                if far_end != nearest[k]:
+                    fractions = np.concatenate([GRADING_RATIO ** np.arange(GRADING_LEVELS + 1), [0.0]])
+                    cuts = np.sort(nearest[k] + (far_end - nearest[k]) * fractions)
+                    pieces.append((cuts[:-1], cuts[1:], np.full(cuts.size - 1, k)))
+    whole = np.flatnonzero(~graded)
+    count = np.ones(whole.size, dtype=int)
+    if np.isfinite(wavelength):
+        count = np.ceil((hi[whole] - lo[whole]) / (wavelength / 2)).astype(int)
+    element = np.repeat(whole, count)
+    index = np.arange(element.size) - np.repeat(np.cumsum(count) - count, count)
+    step = (hi - lo)[element] / np.repeat(count, count)
+    pieces.append((lo[element] + index * step, lo[element] + (index + 1) * step, element))
+    return tuple(np.concatenate(parts) for parts in zip(*pieces, strict=True))
+
+
+def _friction_limits(contact, theta):
+    """``L_k = int f p phi_k dx = f a int (p sqrt(1 - t^2))(cos theta) phi_k dtheta`` [N/m] (theta order)."""
+    lo, hi, element = _quadrature_pieces(theta, _pressure_breakpoints(contact), _pressure_wavelength(contact))
+    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_POINTS)
+    points = (lo + hi)[:, None] / 2 + np.outer((hi - lo) / 2, nodes)
+    values = contact.pressure_weighted(np.cos(points)) * weights * ((hi - lo) / 2)[:, None]
+    left, right = theta[element][:, None], theta[element + 1][:, None]
+    rise = (points - left) / (right - left)
+    integrand_rise = np.sum(values * rise, axis=1)
+    integrand_fall = np.sum(values * (1 - rise), axis=1)
+    M = theta.size - 1
+    fall = np.bincount(element, integrand_fall, minlength=M)
+    rise = np.bincount(element, integrand_rise, minlength=M)
+    return contact.f * contact.a * _assemble(fall, rise)
+
+
+def _hat_moments(theta):
+    """Mean of ``(theta - theta_k)`` and ``(theta - theta_k)^2`` [rad, rad^2] under ``phi_k dx`` (theta order).
+
+    By Gauss per element with offsets from the node itself, so that no moment is the small
+    difference of large ones.
+    """
+    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_POINTS)
+    h = np.diff(theta)
+    rise = (1 + nodes) / 2  # the rising hat at the Gauss points; the falling one is 1 - rise
+    points = theta[:-1, None] + np.outer(h, rise)
+    measure = weights * np.sin(points) * (h / 2)[:, None]
+    moments = []
+    for power in range(3):
+        from_left = np.sum(measure * (1 - rise) * np.outer(h, rise) ** power, axis=1)  # node e, falling hat
+        from_right = np.sum(measure * rise * np.outer(-h, 1 - rise) ** power, axis=1)  # node e + 1, rising hat
+        moments.append(_assemble(from_left, from_right))
+    return moments[1] / moments[0], moments[2] / moments[0]
+
+
+def _recovery(theta):
+    """Stencils and weights [-] that turn hat means ``g_j / area_j`` into nodal values (theta order).
+
+    Node ``k`` takes the quadratic in ``theta`` whose hat means equal those of nodes
+    ``k - 1, k, k + 1`` (one-sided at the edges) and its value at ``theta_k``: exact for
+    quadratics, where the mean itself is off by ``O(h)`` on unequal neighbouring elements.
+    """
+    first, second = _hat_moments(theta)
+    k = np.arange(theta.size)
+    stencil = np.clip(k, 1, theta.size - 2)[:, None] + np.array([-1, 0, 1])
+    scale = np.diff(theta)[np.minimum(k, theta.size - 2)][:, None]
+    shift = (theta[stencil] - theta[k][:, None]) / scale
+    mean = first[stencil] / scale
+    square = second[stencil] / scale**2
+    system = np.stack([np.ones_like(shift), mean + shift, square + 2 * shift * mean + shift**2], axis=-1)
+    weights = np.linalg.inv(system)[:, 0, :]
+    return stencil, weights
+
+
+# --- the scene ---------------------------------------------------------------------------------
+
+
+class GalerkinScene:
+    """A contact discretised by P1 Galerkin on the mesh `theta`: the fixed arrays of every increment.
+
+    Same interface as the Chebyshev scene of `fretting.simulate`; every per-node array is in
+    ascending ``x``, i.e. descending ``theta``.
+
+    Parameters
+    ----------
+    contact : Contact
+    theta : array_like, shape (M + 1,)
+        Mesh nodes [rad], strictly increasing from 0 to pi.
+
+    Attributes
+    ----------
+    theta : ndarray, shape (N,)
+        The mesh as given [rad], ascending in ``theta``.
+    x, t : ndarray, shape (N,)
+        Node positions [m] and ``(x - centre)/a`` [-], ascending.
+    G : ndarray, shape (N, N)
+        Stiffness ``K_kl = B(phi_k, phi_l)`` [Pa]: ``g = F - G s`` with ``g_k = int q phi_k dx``.
+    limit : ndarray, shape (N,)
+        ``L_k = int f p phi_k dx`` [N/m].
+    friction_force : float
+        ``sum_k L_k`` [N/m], ``f P`` on the mesh.
+    area : ndarray, shape (N,)
+        ``int phi_k dx`` [m].
+    """
+
+    def __init__(self, contact, theta):
+        theta = _validated_mesh(theta)
+        self.contact = contact
+        self.theta = theta
+        a = contact.a
+        order = slice(None, None, -1)  # theta descending: x ascending
+        self.t = np.cos(theta[order])
+        self.t[0], self.t[-1] = -1.0, 1.0
+        self.x = contact.centre + a * self.t
+        self.G = np.ascontiguousarray(stiffness(theta, contact.E_star)[order, order])
+        cos_integral, sin_integral = _hat_trig_integrals(theta)
+        self._dQ = (_assemble(np.diff(theta) / 2, np.diff(theta) / 2) / np.pi)[order]
+        self._dsig = (a / 4 * cos_integral)[order]
+        self.area = (a * sin_integral)[order]
+        self.limit = _friction_limits(contact, theta)[order]
+        self.friction_force = float(self.limit.sum())
+        stencil, weights = _recovery(theta)
+        self._stencil, self._recovery_weights = theta.size - 1 - stencil[order], weights[order]
+
+    @property
+    def nodes(self):
+        """Number of nodes ``N = M + 1``."""
+        return self.theta.size
+
+    def g_stuck(self, Q, sigma):
+        """``F_k = int q_st phi_k dx`` [N/m] of the fully stuck traction, eqs (9) and (20)."""
+        return Q * self._dQ + sigma * self._dsig
+
+    def traction(self, g):
+        """Shear traction [Pa] at the nodes, from its hat moments `g` [N/m] (rows of a 2-D `g`).
+
+        ``g_k / area_k`` is the mean of ``q`` under ``phi_k dx``, off by ``O(h)`` where
+        neighbouring elements differ in size and at the edges; the quadratic in ``theta`` with
+        the hat means of three neighbouring nodes gives the nodal value to ``O(h^3)`` where ``q``
+        is smooth (at sliding nodes, ``f p`` to ``O(h^3)``, not exactly).
+        """
+        mean = np.asarray(g) / self.area
+        return np.sum(mean[..., self._stencil] * self._recovery_weights, axis=-1)
+
+    def delta_Q(self, slip):
+        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of each row of `slip`, exact for P1 (formulation.md section 5).
+
+        A row-wise sum, not a matrix product, so that a row's value does not depend on how many
+        rows there are.
+        """
+        return np.sum(slip * self._dQ, axis=-1)
+
+    def delta_sigma(self, slip):
+        """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2] of each row of `slip`, exact for P1 (formulation.md section 5)."""
+        return np.sum(slip * self._dsig, axis=-1)
+
+    def dissipation(self, ds):
+        """``sum_k L_k |ds_k|`` [J/m], the lumped ``int f p |ds| dx``."""
+        return float(np.dot(self.limit, np.abs(ds)))
+
+    def dissipation_density(self, ds):
+        """``L_k |ds_k| / area_k`` [J/m^2] at the nodes."""
+        return self.limit * np.abs(ds) / self.area
+
+
+def _validated_mesh(theta):
+    theta = np.array(theta, dtype=float)
+    if theta.ndim != 1 or theta.size < 3:
+        raise ValueError(f"theta must be a 1-D mesh of at least 3 nodes, found shape {theta.shape}")
+    if theta[0] != 0.0 or theta[-1] != np.pi or np.any(np.diff(theta) <= 0):
+        raise ValueError("theta must increase strictly from 0 to pi")
+    return theta
+
+
+# --- meshes --------------------------------------------------------------------------------
+
+
+def uniform_theta(M):
+    """``M`` equal elements on ``[0, pi]`` [rad]; the last node is exactly ``pi``."""
+    if not isinstance(M, (int, np.integer)) or M < 2:
+        raise ValueError(f"M must be an integer >= 2, found {M!r}")
+    theta = np.linspace(0.0, np.pi, M + 1)
+    theta[-1] = np.pi
+    return theta
+
+
+def initial_theta(M=None):
+    """Uniform mesh of `M` elements whose edge elements are bisected down to `EDGE_SIZE` [rad].
+
+    A slip zone much narrower than the edge element is invisible (the edge node sticks), so
+    the mesh starts graded toward the edges: slip zones down to ``~ EDGE_SIZE`` in ``theta``,
+    ``a EDGE_SIZE^2 / 2`` in ``x``, are seen and then refined by `element_targets`.
+    """
+    theta = uniform_theta(INITIAL_ELEMENTS if M is None else M)
+    while theta[1] > EDGE_SIZE:
+        theta = np.concatenate([[0.0, theta[1] / 2], theta[1:-1], [(theta[-2] + np.pi) / 2, np.pi]])
+        theta = _graded(theta)
+    return theta
+
+
+def element_targets(theta, ds, rtol=DEFAULT_RTOL):
+    """Largest element sizes [rad] that resolve the stick and slip zones of an increment.
+
+    The nodes' status (stuck: ``ds == 0``, slipping forward, slipping backward) splits
+    ``[0, pi]`` into zones; each boundary is placed inside its element by `_boundary_position`.
+    Asked for:
+
+    - inside a zone of width ``w``: ``zone_fraction(rtol) w`` (`ZONE_ELEMENTS` elements or more);
+    - the element holding a boundary: ``boundary_fraction(rtol) w`` of the narrower zone beside
+      it, since the energy error a boundary leaves falls like ``(size / w)^(5/2)``, and at most
+      ``BOUNDARY_SPAN rtol a`` in x, so that the boundary is located to ``~ 10 rtol a``;
+    - around a boundary, ``BOUNDARY_GRADING`` times the distance from it;
+    - a zone seen at fewer than `MIN_ZONE_NODES` nodes (its width is a guess), or neighbours
+      slipping in opposite directions (a stick zone hides between them): half the element.
+
+    No element is asked to shrink by more than ``2^LEVELS_PER_PASS`` in one pass, so that the
+    zones are located again on the finer mesh, nor below `MIN_SIZE`.
+
+    Parameters
+    ----------
+    theta : ndarray, shape (M + 1,)
+        The mesh [rad], ascending from 0 to pi.
+    ds : ndarray, shape (M + 1,) or (steps, M + 1)
+        Slip increment [m] from a `GalerkinScene` on `theta`, in the scene's order (ascending
+        ``x``, i.e. descending ``theta``), exactly zero where a node stuck (as
+        `fretting.solver.solve_increment` leaves it). Rows are reduced with ``np.minimum``.
+    rtol : float
+        Relative accuracy asked of the energy dissipated in each increment.
+
+    Returns
+    -------
+    ndarray, shape (M,)
+        Target size of each element [rad], ascending ``theta``; ``inf`` where any size will do.
+    """
+    ds = np.asarray(ds, dtype=float)
+    if ds.shape[-1] != theta.size or ds.ndim not in (1, 2):
+        raise ValueError(f"ds must have {theta.size} values a row, one per node of theta; found shape {ds.shape}")
+    if ds.ndim == 2:
+        return np.minimum.reduce([element_targets(theta, row, rtol) for row in ds], initial=np.inf)
+    d = ds[::-1]  # theta order
+    h = np.diff(theta)
+    targets = np.full(h.size, np.inf)
+    status = np.sign(d)
+    inside = np.flatnonzero(status[1:] != status[:-1])  # element k holds a boundary
+    if inside.size == 0:
+        return targets
+    ends = np.concatenate([[0.0], [_boundary_position(theta, d, k) for k in inside], [np.pi]])
+    nodes = np.diff(np.concatenate([[0], inside + 1, [d.size]]))
+    width = np.diff(ends)
+    for zone in range(width.size):
+        overlapping = (theta[:-1] < ends[zone + 1]) & (theta[1:] > ends[zone])
+        if nodes[zone] < MIN_ZONE_NODES:
+            size = h[overlapping] / 2
+        else:
+            size = width[zone] * zone_fraction(rtol)
+        targets[overlapping] = np.minimum(targets[overlapping], size)
+    for zone, (k, position) in enumerate(zip(inside, ends[1:-1], strict=True)):  # between zone and zone + 1
+        span = BOUNDARY_SPAN * rtol / max(np.sin(position), BOUNDARY_SPAN * rtol / np.pi)
+        size = min(boundary_fraction(rtol) * min(width[zone], width[zone + 1]), span)
+        distance = np.maximum(np.maximum(theta[:-1] - position, position - theta[1:]), 0.0)
+        targets = np.minimum(targets, np.maximum(size, BOUNDARY_GRADING * distance))
+        if status[k] * status[k + 1] < 0:
+            targets[k] = min(targets[k], h[k] / 2)
+    return np.maximum(targets, np.maximum(h / 2**LEVELS_PER_PASS, MIN_SIZE))
+
+
+def zone_fraction(rtol):
+    """Size of the elements inside a zone, as a fraction of its width [-]: 1/`ZONE_ELEMENTS` or less.
+
+    The energy error left inside the zones, ``ZONE_ERROR`` at ``1 / ZONE_ELEMENTS``, falls like
+    the square of the fraction.
+    """
+    return min(1.0, np.sqrt(rtol / ZONE_ERROR)) / ZONE_ELEMENTS
+
+
+def boundary_fraction(rtol):
+    """Size of the element holding a stick/slip boundary, as a fraction of the narrower zone's width [-].
+
+    Inverts the worst energy error ``BOUNDARY_ERROR (size / w)^(5/2)``; never coarser than
+    `zone_fraction`.
+    """
+    return min(zone_fraction(rtol), (rtol / BOUNDARY_ERROR) ** (2 / 5))
+
+
+def _boundary_position(theta, d, k):
+    """Stick/slip boundary [rad] inside element ``k``, whose nodes ``k``, ``k + 1`` differ in status.
+
+    Near a boundary the slip increment grows like ``dist^(3/2)`` (eq 19; Masing for reversed
+    zones), so ``|d|^(2/3)`` is extrapolated linearly from the two nearest slipping nodes (the
+    element's middle when there is one only); a change of slip direction is placed where ``d``
+    interpolates to zero.
+    """
+    lo, hi = theta[k], theta[k + 1]
+    if d[k] != 0 and d[k + 1] != 0:
+        return lo + (hi - lo) * d[k] / (d[k] - d[k + 1])
+    slipping, step = (k + 1, 1) if d[k] == 0 else (k, -1)
+    beyond = slipping + step
+    v1 = abs(d[slipping]) ** (2 / 3)
+    if 0 <= beyond < d.size and np.sign(d[beyond]) == np.sign(d[slipping]):
+        v2 = abs(d[beyond]) ** (2 / 3)
+        if v2 > v1:
+            estimate = theta[slipping] - v1 * (theta[beyond] - theta[slipping]) / (v2 - v1)
+            return float(np.clip(estimate, lo, hi))
+    return (lo + hi) / 2
+
+
+def refine(theta, targets):
+    """Bisect every element until it is no larger than its target, then grade the mesh.
+
+    Parameters
+    ----------
+    theta : ndarray, shape (M + 1,)
+        The mesh [rad], ascending from 0 to pi.
+    targets : ndarray, shape (M,)
+        Largest size of each element [rad], positive, ``inf`` for any (`element_targets`).
+
+    Returns
+    -------
+    ndarray
+        The refined mesh: the old nodes stay nodes, and neighbouring elements differ in size
+        by a factor ``GRADING`` at most. `theta` itself when no element needed bisecting.
+    """
+    h = np.diff(theta)
+    targets = np.asarray(targets, dtype=float)
+    if targets.shape != h.shape or np.any(~(targets > 0)):
+        raise ValueError(f"targets must be {h.size} positive sizes, one per element; found {targets!r}")
+    coarse = h > targets
+    levels = np.zeros(h.size, dtype=int)
+    levels[coarse] = np.ceil(np.log2(h[coarse] / targets[coarse]))
+    if not levels.any():
+        return _graded(theta)
+    count = 2**levels
+    element = np.repeat(np.arange(h.size), count)
+    index = np.arange(element.size) - np.repeat(np.cumsum(count) - count, count)
+    inner = theta[element] + h[element] * index / count[element]
+    return _graded(np.concatenate([inner, [np.pi]]))
+
+
+def _graded(theta):
+    """Bisect the elements more than ``GRADING`` times the size of a neighbour until none is; `theta` if none was."""
+    while True:
+        h = np.diff(theta)
+        neighbour = np.minimum(np.concatenate([[np.inf], h[:-1]]), np.concatenate([h[1:], [np.inf]]))
+        coarse = np.flatnonzero(h > GRADING * neighbour * (1 + GRADING_SLACK))
+        if coarse.size == 0:
+            return theta
+        theta = np.insert(theta, coarse + 1, (theta[coarse] + theta[coarse + 1]) / 2)
