@@ -14,6 +14,8 @@ import numpy as np
 from tqdm import tqdm
 
 from fretting import __version__
+from fretting.bench import add_arguments as add_bench_arguments
+from fretting.bench import run as run_bench
 from fretting.errors import FrettingError, GrossSlipError, HistoryError
 from fretting.history_file import read_history_source
 from fretting.io import ResultError, join_results, load, save, source_attributes
@@ -107,7 +109,19 @@ def _parser():
     plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
     plot.add_argument("-o", "--output", metavar="DIR", help="directory of the figures (default: the result's)")
     plot.set_defaults(command=_plot)
+
+    bench = commands.add_parser(
+        "bench", parents=[common], help="measure speed against error and write results/speed_vs_error.*"
+    )
+    add_bench_arguments(bench)
+    bench.set_defaults(command=_bench, file="bench")
     return parser
+
+
+def _bench(args):
+    code = run_bench(args)
+    if code:
+        raise SystemExit(code)
 
 
 def _at_least(minimum, kind):
@@ -252,12 +266,9 @@ def _plot(args):
     result = load(args.file)
     directory = Path(args.output) if args.output else Path(args.file).parent
     directory.mkdir(parents=True, exist_ok=True)
-    figures = {"traction": plots.traction, "slip": plots.slip, "hysteresis": plots.hysteresis}
-    if _cycles(result):
-        figures["energy"] = plots.cycle_energy
-    for name, draw in figures.items():
+    for name in plots.figures_for(result):
         figure = Figure(figsize=(6.4, 4.4), layout="constrained")
-        draw(result, ax=figure.subplots())
+        plots.FIGURES[name](result, ax=figure.subplots())
         path = directory / f"{Path(args.file).stem}_{name}.png"
         figure.savefig(path, dpi=150)
         print(path)

@@ -1,17 +1,45 @@
-"""Figures of a result: traction snapshots, slip, the Q - delta_Q loop and the energy per cycle.
+"""Figures of a result: snapshots along the contact, hysteresis loops, energy per cycle and its density.
 
 Each function draws on `ax`, or on the axes of a new pyplot figure when `ax` is None, and
-returns the axes; none shows or saves a figure.
+returns the axes; none shows or saves a figure. `FIGURES` names the figures that take
+``(result, ax=None)``; `figures_for` says which of them a result can draw. Positions are
+``x / a`` from the contact centre, tractions and stresses ``/ (f p0)``, loads ``Q / (f P)`` and
+``sigma / (f p0)``; energies, energy densities and displacements keep their units.
 """
 
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
-__all__ = ["cycle_energy", "hysteresis", "slip", "snapshot_steps", "traction"]
+from fretting import nucleation
+
+__all__ = [
+    "FIGURES",
+    "accumulated_density",
+    "cycle_energy",
+    "dissipation_density",
+    "figures_for",
+    "hysteresis",
+    "loops",
+    "peak_density",
+    "sigma_loops",
+    "slip",
+    "slip_amplitude",
+    "snapshot_steps",
+    "surface_stress",
+    "traction",
+]
 
 #: Part of the contact, in |x - centre| / a, whose friction limit sets the traction axis: the
 #: pressure of a sharp flat punch is unbounded at the edges.
 INNER = 0.95
+
+#: Cycles from which per-cycle plots use logarithmic axes: a long run's early transient and
+#: its steady state then share one figure.
+LOG_CYCLES = 100
+
+#: Cycles drawn by default in the figures that show one curve per cycle: enough to see a
+#: transient settle, few enough to tell apart.
+CURVES = 5
 
 
 def snapshot_steps(result):
@@ -86,14 +114,206 @@ def hysteresis(result, ax=None):
 
 
 def cycle_energy(result, ax=None):
-    """Energy dissipated in each load cycle [mJ/m]; the result must have cycles."""
-    if "cycle_dissipation" not in result or result.cycle_dissipation.size == 0:
-        raise ValueError("the result has no load cycles: its history counts none")
+    """Energy dissipated in each load cycle [mJ/m]; logarithmic axes from `LOG_CYCLES` cycles on.
+
+    Raises
+    ------
+    ValueError
+        When the result has no load cycles.
+    """
+    energy = _require_cycles(result).cycle_dissipation.values * 1e3
     ax = _axes(ax)
-    energy = result.cycle_dissipation.values * 1e3
-    ax.plot(np.arange(1, energy.size + 1), energy, marker="o")
-    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.set(xlabel="cycle", ylabel="dissipation [mJ/m]", ylim=(0, None), title="energy dissipated per cycle")
+    number = result.cycle_number.values
+    if number.size >= LOG_CYCLES:
+        ax.loglog(number, energy, linewidth=1)
+    else:
+        ax.plot(number, energy, marker="o")
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+        ax.set_ylim(0, None)
+    ax.set(xlabel="cycle", ylabel="dissipation $E_d$ [mJ/m]", title="energy dissipated per cycle")
+    return ax
+
+
+def loops(result, cycles=None, ax=None):
+    """Hysteresis loops ``Q / (f P)`` against ``delta_Q`` [um] of several cycles recorded whole.
+
+    Parameters
+    ----------
+    result : xarray.Dataset
+        A result of `fretting.simulate` with load cycles.
+    cycles : sequence of int, optional
+        Cycle numbers; by default up to `CURVES` of the cycles recorded whole, from the first
+        to the last.
+    ax : matplotlib.axes.Axes, optional
+    """
+    fP = result.attrs["f"] * result.attrs["P"]
+    ax = _loops(result, cycles, ax, "delta_Q", 1e6, result.Q.values / fP)
+    ax.set(xlabel="$\\delta_Q$ [µm]", ylabel="$Q / (f P)$", title="hysteresis loops (area: energy per cycle)")
+    return ax
+
+
+def sigma_loops(result, cycles=None, ax=None):
+    """Loops ``sigma / (f p0)`` against ``delta_sigma / a`` [um] of several cycles recorded whole (as `loops`)."""
+    fp0 = result.attrs["f"] * result.attrs["p0"]
+    ax = _loops(result, cycles, ax, "delta_sigma", 1e6 / result.attrs["a"], result.sigma.values / fp0)
+    ax.set(
+        xlabel="$\\delta_\\sigma / a$ [µm]",
+        ylabel="$\\sigma / (f p_0)$",
+        title="bulk-tension loops (area / a: energy per cycle)",
+    )
+    return ax
+
+
+def dissipation_density(result, cycles=None, ax=None):
+    """Energy dissipated per unit area in each of several cycles, ``w(x)`` [J/m^2], against ``x / a``.
+
+    `cycles` defaults to up to `CURVES` cycles from the first to the last (log-spaced).
+    """
+    w = nucleation.dissipation_density(result)
+    ax = _per_cycle_curves(result, w, cycles, ax, 1.0)
+    ax.set(xlabel="$x / a$", ylabel="$w$ [J/m²]", title="energy dissipated per unit area in the cycle")
+    return ax
+
+
+def accumulated_density(result, cycles=None, ax=None):
+    """Energy dissipated per unit area accumulated up to several cycles [J/m^2], against ``x / a``.
+
+    `cycles` defaults to up to `CURVES` cycles from the first to the last (log-spaced).
+    """
+    accumulated = nucleation.accumulated_dissipation_density(result)
+    ax = _per_cycle_curves(result, accumulated, cycles, ax, 1.0, label="after cycle {}")
+    ax.set(xlabel="$x / a$", ylabel="$\\sum_k w_k$ [J/m²]", title="accumulated dissipated energy density")
+    return ax
+
+
+def slip_amplitude(result, cycles=None, ax=None):
+    """Slip amplitude (half the slip range of the cycle) [um] of several cycles, against ``x / a``."""
+    delta = nucleation.slip_amplitude(result)
+    ax = _per_cycle_curves(result, delta, cycles, ax, 1e6)
+    ax.set(xlabel="$x / a$", ylabel="slip amplitude $\\delta$ [µm]", title="slip amplitude in the cycle")
+    return ax
+
+
+def peak_density(result, ax=None):
+    """Peak of ``w(x)`` in each cycle [J/m^2] against the cycle, with its position ``x / a`` (right axis)."""
+    peak = nucleation.peak_dissipation_density(_require_cycles(result))
+    ax = _axes(ax)
+    number = result.cycle_number.values
+    log = number.size >= LOG_CYCLES
+    (line,) = ax.plot(number, peak.w_max.values, marker=None if log else "o", label="$w_{max}$")
+    ax.set(xlabel="cycle", ylabel="$w_{max}$ [J/m²]", title="peak dissipated energy density per cycle")
+    position = ax.twinx()
+    position.plot(number, _position(result, peak.x_w_max.values), color="0.4", linestyle=":", label="position")
+    position.set(ylabel="position of $w_{max}$, $x / a$", ylim=(-1.05, 1.05))
+    if log:
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+    else:
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+        ax.set_ylim(0, None)
+    ax.legend(handles=[line, *position.get_lines()], fontsize="small")
+    return ax
+
+
+def surface_stress(result, steps=None, ax=None, body=1, bulk=0.0):
+    """Surface direct stress ``sigma_xx / (f p0)`` of `body` against ``x / a`` at `steps`.
+
+    See `fretting.nucleation.surface_stress` for `body` and `bulk`; `steps` default to
+    `snapshot_steps`.
+    """
+    ax = _axes(ax)
+    stress = nucleation.surface_stress(result, body, bulk).values / (result.attrs["f"] * result.attrs["p0"])
+    t = _position(result)
+    for step in _steps(result, steps):
+        ax.plot(t, stress[step], label=_label(result, step))
+    ax.axhline(0, color="0.5", linewidth=0.8)
+    ax.set(
+        xlim=(-1, 1),
+        xlabel="$x / a$",
+        ylabel="$\\sigma_{xx} / (f p_0)$",
+        title=f"surface direct stress, body {body} (traction {'+q' if body == 1 else '-q'})",
+    )
+    ax.legend(fontsize="small")
+    return ax
+
+
+#: The figures that take ``(result, ax=None)``, by name (the command line's file suffixes).
+FIGURES = {
+    "traction": traction,
+    "slip": slip,
+    "surface_stress": surface_stress,
+    "hysteresis": hysteresis,
+    "loops": loops,
+    "sigma_loops": sigma_loops,
+    "energy": cycle_energy,
+    "dissipation_density": dissipation_density,
+    "accumulated_density": accumulated_density,
+    "slip_amplitude": slip_amplitude,
+    "peak_density": peak_density,
+}
+
+
+def figures_for(result):
+    """Names of the `FIGURES` that `result` can draw, in the order of `FIGURES`.
+
+    Snapshots and the whole path's loop always; per-cycle figures when the history counts
+    cycles: the energy per cycle always, loops when a cycle was recorded whole (``sigma`` loops
+    when sigma varies in one), densities and slip amplitudes when they are known for a cycle.
+    """
+    names = {"traction", "slip", "surface_stress", "hysteresis"}
+    if "cycle_number" in result.dims and result.sizes["cycle_number"]:
+        names.add("energy")
+        whole = [rows for rows in nucleation.complete_cycles(result) if rows is not None]
+        if whole:
+            names.add("loops")
+            if any(np.ptp(result.sigma.values[rows]) > 0 for rows in whole):
+                names.add("sigma_loops")
+        if not np.isnan(nucleation.dissipation_density(result).values).all():
+            names |= {"dissipation_density", "accumulated_density", "slip_amplitude", "peak_density"}
+    return [name for name in FIGURES if name in names]
+
+
+def _require_cycles(result):
+    if "cycle_number" not in result.dims or result.sizes["cycle_number"] == 0:
+        raise ValueError("the result has no load cycles: its history counts none")
+    return result
+
+
+def _spread(numbers, count=CURVES):
+    """Up to `count` of `numbers` (sorted), the first and the last among them, log-spaced by position."""
+    numbers = np.asarray(numbers)
+    if numbers.size <= count:
+        return numbers
+    positions = np.unique(np.round(np.geomspace(1, numbers.size, count)).astype(np.int64) - 1)
+    return numbers[positions]
+
+
+def _loops(result, cycles, ax, displacement, scale, load):
+    rows = dict(zip(_require_cycles(result).cycle_number.values, nucleation.complete_cycles(result), strict=True))
+    whole = [number for number, row in rows.items() if row is not None]
+    if not whole:
+        raise ValueError("no load cycle was recorded whole: record every step of at least one cycle")
+    chosen = _spread(whole) if cycles is None else np.asarray(cycles)
+    ax = _axes(ax)
+    values = result[displacement].values * scale
+    for number in chosen:
+        if rows.get(int(number)) is None:
+            raise ValueError(f"cycle {number} was not recorded whole; cycles recorded whole: {whole}")
+        ax.plot(values[rows[int(number)]], load[rows[int(number)]], linewidth=1, label=f"cycle {number}")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def _per_cycle_curves(result, field, cycles, ax, scale, label="cycle {}"):
+    """One curve of the (cycle_number, x) `field` per chosen cycle, against ``x / a``."""
+    known = field.cycle_number.values[~np.isnan(field.values).all(axis=1)]
+    chosen = _spread(known) if cycles is None else np.asarray(cycles)
+    ax = _axes(ax)
+    t = _position(result)
+    for number in chosen:
+        ax.plot(t, field.sel(cycle_number=number).values * scale, label=label.format(number))
+    ax.set_xlim(-1, 1)
+    ax.legend(fontsize="small")
     return ax
 
 

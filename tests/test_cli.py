@@ -14,7 +14,7 @@ import xarray as xr
 from conftest import HERTZ_TOML as CONTACT
 
 import fretting as fr
-from fretting import cli
+from fretting import cli, plots
 from fretting.history_file import read_history
 from fretting.io import load
 
@@ -84,7 +84,9 @@ def test_validate_info_and_plot(workdir, capsys):
     assert "history   shear.toml (sha256 " in info and "32 nodes" in info and "max |Q| / (f P) = 0.429" in info
     assert run("plot", "out/shear.h5", "-o", "figures") == 0
     names = sorted(path.name for path in (workdir / "figures").iterdir())
-    assert names == [f"shear_{name}.png" for name in ("energy", "hysteresis", "slip", "traction")]
+    expected = {"energy", "hysteresis", "slip", "traction", "loops", "dissipation_density", "slip_amplitude"}
+    assert names == sorted(f"shear_{name}.png" for name in plots.figures_for(load(workdir / "out/shear.h5")))
+    assert expected <= {name.removeprefix("shear_").removesuffix(".png") for name in names}
     assert all((workdir / "figures" / name).read_bytes().startswith(b"\x89PNG") for name in names)
 
 
@@ -95,6 +97,7 @@ def test_plot_without_cycles(workdir, capsys):
     assert sorted(path.name for path in (workdir / "results").glob("*.png")) == [
         "ramp_hysteresis.png",
         "ramp_slip.png",
+        "ramp_surface_stress.png",
         "ramp_traction.png",
     ]
 
