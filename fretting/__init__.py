@@ -7,11 +7,12 @@ from fretting.history_file import HistoryFileError, read_history
 from fretting.io import ResultError, join_results, load, save
 from fretting.methods import partial_slip
 from fretting.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
-from fretting.simulate import DEFAULT_NODES, State, final_state, simulate
+from fretting.simulate import DEFAULT_NODES, DEFAULT_RTOL, State, adapted_mesh, final_state, simulate
 
 __all__ = [
     "Contact",
     "DEFAULT_NODES",
+    "DEFAULT_RTOL",
     "FlatPunch",
     "FrettingError",
     "Gap",
@@ -25,6 +26,7 @@ __all__ = [
     "RoundedFlat",
     "SolverError",
     "State",
+    "adapted_mesh",
     "final_state",
     "join_results",
     "load",

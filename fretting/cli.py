@@ -36,6 +36,10 @@ CHUNK_SECONDS = 1.0
 #: checkpoint rewrites the partial result whole.
 CHECKPOINT_SECONDS = 60.0
 
+#: Resolution of `fretting plot`: 6.4 x 4.4 inch figures at 100 dpi keep results/ of eight
+#: examples near 5 MB (7.9 MB at 150 dpi).
+FIGURE_DPI = 100
+
 #: Seconds a run lasts before its progress bar appears: short runs show none.
 PROGRESS_DELAY = 2.0
 
@@ -270,7 +274,7 @@ def _plot(args):
         figure = Figure(figsize=(6.4, 4.4), layout="constrained")
         plots.FIGURES[name](result, ax=figure.subplots())
         path = directory / f"{Path(args.file).stem}_{name}.png"
-        figure.savefig(path, dpi=150)
+        figure.savefig(path, dpi=FIGURE_DPI)
         print(path)
 
 

@@ -392,8 +392,9 @@ class _Run:
     def _increment(self, step, state):
         scene = self.scene
         Q, sigma = self.history.Q[step], self.history.sigma[step]
-        if abs(Q) >= scene.friction_force:
-            raise GrossSlipError(step, Q, sigma, scene.friction_force)
+        sliding = min(scene.friction_force, scene.contact.f * scene.contact.P)  # no stick zone from here on
+        if abs(Q) >= sliding:
+            raise GrossSlipError(step, Q, sigma, sliding)
         if step == 0 and (Q, sigma) == (state.Q, state.sigma):  # the starting state: nothing moves
             ds = np.zeros(state.slip.size)
             return _Outcome(scene.g_stuck(Q, sigma) - scene.G @ state.slip, ds, 0.0, state)

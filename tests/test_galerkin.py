@@ -1,0 +1,384 @@
+"""The P1 Galerkin scene and its mesh refinement (fretting.galerkin) against closed forms.
+
+Targets: energy per cycle of a Hertz contact under Q = +-Q* within 1e-4 relative for Q*/fP in
+[0.05, 0.95] and 1e-3 at 0.001; stick-zone ends within 1e-3 a (Cattaneo-Mindlin up to
+Q = 0.999999 fP, Ciavarella-Jaeger, bulk tension); traction within 1e-3 f p0 away from 0.02 a
+of the stick/slip boundaries; slip within 1e-3 of its maximum; the sharp flat punch never
+slips below f P. The adaptive driver here is the loop of the issue: run, reduce the element
+targets of every increment, refine, until the mesh stays.
+"""
+
+import numpy as np
+import pytest
+from conftest import hertz_si
+from scipy import integrate, special
+
+import fretting as fr
+from fretting import closed_forms as cf
+from fretting import galerkin as gk
+from fretting.simulate import _Scene, stick_zones
+from fretting.solver import solve_increment
+
+BOUNDARY_BAND = 0.02  # [a]: the traction has a square-root kink at a stick/slip boundary
+#: Below this Q*/fP the energy per cycle is summed as its power series (the closed form cancels).
+SERIES_BELOW = 0.05
+SERIES_TERMS = 40  # 0.05^40: far below rounding
+
+
+# --- references ------------------------------------------------------------------------------
+
+
+def hertz_delta_Q(contact, Q):
+    """``delta_Q`` [m] of the Cattaneo-Mindlin slip (eq 19): ``(1/pi) int_0^pi s(a cos th) dth``.
+
+    ``(f p0 a / (2 E_star)) [psi + (1 - psi) ln(1 - psi)]`` with ``psi = |Q| / (f P)``, odd in Q.
+    """
+    psi = abs(Q) / (contact.f * contact.P)
+    return np.sign(Q) * contact.f * contact.p0 * contact.a / (2 * contact.E_star) * (psi + (1 - psi) * np.log1p(-psi))
+
+
+def hertz_cycle_energy(contact, Q_star):
+    """Energy [J/m] dissipated per cycle of ``Q = +-Q_star`` (Masing): ``4 Q* dv(Q*) - 8 int_0^Q* dv``.
+
+    ``(4 (f P)^2 / (pi E_star)) [(1 - psi) ln(1 - psi) + psi - psi^2 / 2]
+    = (4 (f P)^2 / (pi E_star)) sum_{k>=2} psi^(k+1) / (k (k+1))``.
+    """
+    fP = contact.f * contact.P
+    psi = abs(Q_star) / fP
+    if psi < SERIES_BELOW:
+        k = np.arange(2, SERIES_TERMS)
+        shape = np.sum(psi ** (k + 1) / (k * (k + 1)))
+    else:
+        shape = (1 - psi) * np.log1p(-psi) + psi - psi**2 / 2
+    return 4 * fP**2 / (np.pi * contact.E_star) * shape
+
+
+# --- a throwaway adaptive driver ---------------------------------------------------------------
+
+
+def run(scene, Q, sigma=None):
+    """Increments of the path ``Q[k], sigma[k]`` from the virgin contact: slip increments and ``g``."""
+    sigma = np.zeros_like(Q) if sigma is None else sigma
+    slip = np.zeros(scene.x.size)
+    ds, g = [], []
+    for k in range(1, len(Q)):
+        increment = solve_increment(scene.G, scene.g_stuck(Q[k], sigma[k]) - scene.G @ slip, scene.limit)
+        slip = slip + increment.ds
+        ds.append(increment.ds)
+        g.append(increment.g)
+    return np.array(ds), np.array(g)
+
+
+def adapt(contact, Q, sigma=None, rtol=gk.DEFAULT_RTOL, theta=None, passes=30):
+    """Refine until the mesh stays: the scene, its increments and the number of passes."""
+    theta = gk.initial_theta() if theta is None else theta
+    for count in range(1, passes + 1):
+        scene = gk.GalerkinScene(contact, theta)
+        ds, g = run(scene, Q, sigma)
+        refined = gk.refine(theta, gk.element_targets(theta, ds, rtol))
+        if refined is theta:
+            return scene, ds, g, count
+        theta = refined
+    raise RuntimeError("the mesh did not settle")
+
+
+def cycles(Q_star, steps):
+    """``0 -> Q* -> -Q* -> Q* -> -Q* -> Q*``, `steps` increments a segment; the second cycle is the last 2 segments."""
+    vertices = [0.0, Q_star, -Q_star, Q_star, -Q_star, Q_star]
+    segments = (np.linspace(u, v, steps + 1)[1:] for u, v in zip(vertices[:-1], vertices[1:], strict=True))
+    return np.concatenate([[0.0], *segments])
+
+
+def cycle_energy(scene, ds, steps):
+    return sum(scene.dissipation(row) for row in ds[3 * steps :])
+
+
+def monotonic(Q_end, steps=4, sigma_end=0.0):
+    return np.linspace(0, Q_end, steps + 1), np.linspace(0, sigma_end, steps + 1)
+
+
+def ends(scene, slip):
+    """Stick zones ``(start, end)`` [m] from the slip of an episode (zero where it stuck)."""
+    return scene.contact.centre + scene.contact.a * np.array(stick_zones(scene.t, slip))
+
+
+def away(x, boundaries, a):
+    return np.all(np.abs(np.subtract.outer(x, np.asarray(boundaries))) > BOUNDARY_BAND * a, axis=-1)
+
+
+# --- references are right ----------------------------------------------------------------------
+
+
+def test_delta_Q_closed_form(hertz):
+    for psi in (1e-3, 0.3, 0.9):
+        Q = psi * hertz.f * hertz.P
+        slip = lambda th, Q=Q: cf.cattaneo_mindlin_slip(hertz, Q, hertz.a * np.cos(th))  # noqa: E731
+        kinks = np.arccos(np.array([1, -1]) * cf.stick_half_width(hertz, Q) / hertz.a)
+        quadrature = integrate.quad(slip, 0, np.pi, points=kinks, epsabs=0, epsrel=1e-11, limit=200)[0] / np.pi
+        np.testing.assert_allclose(hertz_delta_Q(hertz, Q), quadrature, rtol=1e-10)
+
+
+def test_cycle_energy_closed_form(hertz):
+    fP = hertz.f * hertz.P
+    for psi in (0.02, 0.05, 0.5, 0.9):
+        Q_star = psi * fP
+        dv = lambda Q: hertz_delta_Q(hertz, Q)  # noqa: E731
+        masing = 4 * Q_star * dv(Q_star) - 8 * integrate.quad(dv, 0, Q_star, epsabs=0, epsrel=1e-12)[0]
+        np.testing.assert_allclose(hertz_cycle_energy(hertz, Q_star), masing, rtol=1e-9)
+
+
+# --- kernel and scene --------------------------------------------------------------------------
+
+
+def test_clausen_against_direct_sums():
+    x = np.array([1e-9, 1e-3, 0.5, 2.0, np.pi, 4.0, 6.0, -2.5, 10.0])
+    m = np.arange(1, 200_001)[:, None]
+    direct = special.zeta(3) - np.sum(np.cos(m * x) / m**3.0, axis=0)  # tail < 1e-11
+    np.testing.assert_allclose(gk.clausen3_complement(x), direct, rtol=0, atol=1e-10)
+    # Cl1 is F'': central second differences
+    step = 1e-4
+    for point in (0.3, 1.0, 2.9):
+        second = (
+            gk.clausen3_complement(point + step)
+            - 2 * gk.clausen3_complement(point)
+            + gk.clausen3_complement(point - step)
+        ) / step**2
+        np.testing.assert_allclose(second, gk.clausen1(point), rtol=1e-6)
+
+
+def test_pair_means_series_meets_corners():
+    """The far-pair Taylor series and the four-corner formula agree where both are accurate."""
+    lo, hi = np.array([0.2, 1.0, 2.0]), np.array([0.25, 1.04, 2.1])
+    for plus in (False, True):
+        series = gk._pair_means(lo, hi, plus)
+        saved = gk.FAR_PAIRS
+        try:
+            gk.FAR_PAIRS = np.inf
+            corners = gk._pair_means(lo, hi, plus)
+        finally:
+            gk.FAR_PAIRS = saved
+        np.testing.assert_allclose(series, corners, rtol=1e-11)
+
+
+def test_stiffness_energy_of_smooth_slip(hertz):
+    """``s^T K s -> (pi E_star / 4) sum n s_n^2`` for ``s = a cos(n theta)`` (h^2), like the Chebyshev energy."""
+    scene = gk.GalerkinScene(hertz, gk.uniform_theta(256))
+    K = scene.G
+    np.testing.assert_allclose(K, K.T, rtol=0, atol=1e-14 * np.abs(K).max())
+    np.testing.assert_allclose(K.sum(axis=1), 0, atol=1e-13 * np.abs(K).max())
+    assert np.linalg.eigvalsh(K)[0] > -1e-13 * np.abs(K).max()
+    theta = scene.theta[::-1]
+    for n in (1, 2, 5):
+        s = hertz.a * np.cos(n * theta)
+        np.testing.assert_allclose(s @ K @ s, np.pi * hertz.E_star / 4 * n * hertz.a**2, rtol=1e-3)
+    chebyshev = _Scene(hertz, 128)
+    slip = lambda t: hertz.a * (0.05 * t + 0.3 * t**2 + 0.1 * t**3 - 0.2 * t**4)  # noqa: E731
+    energy = chebyshev.w * slip(chebyshev.grid.t) @ chebyshev.G @ slip(chebyshev.grid.t)
+    np.testing.assert_allclose(slip(scene.t) @ K @ slip(scene.t), energy, rtol=2e-4)
+
+
+PROFILES = {
+    "hertz": lambda: fr.Hertz(0.05),
+    "rounded flat": lambda: fr.RoundedFlat(1e-3, 0.02),
+    "flat punch": lambda: fr.FlatPunch(1e-3),
+    "gap": lambda: fr.Gap(lambda x: np.where(x > 0, 1, 2) * x**2 / 0.1, lambda x: np.where(x > 0, 1, 2) * x / 0.05),
+}
+
+
+@pytest.mark.parametrize("name", PROFILES)
+def test_loads_and_limits(hertz, name):
+    """``sum L = f P`` to 1e-10 on coarse and graded meshes, for every profile."""
+    contact = fr.Contact(PROFILES[name](), hertz.E_star, hertz.f, hertz.P)
+    for theta in (gk.uniform_theta(8), gk.initial_theta()):
+        scene = gk.GalerkinScene(contact, theta)
+        np.testing.assert_allclose(scene.friction_force, contact.f * contact.P, rtol=1e-10)
+        np.testing.assert_allclose(scene.area.sum(), 2 * contact.a, rtol=1e-14)
+        assert np.all(np.diff(scene.x) > 0) and np.all(scene.area > 0) and np.all(scene.limit > 0)
+
+
+def test_displacements_exact_for_P1(hertz):
+    """``delta_Q``, ``delta_sigma`` and the loads integrate a P1 slip exactly (reciprocity)."""
+    theta = gk.initial_theta()
+    scene = gk.GalerkinScene(hertz, theta)
+    slip = np.random.default_rng(0).normal(size=theta.size) * hertz.a  # ascending x
+    points, weights = np.polynomial.legendre.leggauss(8)  # per element: exact to rounding here
+    lo, h = theta[:-1, None], np.diff(theta)[:, None]
+    at = lo + h * (1 + points) / 2
+    s_at, measure = np.interp(at, theta, slip[::-1]), weights * h / 2
+    delta_Q = np.sum(s_at * measure) / np.pi
+    delta_sigma = np.sum(s_at * hertz.a * np.cos(at) / 4 * measure)
+    scale = np.sum(np.abs(s_at) * measure)  # the size of the terms that cancel
+    np.testing.assert_allclose(scene.delta_Q(slip), delta_Q, rtol=0, atol=1e-14 * scale)
+    np.testing.assert_allclose(scene.delta_sigma(slip), delta_sigma, rtol=0, atol=1e-14 * hertz.a * scale)
+    Q, sigma = 0.3 * hertz.f * hertz.P, 0.7 * hertz.f * hertz.p0
+    work = Q * delta_Q + sigma * delta_sigma
+    np.testing.assert_allclose(scene.g_stuck(Q, sigma) @ slip, work, rtol=0, atol=1e-14 * Q * scale)
+    rows = np.vstack([slip, 2 * slip, slip])
+    assert scene.delta_sigma(rows)[0] == scene.delta_sigma(rows[:1])[0] == scene.delta_sigma(slip)
+    assert scene.delta_Q(rows)[2] == scene.delta_Q(slip)
+
+
+def test_traction_of_sliding_nodes(hertz):
+    """At sliding nodes ``g = L``: the recovered traction is ``f p`` to third order, also graded."""
+    errors = []
+    for M in (32, 64):
+        scene = gk.GalerkinScene(hertz, gk.initial_theta(M))
+        q = scene.traction(scene.limit)
+        errors.append(np.abs(q - hertz.f * hertz.pressure(scene.x)).max() / (hertz.f * hertz.p0))
+    assert errors[1] < 1e-5 and errors[0] / errors[1] > 6
+    rows = np.vstack([scene.limit, -scene.limit])
+    np.testing.assert_array_equal(scene.traction(rows)[1], -q)
+
+
+# --- closed forms --------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("psi", [0.05, 0.3, 0.95])
+def test_hertz_cycle_energy(hertz, psi):
+    steps = 4
+    Q_star = psi * hertz.f * hertz.P
+    scene, ds, _, _ = adapt(hertz, cycles(Q_star, steps))
+    np.testing.assert_allclose(cycle_energy(scene, ds, steps), hertz_cycle_energy(hertz, Q_star), rtol=1e-4)
+
+
+def test_hertz_cycle_energy_tiny_amplitude(hertz):
+    steps = 4
+    Q_star = 1e-3 * hertz.f * hertz.P
+    scene, ds, _, _ = adapt(hertz, cycles(Q_star, steps))
+    np.testing.assert_allclose(cycle_energy(scene, ds, steps), hertz_cycle_energy(hertz, Q_star), rtol=1e-3)
+
+
+@pytest.mark.parametrize("psi", [0.2, 0.8, 0.999, 0.999999])
+def test_cattaneo_mindlin(hertz, psi):
+    Q = psi * hertz.f * hertz.P
+    scene, ds, g, _ = adapt(hertz, monotonic(Q)[0])
+    slip, x, a = ds.sum(axis=0), scene.x, hertz.a
+    b = cf.stick_half_width(hertz, Q)
+    np.testing.assert_allclose(ends(scene, slip), [[-b, b]], rtol=0, atol=1e-3 * a)
+    q = scene.traction(g[-1])
+    q_exact = cf.cattaneo_mindlin_traction(hertz, Q, x)
+    band = away(x, [-b, b], a)
+    assert np.abs(q - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
+    slip_exact = cf.cattaneo_mindlin_slip(hertz, Q, x)
+    assert np.abs(slip - slip_exact).max() < 1e-3 * slip_exact.max()
+
+
+def test_mindlin_deresiewicz_unloading(hertz):
+    """0 -> 0.8 f P -> -0.2 f P: reversed slip zones, c/a = sqrt(1 - (Q* - Q)/(2 f P)) (Masing)."""
+    fP, a = hertz.f * hertz.P, hertz.a
+    Q_star, Q_end = 0.8 * fP, -0.2 * fP
+    Q = np.concatenate([np.linspace(0, Q_star, 5), np.linspace(Q_star, Q_end, 9)[1:]])
+    scene, ds, g, _ = adapt(hertz, Q)
+    c = a * np.sqrt(1 - (Q_star - Q_end) / (2 * fP))
+    b = cf.stick_half_width(hertz, Q_star)
+    np.testing.assert_allclose(ends(scene, ds[4:].sum(axis=0)), [[-c, c]], rtol=0, atol=1e-3 * a)
+    q_exact = cf.mindlin_deresiewicz_traction(hertz, Q_star, Q_end, scene.x)
+    band = away(scene.x, [-c, c, -b, b], a)
+    assert np.abs(scene.traction(g[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
+    slip_exact = cf.mindlin_deresiewicz_slip(hertz, Q_star, Q_end, scene.x)
+    assert np.abs(ds.sum(axis=0) - slip_exact).max() < 1e-3 * np.abs(slip_exact).max()
+
+
+def test_nowell_hills_shear_with_tension(hertz):
+    """Proportional Q = 0.5 f P, sigma = 0.5 f p0: the stick zone moves by -sigma a / (4 f p0)."""
+    Q, sigma = monotonic(0.5 * hertz.f * hertz.P, sigma_end=0.5 * hertz.f * hertz.p0)
+    scene, ds, g, _ = adapt(hertz, Q, sigma)
+    b = cf.stick_half_width(hertz, Q[-1])
+    e = cf.nowell_hills_offset(hertz, sigma[-1])
+    np.testing.assert_allclose(ends(scene, ds.sum(axis=0)), [[e - b, e + b]], rtol=0, atol=1e-3 * hertz.a)
+    q_exact = cf.nowell_hills_traction(hertz, Q[-1], sigma[-1], scene.x)
+    band = away(scene.x, [e - b, e + b], hertz.a)
+    assert np.abs(scene.traction(g[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
+
+
+@pytest.mark.parametrize("psi", [0.2, 0.8])
+def test_rounded_flat(hertz, psi):
+    contact = fr.Contact(fr.RoundedFlat(1e-3, 0.02), hertz.E_star, hertz.f, hertz.P)
+    Q = psi * contact.f * contact.P
+    scene, ds, g, _ = adapt(contact, monotonic(Q)[0])
+    _, corrective = cf.ciavarella_jaeger(contact, Q, scene.x)
+    c = corrective.a
+    np.testing.assert_allclose(ends(scene, ds.sum(axis=0)), [[-c, c]], rtol=0, atol=1e-3 * contact.a)
+
+
+@pytest.mark.parametrize("tau", [0.3, 2.5, 8.6])
+def test_bulk_tension(hertz, tau):
+    sigma = tau * hertz.f * hertz.p0
+    Q, sigmas = monotonic(0.0, sigma_end=sigma)
+    scene, ds, _, _ = adapt(hertz, Q, sigmas)
+    c = cf.bulk_tension_stick_half_width(hertz, sigma)
+    np.testing.assert_allclose(ends(scene, ds.sum(axis=0)), [[-c, c]], rtol=0, atol=1e-3 * hertz.a)
+
+
+def test_sharp_flat_punch_never_slips(hertz):
+    contact = fr.Contact(fr.FlatPunch(1e-3), hertz.E_star, hertz.f, hertz.P)
+    Q = np.array([0.0, 0.5, 0.9, 0.999, 0.999999, -0.999999, 0.3]) * contact.f * contact.P
+    scene = gk.GalerkinScene(contact, gk.initial_theta())
+    ds, _ = run(scene, Q)
+    assert np.all(ds == 0)
+
+
+# --- mesh functions ------------------------------------------------------------------------------
+
+
+def test_refine_is_nested_and_graded():
+    theta = gk.initial_theta()
+    targets = np.full(theta.size - 1, np.inf)
+    assert gk.refine(theta, targets) is theta
+    targets[40] = 1e-5
+    refined = gk.refine(theta, targets)
+    assert np.all(np.isin(theta, refined))
+    h = np.diff(refined)
+    assert np.all(h[1:] <= 2 * h[:-1] * (1 + 1e-9)) and np.all(h[:-1] <= 2 * h[1:] * (1 + 1e-9))
+    assert np.diff(refined).min() < np.diff(theta)[40] / 3
+
+
+def test_refined_mesh_carries_a_P1_slip_exactly(hertz):
+    theta = gk.initial_theta()
+    slip = np.random.default_rng(1).normal(size=theta.size)  # theta order
+    targets = np.full(theta.size - 1, np.inf)
+    targets[[3, 30, 60]] = np.diff(theta)[[3, 30, 60]] / 5
+    refined = gk.refine(theta, targets)
+    carried = np.interp(refined, theta, slip)
+    np.testing.assert_array_equal(carried[np.searchsorted(refined, theta)], slip)
+    coarse, fine = gk.GalerkinScene(hertz, theta), gk.GalerkinScene(hertz, refined)
+    # the same P1 field: same energy, same delta_Q
+    np.testing.assert_allclose(carried[::-1] @ fine.G @ carried[::-1], slip[::-1] @ coarse.G @ slip[::-1], rtol=1e-12)
+    np.testing.assert_allclose(fine.delta_Q(carried[::-1]), coarse.delta_Q(slip[::-1]), rtol=1e-12)
+
+
+def test_targets_of_several_increments_are_their_minimum():
+    theta = gk.uniform_theta(32)
+    ds = np.zeros((2, theta.size))
+    ds[0, :3], ds[1, -5:] = 1e-9, -1e-9
+    both = gk.element_targets(theta, ds)
+    np.testing.assert_array_equal(both, np.minimum(gk.element_targets(theta, ds[0]), gk.element_targets(theta, ds[1])))
+    assert np.all(np.isinf(gk.element_targets(theta, np.zeros(theta.size))))
+
+
+def test_invalid_meshes_and_targets(hertz):
+    with pytest.raises(ValueError, match="from 0 to pi"):
+        gk.GalerkinScene(hertz, [0.0, 2.0, 1.0, np.pi])
+    with pytest.raises(ValueError, match="one per node"):
+        gk.element_targets(gk.uniform_theta(4), np.zeros(3))
+    with pytest.raises(ValueError, match="positive sizes"):
+        gk.refine(gk.uniform_theta(4), np.zeros(4))
+
+
+def test_a_slip_zone_at_one_edge_node_is_refined():
+    theta = gk.uniform_theta(16)
+    ds = np.zeros(theta.size)
+    ds[-1] = 1e-9  # the node at theta = 0 slipped (ascending x: last)
+    targets = gk.element_targets(theta, ds)
+    assert targets[0] < np.diff(theta)[0] and np.all(targets[4:] >= np.diff(theta)[4:])
+    ds[8], ds[9] = 1e-9, -1e-9  # opposite directions side by side hide a stick zone
+    assert gk.element_targets(theta, ds)[16 - 9] < np.diff(theta)[16 - 9]
+
+
+def test_settled_mesh_resolves_tiny_stick_zone():
+    """Q = 0.999999 f P: the stick zone of half-width 0.001 a has several elements."""
+    contact = hertz_si()
+    Q = 0.999999 * contact.f * contact.P
+    scene, ds, _, _ = adapt(contact, monotonic(Q)[0])
+    stuck = np.flatnonzero(ds.sum(axis=0) == 0)
+    assert stuck.size >= gk.MIN_ZONE_NODES

@@ -1,0 +1,150 @@
+"""Issue 6: invariants over random histories and random profiles, at the engine's default settings.
+
+Extends tests/test_properties.py where it falls short: that file runs a 64-node grid on three
+fixed profiles; here every example runs ``fretting.simulate(contact, history)`` as a user
+would, on random Hertz, rounded-flat, sharp-flat and asymmetric (``fretting.Gap``) profiles,
+with non-proportional closed cycles for the loop work and nested reversals for the memory.
+"""
+
+import functools
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from test_hard_cases import assert_friction_conditions, asymmetric_flat
+
+import fretting as fr
+
+E_STAR = 115e9
+
+
+@functools.cache
+def contact(kind, shape, f, P):
+    """A contact of one of the families; `shape` is a tuple of lengths [m], `P` in N/m."""
+    if kind == "hertz":
+        profile = fr.Hertz(*shape)
+    elif kind == "rounded_flat":
+        profile = fr.RoundedFlat(*shape)
+    elif kind == "flat":
+        profile = fr.FlatPunch(*shape)
+    else:
+        profile = fr.Gap(*asymmetric_flat(*shape))
+    return fr.Contact(profile, E_STAR, f, P)
+
+
+SHAPES = {
+    "hertz": [(0.01,), (0.05,), (0.5,)],
+    "rounded_flat": [(2e-4, 0.02), (1e-3, 0.02), (5e-4, 0.1)],
+    "flat": [(3e-4,), (2e-3,)],
+    "asymmetric": [(5e-4, 0.01, 0.04), (2e-4, 0.05, 0.005), (1e-4, 0.02, 0.2)],
+}
+
+#: Profiles whose pressure vanishes at the contact ends (all but the sharp flat punch).
+SMOOTH = ["hertz", "rounded_flat", "asymmetric"]
+
+
+@st.composite
+def scenes(draw, kinds):
+    kind = draw(st.sampled_from(kinds))
+    shape = draw(st.sampled_from(SHAPES[kind]))
+    f = draw(st.sampled_from([0.3, 0.6, 1.0]))
+    P = draw(st.sampled_from([3e4, 3e5]))
+    return contact(kind, shape, f, P)
+
+
+# ----------------------------------------------------------------------------------------------
+
+
+loads = st.lists(st.tuples(st.floats(-0.97, 0.97), st.floats(-3.0, 3.0)), min_size=1, max_size=6)
+
+
+@settings(max_examples=25, deadline=None)
+@given(scene=scenes(sorted(SHAPES)), vertices=loads, steps=st.integers(1, 5))
+def test_friction_conditions_on_random_profiles(scene, vertices, steps):
+    """|q| <= f p, q = f p sign(ds) where slipping, ds = 0 exactly where stuck, dissipation >= 0
+    and exactly 0 when nothing slipped: any path, any profile. (The stick set of one large
+    increment can shrink to a point that no node hits, so no stuck node is asked for.)"""
+    psi, tau = np.array([(0.0, 0.0), *vertices]).T
+    history = fr.History.piecewise_linear(psi * scene.f * scene.P, tau * scene.f * scene.p0, steps)
+    result = fr.simulate(scene, history)
+    assert_friction_conditions(result, scene)
+
+
+@settings(max_examples=6, deadline=None)
+@given(
+    scene=scenes(SMOOTH),
+    psi=st.floats(0.1, 0.7),
+    tau=st.floats(0.1, 1.5),
+    phase=st.floats(30.0, 150.0),
+)
+def test_loop_work_equals_dissipation_on_non_proportional_cycles(scene, psi, tau, phase):
+    """Out-of-phase sinusoids of Q and sigma: once the state is periodic, the work of the loads
+    over a cycle, loop Q d(delta_Q) + loop sigma d(delta_sigma), equals the energy dissipated;
+    the trapezoidal loop converges to it as the square of the step.
+
+    The sixth cycle is taken as closed when its slip returns to 1e-6 of the largest slip (the
+    approach to the periodic state is geometric, by 0.03 a cycle in the slowest case seen): the
+    elastic energy left over is then far below the trapezoidal error.
+    """
+    errors = []
+    for steps_per_cycle in (16, 32):
+        history = fr.History.sinusoidal(
+            psi * scene.f * scene.P, tau * scene.f * scene.p0, phase, cycles=6, steps_per_cycle=steps_per_cycle
+        )
+        last = np.flatnonzero(history.cycle == history.cycle_count)
+        part = fr.simulate(scene, history).isel(step=slice(last[0] - 1, last[-1] + 1))
+        slip = part.slip.values
+        assert np.abs(slip[-1] - slip[0]).max() <= 1e-6 * np.abs(slip).max(), "not periodic after 5 cycles"
+        work = np.trapezoid(part.Q.values, part.delta_Q.values) + np.trapezoid(
+            part.sigma.values, part.delta_sigma.values
+        )
+        dissipated = part.dissipation.values[1:].sum()
+        assert dissipated > 0
+        errors.append(abs(work / dissipated - 1))
+    assert errors[1] < 0.3 * errors[0] or errors[1] < 1e-6
+    assert errors[1] < 5e-2
+
+
+@st.composite
+def nested_turning_points(draw):
+    """0 -> t1 -> t2 -> ... with each excursion inside the previous one: t2 = t1 - r 2 t1,
+    t_{k+1} = t_k + r (t_{k-1} - t_k), r in (0.1, 0.9)."""
+    t = [draw(st.floats(0.2, 0.9)) * draw(st.sampled_from([-1, 1]))]
+    t.append(t[0] - draw(st.floats(0.1, 0.9)) * 2 * t[0])
+    for _ in range(draw(st.integers(0, 3))):
+        t.append(t[-1] + draw(st.floats(0.1, 0.9)) * (t[-2] - t[-1]))
+    return t
+
+
+@settings(max_examples=15, deadline=None)
+@given(scene=scenes(SMOOTH), turning=nested_turning_points(), steps=st.integers(1, 6))
+def test_return_point_memory_of_nested_loops(scene, turning, steps):
+    """Q only, any profile: after the nested excursions t1, t2, ..., tm, coming back through
+    t_{m-1}, t_{m-3}, ... closes one loop at each and restores the state of its first visit."""
+    m = len(turning)
+    back = turning[m - 2 :: -2]
+    path = np.array([0.0, *turning, *back])
+    history = fr.History.piecewise_linear(path * scene.f * scene.P, None, steps)
+    slip = fr.simulate(scene, history, record=history.vertex_step).slip.values
+    scale = np.abs(slip).max()
+    for j, k in enumerate(range(m - 1, 0, -2)):  # turning point t_k (1-based) and its return
+        first, again = slip[k], slip[m + 1 + j]
+        np.testing.assert_allclose(again, first, rtol=0, atol=1e-9 * scale, err_msg=f"t{k} = {turning[k - 1]:.3g}")
+
+
+@settings(max_examples=10, deadline=None)
+@given(
+    scene=scenes(SMOOTH),
+    psi=st.lists(st.floats(-0.95, 0.95), min_size=1, max_size=5),
+    steps=st.integers(2, 12),
+)
+def test_vertex_states_of_shear_paths_do_not_depend_on_the_step(scene, psi, steps):
+    """Q-only segments from the virgin state, any profile: each node slips one way within a
+    segment, so the state at every vertex is the same in 1 and in `steps` increments."""
+    Q = np.array([0.0, *psi]) * scene.f * scene.P
+    slips = []
+    for n in (1, steps):
+        history = fr.History.piecewise_linear(Q, None, n)
+        slips.append(fr.simulate(scene, history, record=history.vertex_step).slip.values)
+    scale = max(np.abs(slips[0]).max(), np.finfo(float).tiny)
+    np.testing.assert_allclose(slips[1], slips[0], rtol=0, atol=1e-9 * scale)
