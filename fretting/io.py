@@ -6,6 +6,7 @@ The files are netCDF-4 (HDF5), readable by h5py, xarray and the netCDF tools.
 import datetime
 import errno
 import importlib.metadata
+import itertools
 import json
 import os
 import platform
@@ -144,11 +145,17 @@ def join_results(parts):
     joined = joined.assign(vertex_step=(last.vertex_step.dims, np.concatenate(vertices), last.vertex_step.attrs))
     if "cycle_number" in last.dims:
         per_cycle = [name for name, variable in last.data_vars.items() if "cycle_number" in variable.dims]
-        cycles = xr.concat([part[per_cycle] for part in parts], dim="cycle_number", combine_attrs="override")
-        numbers = cycles.cycle_number.values
-        latest = np.append(numbers[1:] != numbers[:-1], True)  # a cycle spanning parts: its last tally
-        joined = joined.assign(cycles.isel(cycle_number=latest).variables)
+        pieces = [_before(part[per_cycle], later) for part, later in itertools.pairwise(parts)] + [last[per_cycle]]
+        cycles = xr.concat(pieces, dim="cycle_number", combine_attrs="override")
+        joined = joined.assign(cycles.variables)
     return joined.assign_attrs(steps=end + 1)
+
+
+def _before(cycles, later):
+    """`cycles` without a last cycle that the `later` part carries on (its tally there is the whole)."""
+    numbers, following = cycles.cycle_number.values, later.cycle_number.values
+    spans = numbers.size and following.size and numbers[-1] == following[0]
+    return cycles.isel(cycle_number=slice(0, -1)) if spans else cycles  # a slice: a view, not a copy
 
 
 def _check_continues(previous, part):
