@@ -180,7 +180,8 @@ class _Scene:
         a = self.contact.a
         return (Q / np.pi + sigma * a * self.t / 4) / a
 
-    def traction(self, g):
+    def traction(self, g, ds=None):
+        """Shear traction [Pa] at the nodes (``ds`` is not needed on this grid)."""
         return g / np.sqrt(1 - self.t**2)
 
     def delta_Q(self, slip):
@@ -289,8 +290,8 @@ def adapted_mesh(contact, history, rtol=DEFAULT_RTOL):
         scene = GalerkinScene(contact, theta)
         targets = np.full(theta.size - 1, np.inf)
 
-        def observe(ds, theta=theta, targets=targets):
-            np.minimum(targets, element_targets(theta, ds, rtol), out=targets)
+        def observe(ds, theta=theta, targets=targets, breakpoints=scene.breakpoints):
+            np.minimum(targets, element_targets(theta, ds, rtol, breakpoints), out=targets)
 
         _Run(scene, history, np.zeros(0, dtype=np.int64), observe).follow(State.virgin(scene))
         refined = refine(theta, targets)
@@ -457,7 +458,7 @@ class _Run:
         if k < 0:
             return
         state = outcome.state
-        self.fields["q"][k] = self.scene.traction(outcome.g)
+        self.fields["q"][k] = self.scene.traction(outcome.g, outcome.ds)
         self.fields["slip"][k] = state.slip
         self.fields["stick"][k] = outcome.ds == 0
         self.fields["dissipation"][k] = outcome.dissipation

@@ -1,10 +1,16 @@
 """Shared scenes: the SI Hertz contact of the issue, and its unit-free twin."""
 
-import numpy as np
-import pytest
+import os
 
-import fretting as fr
-from fretting.contact import plane_strain_modulus
+# One BLAS thread, set before NumPy loads OpenBLAS: on 2 cores its two threads make the dense
+# solves of a few hundred nodes up to ten times slower (README, known limits).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import fretting as fr  # noqa: E402
+from fretting.contact import plane_strain_modulus  # noqa: E402
 
 E_SI, NU_SI = 210e9, 0.3
 

@@ -75,7 +75,7 @@ def adapt(contact, Q, sigma=None, rtol=gk.DEFAULT_RTOL, theta=None, passes=30):
     for count in range(1, passes + 1):
         scene = gk.GalerkinScene(contact, theta)
         ds, g = run(scene, Q, sigma)
-        refined = gk.refine(theta, gk.element_targets(theta, ds, rtol))
+        refined = gk.refine(theta, gk.element_targets(theta, ds, rtol, scene.breakpoints))
         if refined is theta:
             return scene, ds, g, count
         theta = refined
@@ -218,16 +218,28 @@ def test_displacements_exact_for_P1(hertz):
     assert scene.delta_Q(rows)[2] == scene.delta_Q(slip)
 
 
-def test_traction_of_sliding_nodes(hertz):
-    """At sliding nodes ``g = L``: the recovered traction is ``f p`` to third order, also graded."""
+def test_traction_keeps_coulomb_and_recovers_third_order(hertz):
+    """``g = L`` gives ``f p`` (to rounding); a smooth utilisation comes back to O(h^3), also graded."""
+    scene = gk.GalerkinScene(hertz, gk.initial_theta(32))
+    np.testing.assert_allclose(scene.traction(scene.limit), hertz.f * hertz.pressure(scene.x), rtol=1e-13)
+    ds = np.where(scene.x > 0, 1.0, 0.0)
+    sliding = scene.traction(0.5 * scene.limit, ds)
+    np.testing.assert_array_equal(sliding[scene.x > 0], hertz.f * hertz.pressure(scene.x)[scene.x > 0])
     errors = []
     for M in (32, 64):
         scene = gk.GalerkinScene(hertz, gk.initial_theta(M))
-        q = scene.traction(scene.limit)
-        errors.append(np.abs(q - hertz.f * hertz.pressure(scene.x)).max() / (hertz.f * hertz.p0))
-    assert errors[1] < 1e-5 and errors[0] / errors[1] > 6
-    rows = np.vstack([scene.limit, -scene.limit])
-    np.testing.assert_array_equal(scene.traction(rows)[1], -q)
+        u = lambda th: 0.8 * np.cos(2 * th)  # noqa: E731 - a utilisation |u| < 1
+        points, weights = np.polynomial.legendre.leggauss(8)
+        theta = scene.theta
+        at = theta[:-1, None] + np.diff(theta)[:, None] * (1 + points) / 2
+        rise = (1 + points) / 2
+        w = weights * np.diff(theta)[:, None] / 2 * u(at) * hertz.f * hertz.a * hertz.pressure_weighted(np.cos(at))
+        g = np.zeros(theta.size)
+        g[:-1] += np.sum(w * (1 - rise), axis=1)
+        g[1:] += np.sum(w * rise, axis=1)
+        q = scene.traction(g[::-1])
+        errors.append(np.abs(q - u(theta[::-1]) * hertz.f * hertz.pressure(scene.x)).max() / (hertz.f * hertz.p0))
+    assert errors[1] < 1e-4 and errors[0] / errors[1] > 6
 
 
 # --- closed forms --------------------------------------------------------------------------------
@@ -255,7 +267,7 @@ def test_cattaneo_mindlin(hertz, psi):
     slip, x, a = ds.sum(axis=0), scene.x, hertz.a
     b = cf.stick_half_width(hertz, Q)
     np.testing.assert_allclose(ends(scene, slip), [[-b, b]], rtol=0, atol=1e-3 * a)
-    q = scene.traction(g[-1])
+    q = scene.traction(g[-1], ds[-1])
     q_exact = cf.cattaneo_mindlin_traction(hertz, Q, x)
     band = away(x, [-b, b], a)
     assert np.abs(q - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
@@ -274,7 +286,7 @@ def test_mindlin_deresiewicz_unloading(hertz):
     np.testing.assert_allclose(ends(scene, ds[4:].sum(axis=0)), [[-c, c]], rtol=0, atol=1e-3 * a)
     q_exact = cf.mindlin_deresiewicz_traction(hertz, Q_star, Q_end, scene.x)
     band = away(scene.x, [-c, c, -b, b], a)
-    assert np.abs(scene.traction(g[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
+    assert np.abs(scene.traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
     slip_exact = cf.mindlin_deresiewicz_slip(hertz, Q_star, Q_end, scene.x)
     assert np.abs(ds.sum(axis=0) - slip_exact).max() < 1e-3 * np.abs(slip_exact).max()
 
@@ -288,7 +300,7 @@ def test_nowell_hills_shear_with_tension(hertz):
     np.testing.assert_allclose(ends(scene, ds.sum(axis=0)), [[e - b, e + b]], rtol=0, atol=1e-3 * hertz.a)
     q_exact = cf.nowell_hills_traction(hertz, Q[-1], sigma[-1], scene.x)
     band = away(scene.x, [e - b, e + b], hertz.a)
-    assert np.abs(scene.traction(g[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
+    assert np.abs(scene.traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
 
 
 @pytest.mark.parametrize("psi", [0.2, 0.8])
@@ -296,9 +308,11 @@ def test_rounded_flat(hertz, psi):
     contact = fr.Contact(fr.RoundedFlat(1e-3, 0.02), hertz.E_star, hertz.f, hertz.P)
     Q = psi * contact.f * contact.P
     scene, ds, g, _ = adapt(contact, monotonic(Q)[0])
-    _, corrective = cf.ciavarella_jaeger(contact, Q, scene.x)
+    q_exact, corrective = cf.ciavarella_jaeger(contact, Q, scene.x)
     c = corrective.a
     np.testing.assert_allclose(ends(scene, ds.sum(axis=0)), [[-c, c]], rtol=0, atol=1e-3 * contact.a)
+    band = away(scene.x, [-c, c], contact.a)
+    assert np.abs(scene.traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * contact.f * contact.p0
 
 
 @pytest.mark.parametrize("tau", [0.3, 2.5, 8.6])
@@ -308,6 +322,18 @@ def test_bulk_tension(hertz, tau):
     scene, ds, _, _ = adapt(hertz, Q, sigmas)
     c = cf.bulk_tension_stick_half_width(hertz, sigma)
     np.testing.assert_allclose(ends(scene, ds.sum(axis=0)), [[-c, c]], rtol=0, atol=1e-3 * hertz.a)
+
+
+def test_coulomb_at_every_node(hertz):
+    """Reported tractions keep |q| <= f p, and q = f p sign(ds) where a node slipped, exactly."""
+    fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
+    Q = np.array([0.0, 0.6, -0.3, 0.5]) * fP
+    sigma = np.array([0.0, 0.5, -1.0, 0.2]) * fp0
+    scene = gk.GalerkinScene(hertz, gk.initial_theta())
+    ds, g = run(scene, Q, sigma)
+    q, fp = scene.traction(g, ds), hertz.f * hertz.pressure(scene.x)
+    assert np.all(np.abs(q) <= fp)
+    np.testing.assert_array_equal(q[ds != 0], (fp * np.sign(ds))[ds != 0])
 
 
 def test_sharp_flat_punch_never_slips(hertz):
