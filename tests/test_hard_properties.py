@@ -82,19 +82,25 @@ def test_loop_work_equals_dissipation_on_non_proportional_cycles(scene, psi, tau
     over a cycle, loop Q d(delta_Q) + loop sigma d(delta_sigma), equals the energy dissipated;
     the trapezoidal loop converges to it as the square of the step.
 
-    The sixth cycle is taken as closed when its slip returns to 1e-6 of the largest slip (the
-    approach to the periodic state is geometric, by 0.03 a cycle in the slowest case seen): the
-    elastic energy left over is then far below the trapezoidal error.
+    The first cycle whose slip returns to 1e-6 of the largest slip is taken as closed (the
+    approach to the periodic state is geometric, by factors of 0.03 to 0.1 a cycle in the cases
+    seen; an asymmetric flat needed 7 cycles): the elastic energy left over is then far below
+    the trapezoidal error. No periodic state within 30 cycles would be drift or ratcheting.
     """
     errors = []
     for steps_per_cycle in (16, 32):
         history = fr.History.sinusoidal(
-            psi * scene.f * scene.P, tau * scene.f * scene.p0, phase, cycles=6, steps_per_cycle=steps_per_cycle
+            psi * scene.f * scene.P, tau * scene.f * scene.p0, phase, cycles=30, steps_per_cycle=steps_per_cycle
         )
-        last = np.flatnonzero(history.cycle == history.cycle_count)
-        part = fr.simulate(scene, history).isel(step=slice(last[0] - 1, last[-1] + 1))
-        slip = part.slip.values
-        assert np.abs(slip[-1] - slip[0]).max() <= 1e-6 * np.abs(slip).max(), "not periodic after 5 cycles"
+        result = fr.simulate(scene, history, record=np.arange(len(history)))
+        for cycle in range(1, 31):
+            steps = np.flatnonzero(history.cycle == cycle)
+            part = result.isel(step=slice(steps[0] - 1, steps[-1] + 1))
+            slip = part.slip.values
+            if np.abs(slip[-1] - slip[0]).max() <= 1e-6 * np.abs(slip).max():
+                break
+        else:
+            raise AssertionError("no periodic state within 30 cycles")
         work = np.trapezoid(part.Q.values, part.delta_Q.values) + np.trapezoid(
             part.sigma.values, part.delta_sigma.values
         )
