@@ -56,6 +56,7 @@ __all__ = [
     "clausen1",
     "clausen3_complement",
     "element_targets",
+    "extrapolated_end",
     "initial_theta",
     "refine",
     "stiffness",
@@ -651,14 +652,24 @@ def _boundary_position(theta, d, k):
     if d[k] != 0 and d[k + 1] != 0:
         return lo + (hi - lo) * d[k] / (d[k] - d[k + 1])
     slipping, step = (k + 1, 1) if d[k] == 0 else (k, -1)
-    beyond = slipping + step
-    v1 = abs(d[slipping]) ** (2 / 3)
-    if 0 <= beyond < d.size and np.sign(d[beyond]) == np.sign(d[slipping]):
-        v2 = abs(d[beyond]) ** (2 / 3)
-        if v2 > v1:
-            estimate = theta[slipping] - v1 * (theta[beyond] - theta[slipping]) / (v2 - v1)
-            return float(np.clip(estimate, lo, hi))
-    return (lo + hi) / 2
+    estimate = extrapolated_end(theta, d, slipping, slipping + step)
+    return (lo + hi) / 2 if estimate is None else float(np.clip(estimate, lo, hi))
+
+
+def extrapolated_end(position, d, slipping, beyond):
+    """Where the slip increment `d` of a slip zone reaches zero, or None if it cannot be told.
+
+    Near a stick/slip boundary ``d`` grows like ``dist^(3/2)`` (eq 19; Masing for reversed
+    zones), so ``|d|^(2/3)`` is extrapolated linearly from the slipping node `slipping` and its
+    neighbour `beyond` further into the zone (`position`: the nodes' coordinates). None when
+    `beyond` is off the grid, slips the other way or has the smaller ``|d|``.
+    """
+    if not 0 <= beyond < d.size or np.sign(d[beyond]) != np.sign(d[slipping]):
+        return None
+    v1, v2 = abs(d[slipping]) ** (2 / 3), abs(d[beyond]) ** (2 / 3)
+    if v2 <= v1:
+        return None
+    return position[slipping] - v1 * (position[beyond] - position[slipping]) / (v2 - v1)
 
 
 def refine(theta, targets):

@@ -8,7 +8,14 @@ import numpy as np
 from fretting._validate import positive
 from fretting.contact import Contact
 from fretting.errors import GrossSlipError, HistoryError, SolverError
-from fretting.galerkin import DEFAULT_RTOL, GalerkinScene, element_targets, initial_theta, refine
+from fretting.galerkin import (
+    DEFAULT_RTOL,
+    GalerkinScene,
+    element_targets,
+    extrapolated_end,
+    initial_theta,
+    refine,
+)
 from fretting.history import History
 from fretting.solver import Grid, solve_increment
 from fretting.variables import build_dataset
@@ -557,15 +564,11 @@ def _boundary(t, ds, inner, side):
     outer = inner + side
     if outer < 0 or outer >= t.size:
         return float(side)
-    beyond = outer + side
-    d1 = abs(ds[outer]) ** (2 / 3)
-    if 0 <= beyond < t.size and np.sign(ds[beyond]) == np.sign(ds[outer]):
-        d2 = abs(ds[beyond]) ** (2 / 3)
-        if d2 > d1:
-            estimate = t[outer] - d1 * (t[beyond] - t[outer]) / (d2 - d1)
-            deepest = t[inner] - (t[outer] - t[inner])
-            return float(np.clip(estimate, *sorted((deepest, t[outer]))))
-    return float((t[inner] + t[outer]) / 2)
+    estimate = extrapolated_end(t, ds, outer, outer + side)
+    if estimate is None:
+        return float((t[inner] + t[outer]) / 2)
+    deepest = t[inner] - (t[outer] - t[inner])
+    return float(np.clip(estimate, *sorted((deepest, t[outer]))))
 
 
 def _attributes(scene, rtol):
