@@ -18,8 +18,17 @@ from fretting.bench import add_arguments as add_bench_arguments
 from fretting.bench import run as run_bench
 from fretting.errors import FrettingError, GrossSlipError, HistoryError
 from fretting.history_file import read_history_source
-from fretting.io import ResultError, join_results, load, save, source_attributes
-from fretting.simulate import DEFAULT_NODES, RECORD_ALL_STEPS, RECORDED_ENDS, final_state, recorded_steps, simulate
+from fretting.io import Joiner, ResultError, load, save, source_attributes
+from fretting.simulate import (
+    DEFAULT_NODES,
+    DEFAULT_RTOL,
+    RECORD_ALL_STEPS,
+    RECORDED_ENDS,
+    adapted_mesh,
+    final_state,
+    recorded_steps,
+    simulate,
+)
 
 __all__ = ["main"]
 
@@ -31,6 +40,9 @@ EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
 #: which solves its first cycles anew.
 CHUNK_STEPS = 200
 CHUNK_SECONDS = 1.0
+#: Most steps of one chunk: 4096 cycles of 64 steps, whose per-cycle fields (12.6 MB at 384
+#: nodes) are held twice while the chunk is joined. Each chunk solves its first cycles anew.
+MAX_CHUNK_STEPS = 2**18
 
 #: Seconds between checkpoints by default: at most a minute of work lost in a crash. Each
 #: checkpoint rewrites the partial result whole.
@@ -82,8 +94,15 @@ def _parser():
     run.add_argument("file", metavar="HISTORY", help="history file (TOML)")
     run.add_argument("-o", "--output", metavar="OUT", help="result file (default: results/<history stem>.h5)")
     run.add_argument("--resume", action="store_true", help="continue an interrupted run from its checkpoint")
-    run.add_argument(
-        "--nodes", type=_at_least(4, int), default=DEFAULT_NODES, help=f"collocation nodes (default {DEFAULT_NODES})"
+    model = run.add_mutually_exclusive_group()
+    model.add_argument(
+        "--nodes", type=_at_least(4, int), help=f"Gauss-Chebyshev collocation nodes (default {DEFAULT_NODES})"
+    )
+    model.add_argument(
+        "--rtol",
+        type=_positive,
+        help=f"solve by P1 Galerkin instead, on a mesh adapted to the whole history for this relative "
+        f"accuracy of the energy (e.g. {DEFAULT_RTOL:g})",
     )
     run.add_argument(
         "--record",
@@ -119,6 +138,7 @@ def _parser():
     )
     add_bench_arguments(bench)
     bench.set_defaults(command=_bench, file="bench")
+
     return parser
 
 
@@ -143,6 +163,22 @@ def _at_least(minimum, kind):
     return convert
 
 
+def _positive(text):
+    """Argument type: a finite float > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = None
+    if value is None or not 0 < value < np.inf:
+        raise argparse.ArgumentTypeError(f"found {text!r}, expected a number > 0")
+    return value
+
+
+def _settings(args):
+    """The model a run asks for: ``{"nodes": N}`` (grid) or ``{"rtol": r}`` (adapted mesh)."""
+    return {"rtol": args.rtol} if args.rtol is not None else {"nodes": args.nodes or DEFAULT_NODES}
+
+
 def _run(args):
     source = read_history_source(args.file)
     output = Path(args.output) if args.output else Path("results") / f"{source.path.stem}.h5"
@@ -151,71 +187,84 @@ def _run(args):
         raise ResultError(
             f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
         )
-    parts = [_resumable(checkpoint, source, args.nodes)] if args.resume and checkpoint.exists() else []
-    history, attributes = source.history, source_attributes(source)
+    history, settings = source.history, _settings(args)
+    attributes = source_attributes(source) | settings  # a run on an adapted mesh is a run of `settings["rtol"]`
+    joiner = Joiner(history.cycle_count)
+    start, state = 0, None
+    if args.resume and checkpoint.exists():
+        done = _resumable(checkpoint, source, settings)
+        joiner.add(done)
+        start, state = done.attrs["steps"] - 1, final_state(done)
+        del done  # the joiner holds its cycles
     record = recorded_steps(None if args.record == "default" else args.record, len(history))
-    done = parts[0].attrs["steps"] - 1 if parts else 0
     written = time.monotonic()
     with tqdm(
         total=len(history) - 1,
-        initial=done,
+        initial=start,
         unit="step",
         delay=PROGRESS_DELAY,
         disable=not sys.stderr.isatty(),
         file=sys.stderr,
     ) as progress:
         try:
-            for part in _chunks(source.contact, history, args.nodes, record, parts[-1] if parts else None):
-                parts.append(part)
+            for part in _chunks(source.contact, history, settings, record, start, state):
+                joiner.add(part)
                 progress.update(part.attrs["steps"] - 1)
                 if time.monotonic() - written >= args.checkpoint_interval:
-                    parts = [join_results(parts)]
-                    save(parts[0].assign_attrs(attributes), checkpoint)
+                    save(joiner.result().assign_attrs(attributes), checkpoint)
                     written = time.monotonic()
         except KeyboardInterrupt:
-            if parts:
-                save(join_results(parts).assign_attrs(attributes), checkpoint)
+            if len(joiner):
+                save(joiner.result().assign_attrs(attributes), checkpoint)
                 raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
             raise
         except GrossSlipError:
             checkpoint.unlink(missing_ok=True)  # resuming would only reach it again
             raise
-    result = join_results(parts)
-    del parts  # before writing: a 10^5-cycle result holds 300 MB of per-cycle fields
-    save(result.assign_attrs(attributes), output)
+    result = joiner.result().assign_attrs(attributes)
+    save(result, output)
     checkpoint.unlink(missing_ok=True)
     print(f"{output}: {result.attrs['steps'] - 1} steps, {_cycles(result)} cycles, {_dissipated(result)}")
 
 
-def _chunks(contact, history, nodes, record, done):
-    """Results of successive chunks of `history`, each continuing from the previous one or from `done`.
+def _chunks(contact, history, settings, record, start, state):
+    """Results of successive chunks of `history` from step `start` in `state` (None: the contact just formed).
 
-    Each chunk records the steps of `record` (numbers in the whole history) that it reaches.
+    The first chunk of a run from the start uses the model of `settings` (see `_settings`); an
+    adapted mesh is adapted to the whole history, not to the chunk. Each chunk records the
+    steps of `record` (numbers in the whole history) that it reaches. Only the state of the
+    previous chunk is kept, not its result.
     """
-    start = 0 if done is None else done.attrs["steps"] - 1
-    previous, steps = done, CHUNK_STEPS
-    while previous is None or start < len(history) - 1:
+    if state is None:
+        initial = settings if "nodes" in settings else {"mesh": adapted_mesh(contact, history, settings["rtol"])}
+    steps = CHUNK_STEPS
+    while state is None or start < len(history) - 1:
         stop = min(start + steps, len(history) - 1)
         began = time.monotonic()
-        state = None if previous is None else final_state(previous)
-        first = start + 1 if previous is not None else 0  # a later chunk's step 0 is the last one's end
+        first = start + 1 if state is not None else 0  # a later chunk's step 0 is the last one's end
         mine = record[(record >= first) & (record <= stop)] - start
         try:
-            previous = simulate(contact, history[start : stop + 1], nodes=nodes, state=state, record=mine)
+            model = initial if state is None else {"state": state}
+            part = simulate(contact, history[start : stop + 1], record=mine, **model)
         except GrossSlipError as error:
             raise GrossSlipError(start + error.step, error.Q, error.sigma, error.limit) from None
-        yield previous
+        state = final_state(part)
+        yield part
+        del part
         start = stop
-        steps = 2 * steps if time.monotonic() - began < CHUNK_SECONDS else max(steps // 2, CHUNK_STEPS)
+        fast = time.monotonic() - began < CHUNK_SECONDS
+        steps = min(2 * steps, MAX_CHUNK_STEPS) if fast else max(steps // 2, CHUNK_STEPS)
 
 
-def _resumable(checkpoint, source, nodes):
-    """The partial result in `checkpoint`, checked to belong to this history file and these settings."""
+def _resumable(checkpoint, source, settings):
+    """The partial result in `checkpoint`, checked to belong to this history file and these `settings`."""
     done = load(checkpoint)
     if done.attrs.get("history_sha256") != source.sha256:
         raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
-    if done.attrs.get("nodes") != nodes:
-        raise ResultError(f"{checkpoint}: found {done.attrs.get('nodes')} nodes, expected {nodes} (see --nodes)")
+    found = {"rtol": done.attrs.get("rtol")} if "theta" in done else {"nodes": done.attrs.get("nodes")}
+    if found != settings:
+        (name, value), (asked, expected) = *found.items(), *settings.items()
+        raise ResultError(f"{checkpoint}: found a run with {name} = {value}, expected {asked} = {expected}")
     history, steps = source.history, done.step.values
     same = done.attrs["steps"] <= len(history) and all(
         np.array_equal(done[name].values, getattr(history, name)[steps]) for name in ("Q", "sigma")

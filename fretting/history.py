@@ -89,6 +89,25 @@ class History:
         """Number of the last load cycle; 0 for a history without cycles."""
         return int(_cycles(self).max())
 
+    def turning_points(self):
+        """The path through its turning points only: the first and last steps, the vertices, and the
+        steps where Q or sigma reverses or stops.
+
+        Between turning points Q and sigma are monotonic, and along a proportional stretch the
+        state reached does not depend on the steps taken (a slip zone only grows while the load
+        grows), so the stick and slip zones at these steps are those that the energy of a
+        proportional path depends on. Vertices, cycles and loads are kept; steps are renumbered.
+        """
+        kept = np.zeros(len(self), dtype=bool)
+        kept[[0, -1]] = True
+        kept[self.vertex_step] = True
+        for load in (self.Q, self.sigma):
+            before, after = np.sign(np.diff(load[:-1])), np.sign(np.diff(load[1:]))
+            kept[1:-1] |= (before != after) & (before != 0)
+        steps = np.flatnonzero(kept)
+        cycle = None if self.cycle is None else self.cycle[steps]
+        return History(self.Q[steps], self.sigma[steps], np.searchsorted(steps, self.vertex_step), cycle)
+
     def as_cycle(self):
         """The same path counted as one load cycle: every step after the first belongs to cycle 1."""
         cycle = np.ones(len(self), dtype=np.int64)

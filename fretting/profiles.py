@@ -22,6 +22,9 @@ _RTOL = 4 * np.finfo(float).eps
 class Profile(abc.ABC):
     """Base class: a profile gives the contact interval and the pressure for a normal load."""
 
+    #: The gap, and so the pressure, is even about the centre of the contact.
+    SYMMETRIC = False
+
     @abc.abstractmethod
     def half_width(self, P, E_star):
         """Contact half-width `a` [m] and centre [m] for load `P` [N/m] and modulus `E_star` [Pa]."""
@@ -50,6 +53,8 @@ class Hertz(Profile):
     ``a = sqrt(4 P R / (pi E_star))``, ``p = p0 sqrt(1 - t^2)``, ``p0 = 2P / (pi a)`` (eq 6).
     """
 
+    SYMMETRIC = True
+
     def __init__(self, R):
         self.R = positive("R", R)
 
@@ -72,6 +77,8 @@ class FlatPunch(Profile):
     The pressure is unbounded at the edges, so ``p0`` is taken as the pressure at the centre,
     ``P / (pi a)``.
     """
+
+    SYMMETRIC = True
 
     def __init__(self, a):
         self.a = positive("a", a)
@@ -96,6 +103,8 @@ class RoundedFlat(Profile):
     (1998) with ``x = a sin(phi)``, ``sin(phi0) = b/a``:
     ``P = E_star a^2 (pi - 2 phi0 - sin 2phi0) / (4R)`` and the pressure of `pressure`.
     """
+
+    SYMMETRIC = True
 
     def __init__(self, b, R):
         self.b = positive("b", b)

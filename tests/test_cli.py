@@ -166,12 +166,14 @@ def test_bad_result_file(workdir, capsys):
     assert capsys.readouterr().err.startswith("fretting: error: notes.h5: ")
 
 
-def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeypatch):
-    """Ctrl-C in the third chunk: a checkpoint of two chunks; --resume then equals an uninterrupted run."""
+@pytest.mark.parametrize("model", [("--nodes", NODES), ("--rtol", "1e-3")])
+def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeypatch, model):
+    """Ctrl-C in the third chunk: a checkpoint of two chunks; --resume then equals an uninterrupted run
+    (on the grid, and on the mesh adapted once to the whole history)."""
     monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
     monkeypatch.setattr(cli, "CHUNK_SECONDS", 0.0)  # chunks of 20 steps each
     write(workdir / "shear.toml", CONTACT + SHEAR)
-    assert run("run", "shear.toml", "-o", "whole.h5", "--nodes", NODES) == 0
+    assert run("run", "shear.toml", "-o", "whole.h5", *model) == 0
     calls = []
 
     def interrupted(*arguments, **options):
@@ -181,14 +183,14 @@ def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeyp
         return fr.simulate(*arguments, **options)
 
     monkeypatch.setattr(cli, "simulate", interrupted)
-    assert run("run", "shear.toml", "-o", "part.h5", "--nodes", NODES, "--checkpoint-interval", "1e6") == 130
+    assert run("run", "shear.toml", "-o", "part.h5", *model, "--checkpoint-interval", "1e6") == 130
     err = capsys.readouterr().err
     assert err == "fretting: error: interrupted: progress kept in part.h5.checkpoint; continue with --resume\n"
     assert load(workdir / "part.h5.checkpoint").sizes["step"] == 41 and not (workdir / "part.h5").exists()
 
-    assert run("run", "shear.toml", "-o", "part.h5", "--nodes", NODES) == 2  # not without --resume
+    assert run("run", "shear.toml", "-o", "part.h5", *model) == 2  # not without --resume
     assert "--resume" in capsys.readouterr().err
-    assert run("run", "shear.toml", "-o", "part.h5", "--nodes", NODES, "--resume") == 0
+    assert run("run", "shear.toml", "-o", "part.h5", *model, "--resume") == 0
     xr.testing.assert_identical(data_of(load(workdir / "part.h5")), data_of(load(workdir / "whole.h5")))
     assert not (workdir / "part.h5.checkpoint").exists()
 
@@ -200,7 +202,9 @@ def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
     assert run("run", "shear.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 130
     monkeypatch.setattr(cli, "simulate", fr.simulate)
     assert run("run", "shear.toml", "--nodes", "40", "--resume") == 2
-    assert "found 32 nodes, expected 40" in capsys.readouterr().err
+    assert "found a run with nodes = 32, expected nodes = 40" in capsys.readouterr().err
+    assert run("run", "shear.toml", "--rtol", "1e-4", "--resume") == 2
+    assert "found a run with nodes = 32, expected rtol = 0.0001" in capsys.readouterr().err
     write(history, history.read_text() + "# edited\n")
     assert run("run", "shear.toml", "--nodes", NODES, "--resume") == 2
     assert "found a run of another version of shear.toml" in capsys.readouterr().err

@@ -408,3 +408,60 @@ def test_settled_mesh_resolves_tiny_stick_zone():
     scene, ds, _, _ = adapt(contact, monotonic(Q)[0])
     stuck = np.flatnonzero(ds.sum(axis=0) == 0)
     assert stuck.size >= gk.MIN_ZONE_NODES
+
+
+# --- meshes adapted at the turning points of a history --------------------------------------------
+
+
+def test_turning_points_keep_reversals_stops_and_vertices():
+    history = fr.History.concatenate(
+        [
+            fr.History.sinusoidal(1.0, 0.5, 90, cycles=2, steps_per_cycle=16),
+            fr.History.piecewise_linear([0, 0.3, 0.3], [0.5, 0.5, 0.5], 3),
+        ]
+    )
+    turning = history.turning_points()
+    Q, sigma = history.Q, history.sigma
+    kept = [0, len(history) - 1, *history.vertex_step]
+    for load in (Q, sigma):
+        for k in range(1, len(history) - 1):
+            before, after = np.sign(load[k] - load[k - 1]), np.sign(load[k + 1] - load[k])
+            if before != 0 and after != before:
+                kept.append(k)
+    steps = np.unique(kept)
+    np.testing.assert_array_equal(turning.Q, Q[steps])
+    np.testing.assert_array_equal(turning.sigma, sigma[steps])
+    np.testing.assert_array_equal(turning.cycle, history.cycle[steps])
+    np.testing.assert_array_equal(steps[turning.vertex_step], history.vertex_step)
+    assert steps.size < len(history) // 2  # a 90-degree sinusoid turns 4 times a cycle
+
+
+@pytest.mark.parametrize("psi", [0.001, 0.05, 0.5, 0.95])
+def test_many_steps_per_cycle_on_the_turning_point_mesh(hertz, psi):
+    """Issue-4 targets on rtol = DEFAULT_RTOL with 64 steps per cycle: the mesh is adapted to the
+    turning points only, yet each cycle's energy is within 1e-4 of the Masing reference."""
+    Q_star = psi * hertz.f * hertz.P
+    result = fr.simulate(hertz, fr.History.sinusoidal(Q_star, cycles=3, steps_per_cycle=64), rtol=gk.DEFAULT_RTOL)
+    steady = result.cycle_dissipation.values[1:]  # the first cycle starts from the virgin contact
+    np.testing.assert_allclose(steady, hertz_cycle_energy(hertz, Q_star), rtol=1e-4)
+
+
+@pytest.mark.parametrize(("Q", "sigma"), [(0.6, 0.0), (0.0, 0.9)])
+def test_mesh_is_symmetric_under_one_load(hertz, Q, sigma):
+    """Q alone (even) or sigma alone (odd) on Hertz: the adapted mesh is symmetric exactly, and so
+    the slip is even or odd to rounding (the targets alone, mirrored, bisect differently by rounding)."""
+    history = fr.History.piecewise_linear([0, Q * hertz.f * hertz.P], [0, sigma * hertz.f * hertz.p0], 8)
+    theta = fr.adapted_mesh(hertz, history)
+    np.testing.assert_array_equal(theta[theta > np.pi / 2], np.pi - theta[theta < np.pi / 2][::-1])
+    slip = fr.simulate(hertz, history, mesh=theta).slip.values[-1]
+    parity = 1 if Q else -1
+    np.testing.assert_allclose(slip, parity * slip[::-1], rtol=0, atol=1e-12 * np.abs(slip).max())
+
+
+def test_mesh_of_a_history_that_slides_is_that_of_the_steps_before(hertz):
+    fP = hertz.f * hertz.P
+    history = fr.History.piecewise_linear([0, 0.8 * fP, 1.2 * fP], None, [4, 4])
+    np.testing.assert_array_equal(fr.adapted_mesh(hertz, history), fr.adapted_mesh(hertz, history[:6]))
+    with pytest.raises(fr.GrossSlipError) as error:
+        fr.simulate(hertz, history, rtol=gk.DEFAULT_RTOL)
+    assert error.value.step == 6  # Q = 1.0 fP
