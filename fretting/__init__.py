@@ -8,6 +8,7 @@ from fretting.io import ResultError, join_results, load, save
 from fretting.methods import partial_slip
 from fretting.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
 from fretting.simulate import DEFAULT_NODES, DEFAULT_RTOL, State, adapted_mesh, final_state, simulate
+from fretting.sweep import sweep
 
 __all__ = [
     "Contact",
@@ -35,6 +36,7 @@ __all__ = [
     "read_history",
     "save",
     "simulate",
+    "sweep",
 ]
 
 __version__ = "0.1.0"

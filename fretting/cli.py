@@ -29,6 +29,8 @@ from fretting.simulate import (
     recorded_steps,
     simulate,
 )
+from fretting.sweep import add_arguments as add_sweep_arguments
+from fretting.sweep import run as run_sweep
 
 __all__ = ["main"]
 
@@ -139,6 +141,9 @@ def _parser():
     add_bench_arguments(bench)
     bench.set_defaults(command=_bench, file="bench")
 
+    sweep = commands.add_parser("sweep", parents=[common], help="run a sweep file on dask.distributed")
+    add_sweep_arguments(sweep)
+    sweep.set_defaults(command=run_sweep)
     return parser
 
 

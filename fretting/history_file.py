@@ -19,7 +19,7 @@ from fretting.errors import HistoryError
 from fretting.history import RAMP_STEPS, History
 from fretting.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 
-__all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_source"]
+__all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_data", "read_history_source"]
 
 #: Keys of the [contact] table besides those of the profile.
 CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P")
@@ -39,10 +39,12 @@ class HistoryFileError(HistoryError):
         Its line (from 1) where the problem is, when known.
     key : str or None
         The key at fault, e.g. ``loading[2].Q_amplitude`` (blocks counted from 1).
+    problem : str
+        What was found and what was expected.
     """
 
     def __init__(self, path, line, key, problem):
-        self.path, self.line, self.key = path, line, key
+        self.path, self.line, self.key, self.problem = path, line, key, problem
         where = f"{path}:{line}" if line else f"{path}"
         super().__init__(f"{where}: {key}: {problem}" if key else f"{where}: {problem}")
 
@@ -106,13 +108,25 @@ def read_history_source(path):
     return HistorySource(path, text, hashlib.sha256(data).hexdigest(), contact, history)
 
 
-class _Document:
-    """The parsed TOML of one file, with the line of every key written on a line of its own."""
+def read_history_data(path, text, data):
+    """Contact and load history of `data`: the TOML `text` of the history file at `path`, parsed and possibly changed.
 
-    def __init__(self, path, text):
+    Checked as `read_history` checks a file; errors name `path` and the line of the key in `text`,
+    and tables named by `data` are read next to `path`.
+    """
+    return _Document(path, text, data).read()
+
+
+class _Document:
+    """The parsed TOML of one file, with the line of every key written on a line of its own.
+
+    `data` is `text` already parsed (and possibly changed); when None, `text` is parsed here.
+    """
+
+    def __init__(self, path, text, data=None):
         self.path = path
         try:
-            self.data = tomllib.loads(text)
+            self.data = tomllib.loads(text) if data is None else data
         except tomllib.TOMLDecodeError as error:
             line = re.search(r"at line (\d+)", str(error))
             raise HistoryFileError(path, int(line[1]) if line else None, None, f"TOML syntax: {error}") from None

@@ -14,6 +14,7 @@ from pathlib import Path
 
 from fretting import cli
 from fretting.methods import comparison_figure
+from fretting.sweep import read_sweep, run_sweep, save_map
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "results"
@@ -33,6 +34,9 @@ def main():
             if history.stem in KEEP:
                 shutil.copy(dataset, RESULTS / dataset.name)
     comparison_figure(RESULTS / "table_a_methods.png")
+    save_map(
+        run_sweep(read_sweep(ROOT / "histories/sweeps/hertz_fretting_map.toml")), RESULTS / "hertz_fretting_map.png"
+    )
     return 0
 
 

@@ -1,0 +1,583 @@
+"""Parameter sweeps on dask.distributed, and fretting maps.
+
+A sweep runs a base history file once for every combination of the values of a grid of its
+keys and gathers a few numbers of each run (`VARIABLES`) into one dataset, one dimension per key.
+Keys are dotted paths into the history file, with blocks counted from 1 as in its errors:
+``contact.f``, ``contact.P``, ``loading[1].Q_amplitude``, ``loading[2].blocks[1].Q``. Each case
+is read through the checks of `fretting.read_history` and run by `fretting.simulate` with its
+defaults, on the workers of a dask.distributed cluster: a `distributed.LocalCluster` of one
+single-threaded worker process per core, or the scheduler at a given address.
+
+With an output file, each finished case is written to its own file in ``OUT.cases/`` (named by a
+digest of the base history and the case's values, which it also records), so that a sweep run
+again, interrupted or extended, only runs the cases it has no file for.
+
+A sweep file (TOML) names its base history, ``history = "FILE"`` (relative to the sweep file),
+or holds it (``[contact]`` and ``[[loading]]`` tables), and lists the values in a ``[grid]``
+table (format in the README, "Sweeps").
+"""
+
+import contextlib
+import copy
+import errno
+import hashlib
+import itertools
+import json
+import logging
+import math
+import re
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from matplotlib.colors import BoundaryNorm, ListedColormap
+from matplotlib.figure import Figure
+from matplotlib.patches import Patch
+from matplotlib.ticker import LogLocator
+
+from fretting import nucleation
+from fretting.errors import GrossSlipError
+from fretting.history_file import HistoryFileError, read_history_data, read_history_source
+from fretting.io import ENGINE, save
+from fretting.simulate import simulate
+
+__all__ = [
+    "REGIMES",
+    "VARIABLES",
+    "Base",
+    "Sweep",
+    "add_arguments",
+    "fretting_map",
+    "read_sweep",
+    "run",
+    "run_case",
+    "run_sweep",
+    "save_map",
+    "summarize",
+    "sweep",
+]
+
+#: Contact regimes, by their code in the variable ``regime``.
+REGIMES = ("stuck", "partial_slip", "gross_slip")
+STUCK, PARTIAL_SLIP, GROSS_SLIP = range(len(REGIMES))
+
+#: Variables of a case that follow from its last load cycle (NaN without cycles).
+LAST_CYCLE = ("energy_per_cycle", "w_max", "slip_amplitude_max")
+
+#: Contact quantities of a case, from the contact alone (gross-slip cases have them too).
+CONTACT = ("a", "p0", "f", "P")
+
+#: Variables of each case: name -> (units, long_name, definition).
+VARIABLES = {
+    "regime": (
+        "1",
+        "contact regime over the history",
+        "0 stuck: no energy dissipated at any step, so no point ever slipped; 1 partial slip; "
+        "2 gross slip: a step left no stick zone (|Q| reached f P)",
+    ),
+    "total_dissipation": (
+        "J/m",
+        "energy dissipated over the whole history",
+        "total_dissipation of the run: int f p |ds| dx summed over every increment (NaN: gross slip)",
+    ),
+    "energy_per_cycle": (
+        "J/m",
+        "energy dissipated in the last load cycle",
+        "cycle_dissipation of the last cycle: the steady energy per cycle once the cycles repeat "
+        "(NaN: no load cycles, or gross slip)",
+    ),
+    "w_max": (
+        "J/m2",
+        "peak dissipated energy density of the last load cycle",
+        "max over x of w(x) of the last cycle, w the energy dissipated per unit area in it "
+        "(fretting.nucleation.peak_dissipation_density; NaN: no load cycles, or gross slip)",
+    ),
+    "slip_amplitude_max": (
+        "m",
+        "peak slip amplitude of the last load cycle",
+        "max over x of delta(x) of the last cycle, half the range of the slip over it "
+        "(fretting.nucleation.slip_amplitude; NaN: no load cycles, or gross slip)",
+    ),
+    "gross_slip_step": ("1", "step that reached gross slip", "first step whose loads leave no stick zone (-1: none)"),
+    "a": ("m", "contact half-width", "a of the case's contact"),
+    "p0": ("Pa", "peak pressure", "p0 of the case's contact"),
+    "f": ("1", "coefficient of friction", "f of the case's contact"),
+    "P": ("N/m", "normal load per unit length", "P of the case's contact"),
+}
+
+#: Units of the history-file keys, by name; other numeric keys are counts, flags or unit-free.
+UNITS = {
+    "R": "m",
+    "b": "m",
+    "a": "m",
+    "E": "Pa",
+    "E_star": "Pa",
+    "P": "N/m",
+    "Q": "N/m",
+    "Q_amplitude": "N/m",
+    "Q_mean": "N/m",
+    "sigma": "Pa",
+    "sigma_amplitude": "Pa",
+    "sigma_mean": "Pa",
+    "phase_deg": "degree",
+}
+
+#: Loads drawn relative to what slides the contact (README, notation): psi = Q / (f P), tau = sigma / (f p0).
+SCALES = {"Q": ("f P", lambda cases: cases.f * cases.P), "sigma": ("f p0", lambda cases: cases.f * cases.p0)}
+
+#: Colours of the regimes on a fretting map: stuck, partial slip, gross slip.
+REGIME_COLOURS = ("#eeeeee", "#cfe2f3", "#f4c7c3")
+
+#: Resolution of the map that `save_map` writes, as `fretting plot`'s figures.
+MAP_DPI = 100
+
+#: A grid key: names with block numbers from 1, joined by dots.
+_KEY = re.compile(r"[A-Za-z_]\w*(\[[1-9]\d*\])*(\.[A-Za-z_]\w*(\[[1-9]\d*\])*)*")
+_PART = re.compile(r"\[(\d+)\]|(\w+)")
+
+
+@dataclass(frozen=True, eq=False)
+class Base:
+    """The history a sweep varies.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The file it was read from: errors name it, and the tables it names are read next to it.
+    text : str
+        That file's text: errors give the line of a key in it.
+    data : dict
+        The ``[contact]`` table and the ``[[loading]]`` blocks, parsed.
+    """
+
+    path: Path
+    text: str
+    data: dict
+
+    @property
+    def sha256(self):
+        """Hex digest of `data` (canonical JSON): what a case file must have been run from to be reused."""
+        return hashlib.sha256(json.dumps(self.data, sort_keys=True).encode()).hexdigest()
+
+
+@dataclass(frozen=True, eq=False)
+class Sweep:
+    """A base history and a checked grid of its values.
+
+    Attributes
+    ----------
+    base : Base
+    grid : dict
+        Key -> list of distinct values, in the order of the dimensions.
+    origin : pathlib.Path
+        The file that gave the grid: errors about its values name it.
+    """
+
+    base: Base
+    grid: dict
+    origin: Path
+
+    def cases(self):
+        """``{key: value}`` of every case, the last key varying fastest."""
+        return [dict(zip(self.grid, values, strict=True)) for values in itertools.product(*self.grid.values())]
+
+
+def sweep(path, grid, scheduler=None, *, output=None):
+    """Run a history file for every combination of values of some of its keys.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        History file (format of `fretting.read_history`).
+    grid : mapping
+        Dotted key of the file (``"contact.f"``, ``"loading[1].Q_amplitude"``: blocks counted from
+        1) -> list of its values; one dimension per key, in this order. A key may be one the file
+        leaves at its default, in a table the file has.
+    scheduler : str, optional
+        Address of a dask.distributed scheduler, e.g. ``"tcp://host:8786"``; its workers must import
+        `fretting` and read the tables the history names. Default: a `distributed.LocalCluster` of
+        ``min(cores, cases)`` single-threaded worker processes, closed on return.
+    output : str or os.PathLike, optional
+        Dataset file to write (`fretting.save`); each case goes to its own file in the folder
+        ``output`` with the suffix ``.cases``, and a case that has one there is not run again.
+
+    Returns
+    -------
+    xarray.Dataset
+        The variables of `VARIABLES`, dims the keys of `grid` (coordinates their values).
+
+    Raises
+    ------
+    OSError
+        When the file cannot be read, or the scheduler does not answer.
+    HistoryFileError
+        When the file is malformed, a key is not in it, or a value is not one the key takes.
+    """
+    source = read_history_source(path)
+    base = Base(source.path, source.text, tomllib.loads(source.text))
+    return run_sweep(Sweep(base, _checked_grid(base, grid, source.path), source.path), scheduler, output)
+
+
+def read_sweep(path):
+    """The base history and grid of a sweep file (format in the README, "Sweeps").
+
+    Raises
+    ------
+    OSError
+        When the file, or the history it names, cannot be read.
+    HistoryFileError
+        When either is malformed.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise HistoryFileError(path, None, None, "found bytes that are not UTF-8, expected UTF-8 text") from None
+    try:
+        document = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise HistoryFileError(path, None, None, f"TOML syntax: {error}") from None
+    allowed = ("history", "contact", "loading", "grid")
+    for key in document:
+        if key not in allowed:
+            raise HistoryFileError(path, None, key, f"unknown key, expected one of: {', '.join(allowed)}")
+    if not isinstance(document.get("grid"), dict):
+        raise HistoryFileError(path, None, "grid", "found no [grid] table, expected one listing the values of keys")
+    base = _base(path, text, document)
+    return Sweep(base, _checked_grid(base, _flat(document["grid"]), path), path)
+
+
+def _base(path, text, document):
+    """The base history that the sweep file `document` names or holds."""
+    inline = [key for key in ("contact", "loading") if key in document]
+    if "history" in document:
+        if inline:
+            raise HistoryFileError(path, None, inline[0], "found it beside history, expected one base history")
+        name = document["history"]
+        if not isinstance(name, str) or not name:
+            raise HistoryFileError(path, None, "history", "found no file name, expected a history file in quotes")
+        source = read_history_source(path.parent / name)
+        return Base(source.path, source.text, tomllib.loads(source.text))
+    if not inline:
+        raise HistoryFileError(path, None, None, 'found no base history, expected history = "FILE" or its tables')
+    base = Base(path, text, {key: document[key] for key in inline})
+    read_history_data(base.path, base.text, base.data)  # the base alone, checked as a history file
+    return base
+
+
+def _flat(table, prefix=""):
+    """``{dotted key: values}`` of a [grid] table, whose bare dotted keys TOML reads as nested tables."""
+    flat = {}
+    for key, value in table.items():
+        if isinstance(value, dict):
+            flat |= _flat(value, f"{prefix}{key}.")
+        else:
+            flat[f"{prefix}{key}"] = value
+    return flat
+
+
+def _checked_grid(base, grid, origin):
+    """`grid` as ``{key: list of values}``, each value checked in the base history alone.
+
+    Values that only fail together (say a load and a radius) are found when their case runs.
+    """
+    if not isinstance(grid, Mapping) or not grid:
+        raise HistoryFileError(origin, None, "grid", f"found {_show(grid)}, expected keys and lists of their values")
+    checked = {}
+    for key, values in grid.items():
+        label = f"grid.{key}"
+        if not isinstance(key, str) or not _KEY.fullmatch(key):
+            problem = 'found a malformed key, expected one like "loading[1].Q_amplitude"'
+            raise HistoryFileError(origin, None, label, problem)
+        if not isinstance(values, (list, tuple, np.ndarray)) or not len(values):
+            raise HistoryFileError(origin, None, label, f"found {_show(values)}, expected a list of values")
+        values = [value.item() if isinstance(value, np.generic) else value for value in values]
+        for value in values:
+            if not isinstance(value, (bool, int, float, str)):
+                raise HistoryFileError(origin, None, label, f"found {_show(value)}, expected numbers, booleans or text")
+            if values.count(value) > 1:
+                raise HistoryFileError(origin, None, label, f"found {_show(value)} twice, expected distinct values")
+            _scene(base, {key: value}, origin)
+        checked[key] = values
+    return checked
+
+
+def _show(value):
+    """`value` as JSON, cut short."""
+    text = json.dumps(value, default=repr)
+    return text if len(text) <= 40 else f"{text[:37]}..."
+
+
+def _scene(base, case, origin):
+    """Contact and history of the base history with the values of `case` in place of its own.
+
+    Raises HistoryFileError naming `origin` and the key when a value of `case` is at fault, and
+    the base history and the case when the values fail together.
+    """
+    data = copy.deepcopy(base.data)
+    for key, value in case.items():
+        if not _put(data, key, value):
+            problem = f"found no such table in {base.path}, expected a key of one of its tables (blocks from 1)"
+            raise HistoryFileError(origin, None, f"grid.{key}", problem)
+    try:
+        return read_history_data(base.path, base.text, data)
+    except HistoryFileError as error:
+        if error.key in case:
+            raise HistoryFileError(origin, None, f"grid.{error.key}", error.problem) from None
+        values = ", ".join(f"{key} = {_show(value)}" for key, value in case.items())
+        raise HistoryFileError(error.path, error.line, error.key, f"{error.problem} (in the case {values})") from None
+
+
+def _put(data, key, value):
+    """Set `key` to `value` in the TOML mapping `data`; False when the table that holds the key is missing."""
+    parts = [int(number) - 1 if number else name for number, name in _PART.findall(key)]
+    table = data
+    for part in parts[:-1]:
+        if isinstance(part, int):
+            found = isinstance(table, list) and part < len(table)
+        else:
+            found = isinstance(table, dict) and part in table
+        if not found:
+            return False
+        table = table[part]
+    if not isinstance(table, dict) or isinstance(parts[-1], int):
+        return False
+    table[parts[-1]] = value
+    return True
+
+
+def run_case(base, case, origin):
+    """The variables of `VARIABLES` of the base history with the values of `case`: what the workers run.
+
+    Parameters
+    ----------
+    base : Base
+    case : dict
+        Key -> value.
+    origin : pathlib.Path
+        The file of the grid, named in errors about a value.
+
+    Returns
+    -------
+    xarray.Dataset
+        Scalars; a gross-slip case has regime 2, the step that slid and NaN energies.
+    """
+    contact, history = _scene(base, case, origin)
+    try:
+        return summarize(simulate(contact, history))
+    except GrossSlipError as error:
+        nan = dict.fromkeys(("total_dissipation", *LAST_CYCLE), math.nan)
+        return _summary({name: getattr(contact, name) for name in CONTACT}, GROSS_SLIP, error.step, nan)
+
+
+def summarize(result):
+    """The variables of `VARIABLES` of a result of `fretting.simulate`, as a Dataset of scalars."""
+    total = float(result.total_dissipation)
+    energies = {"total_dissipation": total} | dict.fromkeys(LAST_CYCLE, math.nan)
+    if "cycle_number" in result.dims and result.sizes["cycle_number"]:
+        energies |= {
+            "energy_per_cycle": float(result.cycle_dissipation[-1]),
+            "w_max": float(nucleation.peak_dissipation_density(result).w_max[-1]),
+            "slip_amplitude_max": float(nucleation.slip_amplitude(result)[-1].max()),
+        }
+    return _summary(result.attrs, PARTIAL_SLIP if total > 0 else STUCK, -1, energies)
+
+
+def _summary(contact, regime, step, energies):
+    """Dataset of the case variables from the contact's `a`, `p0`, `f`, `P` (a mapping) and the rest."""
+    values = {"regime": np.int8(regime), "gross_slip_step": np.int64(step)} | energies
+    values |= {name: float(contact[name]) for name in CONTACT}
+    return xr.Dataset({name: ((), values[name], _attrs(name)) for name in VARIABLES})
+
+
+def _attrs(name):
+    units, long_name, definition = VARIABLES[name]
+    attrs = {"units": units, "long_name": long_name, "definition": definition}
+    if name == "regime":  # CF flags
+        attrs |= {"flag_values": np.arange(len(REGIMES), dtype=np.int8), "flag_meanings": " ".join(REGIMES)}
+    return attrs
+
+
+def run_sweep(plan, scheduler=None, output=None):
+    """Run every case of the `Sweep` `plan` that has no file yet; the dataset of all (see `sweep`)."""
+    cases = plan.cases()
+    files = [None] * len(cases) if output is None else [_case_file(output, plan.base, case) for case in cases]
+    summaries = [_finished(file, plan.base, case) for file, case in zip(files, cases, strict=True)]
+    todo = [k for k, summary in enumerate(summaries) if summary is None]
+    if todo:
+        from distributed import as_completed  # here: half a second of imports that only sweeps need
+
+        with _client(scheduler, len(todo)) as client:
+            futures = {client.submit(run_case, plan.base, cases[k], plan.origin, pure=False): k for k in todo}
+            for future in as_completed(futures):
+                k = futures[future]
+                summaries[k] = future.result()
+                if files[k] is not None:
+                    save(summaries[k].assign_attrs(_identity(plan.base, cases[k])), files[k])
+    dataset = _combine(plan, summaries)
+    if output is not None:
+        save(dataset, output)
+    return dataset
+
+
+def _identity(base, case):
+    """Attributes of a case file that say what it was run from."""
+    return {"base_sha256": base.sha256, "case": json.dumps(case, sort_keys=True)}
+
+
+def _case_file(output, base, case):
+    """``OUT.cases/<digest>.h5``: the file of `case`, named by a digest of the base history and its values."""
+    digest = hashlib.sha256(json.dumps(_identity(base, case), sort_keys=True).encode()).hexdigest()
+    return Path(output).with_suffix(".cases") / f"{digest[:24]}.h5"
+
+
+def _finished(file, base, case):
+    """The case variables in `file` if it holds this case of this base history, else None."""
+    if file is None or not file.is_file():
+        return None
+    summary = xr.load_dataset(file, engine=ENGINE)
+    identity = _identity(base, case)
+    return summary if all(summary.attrs.get(name) == value for name, value in identity.items()) else None
+
+
+@contextlib.contextmanager
+def _client(scheduler, cases):
+    """A dask.distributed client of the scheduler at `scheduler`, or of a local cluster for `cases` cases."""
+    from dask.system import CPU_COUNT  # the cores this process may use
+    from distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        try:
+            client = Client(scheduler)
+        except ValueError as error:  # a malformed address; one that does not answer raises OSError
+            raise OSError(errno.EINVAL, f"scheduler {scheduler}: {error}") from None
+        with client:
+            yield client
+        return
+    workers = min(CPU_COUNT, cases)
+    with (
+        LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=":0",  # a free port: with None it still serves HTTP on 8787, and warns if that is taken
+            silence_logs=logging.ERROR,  # not the warnings of cancelled tasks and killed workers when interrupted
+        ) as cluster,
+        Client(cluster) as client,
+    ):
+        yield client
+
+
+def _combine(plan, summaries):
+    """One dataset of the case datasets `summaries` (in the order of `Sweep.cases`), one dim per key."""
+    dims, shape = tuple(plan.grid), tuple(len(values) for values in plan.grid.values())
+    first = summaries[0]
+    data = {
+        name: (dims, np.array([summary[name].values for summary in summaries]).reshape(shape), first[name].attrs)
+        for name in VARIABLES
+    }
+    coords = {key: (key, np.array(values), _key_attrs(key, values)) for key, values in plan.grid.items()}
+    attrs = {
+        "history_file": str(plan.base.path),
+        "history_toml": plan.base.text,
+        "base_sha256": plan.base.sha256,
+        "grid": json.dumps(plan.grid),
+    }
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _key_attrs(key, values):
+    """``long_name`` and, for numbers, ``units`` of the coordinate of `key`."""
+    name = key.rsplit(".", 1)[-1]
+    numeric = all(isinstance(value, (int, float)) and not isinstance(value, bool) for value in values)
+    return {"long_name": key} | ({"units": UNITS.get(name, "1")} if numeric else {})
+
+
+# -- Fretting maps ------------------------------------------------------------------------------
+
+
+def fretting_map(cases, ax):
+    """Draw the regime (shaded) and the energy per cycle (contours) of a two-key sweep on `ax`.
+
+    The first key runs along x, the second along y. Keys of Q or sigma (``Q``, ``Q_amplitude``,
+    ``sigma_mean``, ...) are drawn relative to ``f P`` and ``f p0`` of each case.
+
+    Parameters
+    ----------
+    cases : xarray.Dataset
+        A dataset of `sweep` with two dimensions.
+    ax : matplotlib.axes.Axes
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if len(cases.dims) != 2:
+        raise ValueError(f"a fretting map needs a sweep over two keys, found {len(cases.dims)}: {list(cases.dims)}")
+    x_key, y_key = cases.regime.dims
+    (x, x_label), (y, y_label) = (_axis(cases, key) for key in (x_key, y_key))
+    x, y = (values.transpose(y_key, x_key).values for values in xr.broadcast(x, y))
+    regime = cases.regime.transpose(y_key, x_key).values
+    colours = ListedColormap(REGIME_COLOURS)
+    ax.pcolormesh(x, y, regime, cmap=colours, norm=BoundaryNorm(np.arange(len(REGIMES) + 1) - 0.5, len(REGIMES)))
+    energy = cases.energy_per_cycle.transpose(y_key, x_key).values
+    positive = energy[energy > 0]
+    if positive.size and positive.min() < positive.max():
+        levels = LogLocator(subs=(1, 3)).tick_values(positive.min(), positive.max())
+        lines = ax.contour(x, y, energy, levels=levels, colors="k", linewidths=0.8)
+        ax.clabel(lines, fmt="%.2g", fontsize=7)
+    patches = [Patch(color=c, label=name.replace("_", " ")) for c, name in zip(REGIME_COLOURS, REGIMES, strict=True)]
+    ax.legend(handles=patches, loc="upper left", bbox_to_anchor=(1.01, 1), title="regime")
+    ax.set(xlabel=x_label, ylabel=y_label, title="regime and energy per cycle [J/m] (contours)")
+    return ax
+
+
+def _axis(cases, key):
+    """Values of the coordinate `key` to draw (relative to what slides the contact, for loads) and its label."""
+    load = key.rsplit(".", 1)[-1].split("_")[0]
+    units = cases[key].attrs.get("units")
+    if load not in SCALES:
+        return cases[key], f"{key} [{units}]" if units else key
+    scale_name, scale = SCALES[load]
+    values = scale(cases)
+    same = f" = {float(values.min()):.3g} {units}" if values.min() == values.max() else ""
+    return cases[key] / values, f"{key} / ({scale_name}{same})"
+
+
+def save_map(cases, path):
+    """Write the `fretting_map` of `cases` to the PNG file `path` (6.4 x 4.4 inches, 100 dpi); return `path`."""
+    figure = Figure(figsize=(6.4, 4.4), layout="constrained")
+    fretting_map(cases, figure.subplots())
+    figure.savefig(path, dpi=MAP_DPI)
+    return path
+
+
+# -- Command line -------------------------------------------------------------------------------
+
+
+def add_arguments(parser):
+    """Options of ``fretting sweep``."""
+    parser.add_argument("file", metavar="SWEEP", help="sweep file (TOML)")
+    parser.add_argument(
+        "-o", "--output", metavar="OUT", help="dataset (default: results/<sweep stem>.h5); cases go to OUT.cases/"
+    )
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDR",
+        help="dask scheduler address, e.g. tcp://host:8786 (default: a local cluster, one worker per core)",
+    )
+    return parser
+
+
+def run(args):
+    """Run the sweep file of `args`, write its dataset and print one line about it."""
+    output = Path(args.output) if args.output else Path("results") / f"{Path(args.file).stem}.h5"
+    cases = run_sweep(read_sweep(args.file), args.scheduler, output)
+    counts = np.bincount(cases.regime.values.ravel(), minlength=len(REGIMES))
+    regimes = ", ".join(f"{count} {name.replace('_', ' ')}" for count, name in zip(counts, REGIMES, strict=True))
+    keys = " x ".join(f"{key} ({size})" for key, size in cases.sizes.items())
+    print(f"{output}: {cases.regime.size} cases over {keys}: {regimes}")
