@@ -14,6 +14,7 @@ import numpy as np
 from tqdm import tqdm
 
 from fretting import __version__
+from fretting._validate import positive
 from fretting.bench import add_arguments as add_bench_arguments
 from fretting.bench import run as run_bench
 from fretting.errors import FrettingError, GrossSlipError, HistoryError
@@ -169,14 +170,11 @@ def _at_least(minimum, kind):
 
 
 def _positive(text):
-    """Argument type: a finite float > 0."""
+    """Argument type: a finite number > 0 (`fretting._validate.positive`)."""
     try:
-        value = float(text)
+        return positive("value", float(text))
     except ValueError:
-        value = None
-    if value is None or not 0 < value < np.inf:
-        raise argparse.ArgumentTypeError(f"found {text!r}, expected a number > 0")
-    return value
+        raise argparse.ArgumentTypeError(f"found {text!r}, expected a number > 0") from None
 
 
 def _settings(args):

@@ -33,11 +33,13 @@ turns them into nodal values keeping Coulomb's law exactly at the nodes.
 
 Mesh. `element_targets` reads the stick and slip zones of an increment and asks for element
 sizes; `refine` bisects (old nodes stay nodes, so a P1 slip field carries over exactly) and
-grades neighbours to a size ratio of at most 2. A driver runs its history, reduces the targets
-of every increment with ``np.minimum``, refines, and runs again until `refine` returns the
-same mesh, starting from `initial_theta` (pass `GalerkinScene.breakpoints` on, for the rounded
-flat). ``rtol`` is the relative accuracy asked of the energy dissipated in each increment; the
-stick/slip boundaries are then located to about ``10 rtol a``. Measured at the default 1e-4
+grades neighbours to a size ratio of at most 2. A driver (`fretting.simulate.adapted_mesh`)
+runs the turning points of its history, reduces the targets of every increment with
+``np.minimum``, refines, and runs again until `refine` returns the same mesh, starting from
+`initial_theta` (pass `GalerkinScene.breakpoints` on, for the rounded flat). ``rtol`` is the
+relative accuracy asked of the energy dissipated in each increment; the stick/slip boundaries
+of the increments asked about are then located to about ``10 rtol a`` (those of the steps
+between turning points to 9e-3 a at rtol 1e-4, results/speed_vs_error.md). Measured at the default 1e-4
 (benchmarks/galerkin_convergence.py): energy per cycle of a Hertz contact under ``+-Q*`` within
 3.7e-5 for Q*/fP in [0.05, 0.95] and 1.2e-5 down to 1e-6, stick ends within 2.2e-4 a,
 tractions within 3.5e-4 f p0 and slips within 4.5e-4 of their maximum, on 200 to 550 nodes.
