@@ -99,13 +99,15 @@ def _parser():
     run.add_argument("--resume", action="store_true", help="continue an interrupted run from its checkpoint")
     model = run.add_mutually_exclusive_group()
     model.add_argument(
-        "--nodes", type=_at_least(4, int), help=f"Gauss-Chebyshev collocation nodes (default {DEFAULT_NODES})"
+        "--nodes",
+        type=_at_least(4, int),
+        help=f"solve on a fixed grid of this many Gauss-Chebyshev collocation nodes instead (e.g. {DEFAULT_NODES})",
     )
     model.add_argument(
         "--rtol",
         type=_positive,
-        help=f"solve by P1 Galerkin instead, on a mesh adapted to the whole history for this relative "
-        f"accuracy of the energy (e.g. {DEFAULT_RTOL:g})",
+        help=f"relative accuracy of the energy asked of the P1 Galerkin model, on a mesh adapted to "
+        f"the whole history (default {DEFAULT_RTOL:g})",
     )
     run.add_argument(
         "--record",
@@ -179,7 +181,7 @@ def _positive(text):
 
 def _settings(args):
     """The model a run asks for: ``{"nodes": N}`` (grid) or ``{"rtol": r}`` (adapted mesh)."""
-    return {"rtol": args.rtol} if args.rtol is not None else {"nodes": args.nodes or DEFAULT_NODES}
+    return {"nodes": args.nodes} if args.nodes is not None else {"rtol": args.rtol or DEFAULT_RTOL}
 
 
 def _run(args):

@@ -36,20 +36,23 @@ sizes; `refine` bisects (old nodes stay nodes, so a P1 slip field carries over e
 grades neighbours to a size ratio of at most 2. A driver (`fretting.simulate.adapted_mesh`)
 runs the turning points of its history, reduces the targets of every increment with
 ``np.minimum``, refines, and runs again until `refine` returns the same mesh, starting from
-`initial_theta` (pass `GalerkinScene.breakpoints` on, for the rounded flat). ``rtol`` is the
-relative accuracy asked of the energy dissipated in each increment; the stick/slip boundaries
-of the increments asked about are then located to about ``10 rtol a`` (those of the steps
-between turning points to 9e-3 a at rtol 1e-4, results/speed_vs_error.md). Measured at the default 1e-4
-(benchmarks/galerkin_convergence.py): energy per cycle of a Hertz contact under ``+-Q*`` within
-3.7e-5 for Q*/fP in [0.05, 0.95] and 1.2e-5 down to 1e-6, stick ends within 2.2e-4 a,
-tractions within 3.5e-4 f p0 and slips within 4.5e-4 of their maximum, on 200 to 550 nodes.
+`initial_theta` (pass `GalerkinScene.breakpoints` on: the profile's, where the pressure has a
+singular derivative). ``rtol`` is the relative accuracy asked of the energy dissipated in each
+increment; the stick/slip boundaries of the increments asked about are then located to about
+``10 rtol a``. An increment from one turning point to the next slips where the boundaries of
+the steps between have swept, so its slip zones get elements of ``BOUNDARY_SPAN rtol a`` in x
+too: those boundaries are then located to 1.3e-3 a at rtol 1e-4 (9e-3 a without,
+results/speed_vs_error.md). Measured at the default 1e-4 (benchmarks/galerkin_convergence.py):
+energy per cycle of a Hertz contact under ``+-Q*`` within 3.7e-5 for Q*/fP in [0.05, 0.95] and
+1.2e-5 down to 1e-6, stick ends within 2.2e-4 a, tractions within 3.5e-4 f p0 and slips within
+4.5e-4 of their maximum, on 200 to 550 nodes.
 """
 
 import numpy as np
 from numpy.polynomial import polynomial
 from scipy import special
 
-from fretting.profiles import Gap, RoundedFlat
+from fretting.profiles import Gap
 
 __all__ = [
     "DEFAULT_RTOL",
@@ -309,11 +312,9 @@ def _assemble(fall, rise):
 
 
 def _pressure_breakpoints(contact):
-    """Angles [rad] where ``p sqrt(1 - t^2)`` has a singular derivative: the ends of a rounded flat."""
-    if isinstance(contact.profile, RoundedFlat):
-        t = contact.profile.b / contact.a
-        return np.arccos([t, -t])
-    return np.array([])
+    """Angles [rad] where ``p sqrt(1 - t^2)`` has a singular derivative: the profile's `breakpoints` in the contact."""
+    t = (np.asarray(contact.profile.breakpoints, dtype=float) - contact.centre) / contact.a
+    return np.arccos(t[np.abs(t) < 1])
 
 
 def _pressure_wavelength(contact):
@@ -428,8 +429,8 @@ class GalerkinScene:
     area : ndarray, shape (N,)
         ``int phi_k dx`` [m].
     breakpoints : ndarray
-        Angles [rad] where the pressure has a singular derivative (the ends of a rounded flat),
-        for `element_targets`.
+        Angles [rad] where the pressure has a singular derivative (the profile's `breakpoints`
+        inside the contact), for `element_targets`.
     """
 
     def __init__(self, contact, theta):
@@ -546,7 +547,9 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
     ``[0, pi]`` into zones; each boundary is placed inside its element by `_boundary_position`.
     Asked for:
 
-    - inside a zone of width ``w``: ``zone_fraction(rtol) w`` (`ZONE_ELEMENTS` elements or more);
+    - inside a zone of width ``w``: ``zone_fraction(rtol) w`` (`ZONE_ELEMENTS` elements or more),
+      and inside a slip zone at most ``BOUNDARY_SPAN rtol a`` in x: the boundaries of the steps
+      between two turning points sweep it;
     - the element holding a boundary: ``boundary_fraction(rtol) w`` of the narrower zone beside
       it (or of its distance to the nearest of `breakpoints`, where the pressure has a singular
       derivative), since the energy error a boundary leaves falls like ``(size / w)^(5/2)``, and at most
@@ -572,8 +575,8 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
         Relative accuracy asked of the energy dissipated in each increment.
     breakpoints : array_like of float
         Angles [rad] where the pressure has a singular derivative (`GalerkinScene.breakpoints`:
-        the ends of a rounded flat), so that a stick zone ending near one is located to a
-        fraction of its distance from it.
+        the ends of a rounded flat, those a `Gap` is given), so that a stick zone ending near one
+        is located to a fraction of its distance from it.
 
     Returns
     -------
@@ -597,12 +600,15 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
     ends = np.concatenate([[0.0], [_boundary_position(theta, d, k) for k in inside], [np.pi]])
     nodes = np.diff(np.concatenate([[0], inside + 1, [d.size]]))
     width = np.diff(ends)
+    zone_status = status[np.concatenate([[0], inside + 1])]
     for zone in range(width.size):
         overlapping = (theta[:-1] < ends[zone + 1]) & (theta[1:] > ends[zone])
         if nodes[zone] < MIN_ZONE_NODES:
             size = h[overlapping] / 2
         else:
             size = width[zone] * zone_fraction(rtol)
+        if zone_status[zone]:  # swept by the boundaries of the steps between: locate them too
+            size = np.minimum(size, _span((theta[:-1] + theta[1:])[overlapping] / 2, rtol))
         targets[overlapping] = np.minimum(targets[overlapping], size)
     for zone, (k, position) in enumerate(zip(inside, ends[1:-1], strict=True)):  # between zone and zone + 1
         scale = min(width[zone], width[zone + 1], *(abs(position - b) or np.inf for b in breakpoints))
@@ -614,8 +620,8 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
 
 
 def _span(position, rtol):
-    """Size [rad] of an element at `position` that spans ``BOUNDARY_SPAN rtol a`` in x."""
-    return BOUNDARY_SPAN * rtol / max(np.sin(position), BOUNDARY_SPAN * rtol / np.pi)
+    """Size [rad] of an element at `position` [rad] that spans ``BOUNDARY_SPAN rtol a`` in x."""
+    return BOUNDARY_SPAN * rtol / np.maximum(np.sin(position), BOUNDARY_SPAN * rtol / np.pi)
 
 
 def _graded_toward(theta, position, size):

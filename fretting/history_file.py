@@ -219,7 +219,7 @@ def _gap(table):
     if back.size:
         k = back[0]
         raise table.error("table", f"{path}: found x = {x[k + 1]:.6g} after {x[k]:.6g}, expected x increasing")
-    return Gap.from_table(x, h0)
+    return Gap.from_table(x, h0, table.get("breakpoints", _numbers, default=()))
 
 
 def _check_covered(table, contact):
@@ -238,7 +238,7 @@ PROFILES = {
     "hertz": (("R",), lambda table: Hertz(table.get("R", _positive))),
     "rounded_flat": (("b", "R"), lambda table: RoundedFlat(table.get("b", _positive), table.get("R", _positive))),
     "flat": (("a",), lambda table: FlatPunch(table.get("a", _positive))),
-    "gap": (("table",), _gap),
+    "gap": (("table", "breakpoints"), _gap),
 }
 
 

@@ -24,6 +24,8 @@ class Profile(abc.ABC):
 
     #: The gap, and so the pressure, is even about the centre of the contact.
     SYMMETRIC = False
+    #: Positions [m] where the gap's curvature jumps: the pressure's derivative is singular there.
+    breakpoints = ()
 
     @abc.abstractmethod
     def half_width(self, P, E_star):
@@ -109,6 +111,7 @@ class RoundedFlat(Profile):
     def __init__(self, b, R):
         self.b = positive("b", b)
         self.R = positive("R", R)
+        self.breakpoints = (-self.b, self.b)
 
     def __repr__(self):
         return f"RoundedFlat(b={self.b!r}, R={self.R!r})"
@@ -153,6 +156,10 @@ class Gap(Profile):
         Gap between the undeformed surfaces [m] as a function of ``x`` [m] (vectorised).
     slope : callable, optional
         ``h0'(x)`` [-]; by central differences when omitted.
+    breakpoints : sequence of float, optional
+        Positions [m] where the curvature of ``h0`` jumps (the ends of a flat, say). The
+        pressure's derivative is log-singular there; the Galerkin mesh resolves the traction
+        about them (to 1e-3 f p0), which it cannot do for jumps it is not told of.
 
     Notes
     -----
@@ -164,21 +171,24 @@ class Gap(Profile):
     #: Chebyshev points for the expansion of the slope.
     ORDER = 1024
 
-    def __init__(self, h0, slope=None):
+    def __init__(self, h0, slope=None, breakpoints=()):
         if not callable(h0) or (slope is not None and not callable(slope)):
             raise ValueError("Gap needs callables h0(x) and, optionally, slope(x)")
-        self.h0, self._slope = h0, slope
+        points = np.asarray(breakpoints, dtype=float)
+        if points.ndim != 1 or not np.all(np.isfinite(points)):
+            raise ValueError(f"breakpoints must be a list of positions [m], found {breakpoints!r}")
+        self.h0, self._slope, self.breakpoints = h0, slope, tuple(np.unique(points).tolist())
 
     def __repr__(self):
         return f"Gap({self.h0!r})"
 
     @classmethod
-    def from_table(cls, x, h0):
+    def from_table(cls, x, h0, breakpoints=()):
         """Profile from a table of gaps ``h0`` [m] at increasing positions ``x`` [m] (cubic spline)."""
         from scipy.interpolate import CubicSpline
 
         spline = CubicSpline(np.asarray(x, float), np.asarray(h0, float))
-        return cls(spline, spline.derivative())
+        return cls(spline, spline.derivative(), breakpoints)
 
     def slope(self, x):
         if self._slope is not None:

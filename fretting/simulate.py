@@ -222,12 +222,12 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
         Step 0 is the starting state. Without `state` the contact starts just formed,
         unloaded; a non-zero first vertex is then reached in one increment.
     nodes : int, optional
-        Gauss-Chebyshev collocation nodes of the fixed grid (default `DEFAULT_NODES`).
+        Solve on the fixed grid of this many Gauss-Chebyshev collocation nodes instead
+        (`DEFAULT_NODES` is the usual choice).
     rtol : float, optional
-        Solve by P1 Galerkin instead, on a mesh refined where the stick and slip zones at the
-        turning points of the history need it for this relative accuracy of the energy
-        (`adapted_mesh`, e.g. `DEFAULT_RTOL`): for slip or stick zones narrower than the grid's
-        node spacing.
+        Relative accuracy of the energy asked of the P1 Galerkin model (default `DEFAULT_RTOL`
+        when none of `nodes`, `rtol`, `mesh`, `state` is given): the mesh is refined where the
+        stick and slip zones of the history need it (`adapted_mesh`).
     mesh : array_like, optional
         Galerkin mesh ``theta`` [rad] to use as it is (see `adapted_mesh`).
     state : State, optional
@@ -259,6 +259,8 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
             f"history starts at Q = {Q!r}, sigma = {sigma!r}; "
             f"the state is at Q = {float(state.Q)!r}, sigma = {float(state.sigma)!r}"
         )
+    if all(value is None for value in (nodes, rtol, mesh, state)):
+        rtol = DEFAULT_RTOL
     scene = _scene(contact, history, rtol, nodes, mesh, state)
     steps = recorded_steps(record, len(history))
     data = _Run(scene, history, steps).follow(State.virgin(scene) if state is None else state)
@@ -280,9 +282,9 @@ def _scene(contact, history, rtol, nodes, mesh, state):
         return _Scene(contact, state.slip.size)
     if mesh is not None:
         return GalerkinScene(contact, mesh)
-    if rtol is not None:
-        return GalerkinScene(contact, adapted_mesh(contact, history, rtol))
-    return _Scene(contact, DEFAULT_NODES if nodes is None else nodes)
+    if nodes is not None:
+        return _Scene(contact, nodes)
+    return GalerkinScene(contact, adapted_mesh(contact, history, rtol))
 
 
 def adapted_mesh(contact, history, rtol=DEFAULT_RTOL):
@@ -292,12 +294,12 @@ def adapted_mesh(contact, history, rtol=DEFAULT_RTOL):
     on a mesh graded toward the edges, refines every element that
     `fretting.galerkin.element_targets` finds too coarse at any of them, and runs them again
     until no element is; each run copies repeating cycles as `simulate` does. The steps between
-    turning points are not asked about: along a proportional stretch each node slips one way
-    only, so its dissipation is ``f p |s_end - s_start|`` and depends on the states at the
-    turning points alone, and the zones of the steps between sweep the whole slip zone, which a
-    mesh resolving every one of them would have to resolve finely everywhere: on the scenes of
-    benchmarks/turning_points.py 4 to 7 times the nodes and 40 to 300 times the time, for energy
-    errors 2 to 27 times below the 1e-5 to 2.5e-5 left here.
+    turning points are not run: along a proportional stretch each node slips one way only, so
+    its dissipation is ``f p |s_end - s_start|`` and depends on the states at the turning points
+    alone, and the boundaries of the steps between lie in the slip zones of the increment from
+    one turning point to the next, which `element_targets` fills with elements small enough to
+    locate them. Refining about the zones of every step instead costs, on the scenes of
+    benchmarks/turning_points.py, 4 to 7 times the nodes and 40 to 300 times the time.
     Under Q alone or sigma alone on a symmetric profile the mesh is kept symmetric, as the
     solution is. A history that reaches gross slip is adapted to the steps before it.
     """

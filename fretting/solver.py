@@ -103,8 +103,9 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
     locked = G @ slip
     g = g_stuck - locked
     # g is a difference of terms that may be far larger than the limit (locked-in slip under
-    # large sigma): its rounding scales with the largest of them, not with the limit.
-    tolerance = ROUNDING * max(limit.max(), np.abs(g_stuck).max(), np.abs(locked).max())
+    # large sigma): its rounding at each node scales with the largest of them there, and only
+    # there (a node at the edge, where the limit is small, slips under loads of its own size).
+    tolerance = ROUNDING * (limit + np.abs(g_stuck) + np.abs(G) @ np.abs(slip))
     over = np.abs(g) - limit > tolerance
     if not over.any():  # Coulomb's law holds without slip: nothing moves, not even by rounding
         return Increment(slip, np.zeros_like(slip), g, 0)
@@ -141,7 +142,9 @@ def _minimise(G, g_stuck, limit, slip, new, direction):
         slipping = np.flatnonzero(direction)
         stuck = np.flatnonzero(direction == 0)
         if stuck.size == 0:
-            raise SolverError("every node would slip although |Q| < f P")
+            new = _rigid_shift(g_stuck, limit, slip, new, direction)
+            blocked.extend(np.flatnonzero(direction == 0))
+            continue
         if slipping.size == 0:
             return slip, np.array(blocked, dtype=int)
         rhs = g_stuck[slipping] - G[np.ix_(slipping, stuck)] @ slip[stuck] - direction[slipping] * limit[slipping]
@@ -158,6 +161,28 @@ def _minimise(G, g_stuck, limit, slip, new, direction):
         new[stops] = slip[stops]
         direction[stops] = 0
         blocked.extend(stops)
+
+
+def _rigid_shift(g_stuck, limit, slip, new, direction):
+    """With every node slipping, move the slip `new` rigidly downhill until a node stops.
+
+    ``G 1 = 0``, so along the rigid shift ``ds -> ds + alpha 1`` the quadratic has no curvature
+    and ``J`` falls at the rate ``|sum_k (g_stuck_k - direction_k limit_k)|`` (``sum_k g_k`` is
+    the same for every slip). The nodes slipping against the shift stop one after the other;
+    the first whose increment reaches zero sticks (`direction` is updated in place). None
+    slipping against it: ``J`` is unbounded, the contact slides.
+    """
+    shift = np.sign(np.sum(g_stuck) - np.sum(direction * limit))
+    against = np.flatnonzero(direction == -shift)
+    if shift == 0 or against.size == 0:
+        raise SolverError("every node would slip one way although |Q| < f P")
+    ds = new - slip
+    alpha = np.abs(ds[against]).min()
+    stops = against[np.abs(ds[against]) <= alpha]
+    new = new + alpha * shift
+    new[stops] = slip[stops]
+    direction[stops] = 0
+    return new
 
 
 def _solve_positive(A, b):

@@ -93,8 +93,9 @@ def split_history(history, k):
 def test_chunked_run_equals_whole_run(hertz, k):
     """run(h) == run(h[:k]) followed by run(h[k:], state=final_state(...)), bit for bit."""
     history = random_history(hertz, seed=4)
-    whole = fr.simulate(hertz, history)
-    head = fr.simulate(hertz, fr.History(history.Q[: k + 1], history.sigma[: k + 1], [0]))
+    mesh = fr.adapted_mesh(hertz, history)  # the default model, on one mesh for the whole and its parts
+    whole = fr.simulate(hertz, history, mesh=mesh)
+    head = fr.simulate(hertz, fr.History(history.Q[: k + 1], history.sigma[: k + 1], [0]), mesh=mesh)
     tail = fr.simulate(hertz, split_history(history, k), state=fr.final_state(head))
     for name in ("q", "slip", "stick", "dissipation", "stick_end", "delta_Q"):
         joined = np.concatenate([head[name].values, tail[name].values[1:]])
