@@ -7,13 +7,22 @@ from fretting.history_file import HistoryFileError, read_history
 from fretting.io import ResultError, join_results, load, save
 from fretting.methods import partial_slip
 from fretting.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
-from fretting.simulate import DEFAULT_NODES, DEFAULT_RTOL, State, adapted_mesh, final_state, simulate
+from fretting.simulate import (
+    DEFAULT_NODES,
+    DEFAULT_RTOL,
+    MAX_DEFAULT_MESH,
+    State,
+    adapted_mesh,
+    final_state,
+    simulate,
+)
 from fretting.sweep import sweep
 
 __all__ = [
     "Contact",
     "DEFAULT_NODES",
     "DEFAULT_RTOL",
+    "MAX_DEFAULT_MESH",
     "FlatPunch",
     "FrettingError",
     "Gap",

@@ -23,9 +23,11 @@ from fretting.io import Joiner, ResultError, load, save, source_attributes
 from fretting.simulate import (
     DEFAULT_NODES,
     DEFAULT_RTOL,
+    MAX_DEFAULT_MESH,
     RECORD_ALL_STEPS,
     RECORDED_ENDS,
     adapted_mesh,
+    default_model,
     final_state,
     recorded_steps,
     simulate,
@@ -107,7 +109,8 @@ def _parser():
         "--rtol",
         type=_positive,
         help=f"relative accuracy of the energy asked of the P1 Galerkin model, on a mesh adapted to "
-        f"the whole history (default {DEFAULT_RTOL:g})",
+        f"the whole history (default {DEFAULT_RTOL:g}, or --nodes {DEFAULT_NODES} where that mesh "
+        f"would exceed {MAX_DEFAULT_MESH} nodes)",
     )
     run.add_argument(
         "--record",
@@ -180,8 +183,27 @@ def _positive(text):
 
 
 def _settings(args):
-    """The model a run asks for: ``{"nodes": N}`` (grid) or ``{"rtol": r}`` (adapted mesh)."""
-    return {"nodes": args.nodes} if args.nodes is not None else {"rtol": args.rtol or DEFAULT_RTOL}
+    """The model a run asks for: ``{"nodes": N}`` (grid), ``{"rtol": r}`` (adapted mesh) or ``{}`` (the default)."""
+    if args.nodes is not None:
+        return {"nodes": args.nodes}
+    return {} if args.rtol is None else {"rtol": args.rtol}
+
+
+#: What the default model may be (`fretting.simulate.default_model`).
+DEFAULT_SETTINGS = ({"rtol": DEFAULT_RTOL}, {"nodes": DEFAULT_NODES})
+
+
+def _model(contact, history, asked):
+    """The settings a run from the start records, and the keywords of `simulate` for its first chunk.
+
+    An adapted mesh is adapted to the whole history, not to the chunk.
+    """
+    if "nodes" in asked:
+        return asked, asked
+    if "rtol" in asked:
+        return asked, {"mesh": adapted_mesh(contact, history, asked["rtol"])}
+    model = default_model(contact, history)
+    return ({"nodes": DEFAULT_NODES} if "nodes" in model else {"rtol": DEFAULT_RTOL}), model
 
 
 def _run(args):
@@ -192,15 +214,18 @@ def _run(args):
         raise ResultError(
             f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
         )
-    history, settings = source.history, _settings(args)
-    attributes = source_attributes(source) | settings  # a run on an adapted mesh is a run of `settings["rtol"]`
+    history, asked = source.history, _settings(args)
     joiner = Joiner(history.cycle_count)
-    start, state = 0, None
+    start, state, model = 0, None, None
     if args.resume and checkpoint.exists():
-        done = _resumable(checkpoint, source, settings)
+        done = _resumable(checkpoint, source, asked)
+        settings = _found(done)
         joiner.add(done)
         start, state = done.attrs["steps"] - 1, final_state(done)
         del done  # the joiner holds its cycles
+    else:
+        settings, model = _model(source.contact, history, asked)
+    attributes = source_attributes(source) | settings  # a run on an adapted mesh is a run of `settings["rtol"]`
     record = recorded_steps(None if args.record == "default" else args.record, len(history))
     written = time.monotonic()
     with tqdm(
@@ -212,7 +237,7 @@ def _run(args):
         file=sys.stderr,
     ) as progress:
         try:
-            for part in _chunks(source.contact, history, settings, record, start, state):
+            for part in _chunks(source.contact, history, model, record, start, state):
                 joiner.add(part)
                 progress.update(part.attrs["steps"] - 1)
                 if time.monotonic() - written >= args.checkpoint_interval:
@@ -232,16 +257,14 @@ def _run(args):
     print(f"{output}: {result.attrs['steps'] - 1} steps, {_cycles(result)} cycles, {_dissipated(result)}")
 
 
-def _chunks(contact, history, settings, record, start, state):
+def _chunks(contact, history, model, record, start, state):
     """Results of successive chunks of `history` from step `start` in `state` (None: the contact just formed).
 
-    The first chunk of a run from the start uses the model of `settings` (see `_settings`); an
-    adapted mesh is adapted to the whole history, not to the chunk. Each chunk records the
-    steps of `record` (numbers in the whole history) that it reaches. Only the state of the
-    previous chunk is kept, not its result.
+    The first chunk of a run from the start runs with the keywords `model` of `simulate` (see
+    `_model`), the others from the state before. Each chunk records the steps of `record`
+    (numbers in the whole history) that it reaches. Only the state of the previous chunk is
+    kept, not its result.
     """
-    if state is None:
-        initial = settings if "nodes" in settings else {"mesh": adapted_mesh(contact, history, settings["rtol"])}
     steps = CHUNK_STEPS
     while state is None or start < len(history) - 1:
         stop = min(start + steps, len(history) - 1)
@@ -249,8 +272,8 @@ def _chunks(contact, history, settings, record, start, state):
         first = start + 1 if state is not None else 0  # a later chunk's step 0 is the last one's end
         mine = record[(record >= first) & (record <= stop)] - start
         try:
-            model = initial if state is None else {"state": state}
-            part = simulate(contact, history[start : stop + 1], record=mine, **model)
+            chunk = model if state is None else {"state": state}
+            part = simulate(contact, history[start : stop + 1], record=mine, **chunk)
         except GrossSlipError as error:
             raise GrossSlipError(start + error.step, error.Q, error.sigma, error.limit) from None
         state = final_state(part)
@@ -261,15 +284,26 @@ def _chunks(contact, history, settings, record, start, state):
         steps = min(2 * steps, MAX_CHUNK_STEPS) if fast else max(steps // 2, CHUNK_STEPS)
 
 
-def _resumable(checkpoint, source, settings):
-    """The partial result in `checkpoint`, checked to belong to this history file and these `settings`."""
+def _described(settings):
+    """``name = value`` of the one setting in `settings`."""
+    ((name, value),) = settings.items()
+    return f"{name} = {value}"
+
+
+def _found(done):
+    """The settings a (partial) result was run with."""
+    return {"rtol": done.attrs.get("rtol")} if "theta" in done else {"nodes": done.attrs.get("nodes")}
+
+
+def _resumable(checkpoint, source, asked):
+    """The partial result in `checkpoint`, checked to belong to this history file and the settings `asked`."""
     done = load(checkpoint)
     if done.attrs.get("history_sha256") != source.sha256:
         raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
-    found = {"rtol": done.attrs.get("rtol")} if "theta" in done else {"nodes": done.attrs.get("nodes")}
-    if found != settings:
-        (name, value), (asked, expected) = *found.items(), *settings.items()
-        raise ResultError(f"{checkpoint}: found a run with {name} = {value}, expected {asked} = {expected}")
+    found = _found(done)
+    if found not in ([asked] if asked else DEFAULT_SETTINGS):
+        expected = _described(asked) if asked else "the default model"
+        raise ResultError(f"{checkpoint}: found a run with {_described(found)}, expected {expected}")
     history, steps = source.history, done.step.values
     same = done.attrs["steps"] <= len(history) and all(
         np.array_equal(done[name].values, getattr(history, name)[steps]) for name in ("Q", "sigma")

@@ -22,10 +22,12 @@ from fretting.variables import build_dataset
 
 __all__ = [
     "DEFAULT_NODES",
+    "MAX_DEFAULT_MESH",
     "RECORD_ALL_STEPS",
     "RECORDED_ENDS",
     "State",
     "Tally",
+    "default_model",
     "final_state",
     "recorded_steps",
     "simulate",
@@ -43,6 +45,11 @@ REFINEMENTS = 60
 #: and 4.5e-4 of the maximum slip on the closed forms of benchmarks/accuracy_vs_nodes.py; the
 #: tests hold them to 1e-3. 256 nodes miss that (1.2e-3).
 DEFAULT_NODES = 384
+#: Nodes beyond which the default model gives up adapting a Galerkin mesh and runs on the grid of
+#: `DEFAULT_NODES` instead: a mesh's passes cost ``N^3`` per turning point, and the non-periodic
+#: turning points of out-of-phase cycles can drive it past 1000 nodes (2.5 minutes for 30 cycles
+#: of one rounded-flat scene of tests/test_hard_properties.py).
+MAX_DEFAULT_MESH = 2 * DEFAULT_NODES
 
 
 #: Default recording: every step of histories up to this many steps; of longer ones the first
@@ -225,9 +232,10 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
         Solve on the fixed grid of this many Gauss-Chebyshev collocation nodes instead
         (`DEFAULT_NODES` is the usual choice).
     rtol : float, optional
-        Relative accuracy of the energy asked of the P1 Galerkin model (default `DEFAULT_RTOL`
-        when none of `nodes`, `rtol`, `mesh`, `state` is given): the mesh is refined where the
-        stick and slip zones of the history need it (`adapted_mesh`).
+        Relative accuracy of the energy asked of the P1 Galerkin model: the mesh is refined where
+        the stick and slip zones of the history need it (`adapted_mesh`). When none of `nodes`,
+        `rtol`, `mesh`, `state` is given, `default_model` chooses: `DEFAULT_RTOL`, or the grid
+        of `DEFAULT_NODES` where that mesh would exceed `MAX_DEFAULT_MESH` nodes.
     mesh : array_like, optional
         Galerkin mesh ``theta`` [rad] to use as it is (see `adapted_mesh`).
     state : State, optional
@@ -259,12 +267,25 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
             f"history starts at Q = {Q!r}, sigma = {sigma!r}; "
             f"the state is at Q = {float(state.Q)!r}, sigma = {float(state.sigma)!r}"
         )
+    recorded_rtol = rtol
     if all(value is None for value in (nodes, rtol, mesh, state)):
-        rtol = DEFAULT_RTOL
+        model = default_model(contact, history)
+        nodes, mesh = model.get("nodes"), model.get("mesh")
+        recorded_rtol = None if mesh is None else DEFAULT_RTOL
     scene = _scene(contact, history, rtol, nodes, mesh, state)
     steps = recorded_steps(record, len(history))
     data = _Run(scene, history, steps).follow(State.virgin(scene) if state is None else state)
-    return build_dataset(data, _attributes(scene, rtol) | {"steps": len(history)})
+    return build_dataset(data, _attributes(scene, recorded_rtol) | {"steps": len(history)})
+
+
+def default_model(contact, history):
+    """Keywords of `simulate` for its default model.
+
+    ``{"mesh": theta}``, the Galerkin mesh adapted to `DEFAULT_RTOL`, unless that mesh would
+    need more than `MAX_DEFAULT_MESH` nodes; then ``{"nodes": DEFAULT_NODES}``, the grid.
+    """
+    theta = adapted_mesh(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH)
+    return {"nodes": DEFAULT_NODES} if theta is None else {"mesh": theta}
 
 
 def _scene(contact, history, rtol, nodes, mesh, state):
@@ -287,8 +308,10 @@ def _scene(contact, history, rtol, nodes, mesh, state):
     return GalerkinScene(contact, adapted_mesh(contact, history, rtol))
 
 
-def adapted_mesh(contact, history, rtol=DEFAULT_RTOL):
+def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
     """Galerkin mesh ``theta`` [rad] that resolves the stick and slip zones of `history` to `rtol`.
+
+    None, without running it, as soon as a refinement would give more than `max_nodes` nodes.
 
     Runs the history's turning points (`History.turning_points`, from the contact just formed)
     on a mesh graded toward the edges, refines every element that
@@ -324,6 +347,8 @@ def adapted_mesh(contact, history, rtol=DEFAULT_RTOL):
             refined = np.concatenate([lower, np.pi - lower[::-1][int(lower[-1] == np.pi / 2) :]])
         if np.array_equal(refined, theta):
             return theta
+        if max_nodes is not None and refined.size > max_nodes:
+            return None
         theta = refined
     raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
 

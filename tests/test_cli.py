@@ -166,10 +166,10 @@ def test_bad_result_file(workdir, capsys):
     assert capsys.readouterr().err.startswith("fretting: error: notes.h5: ")
 
 
-@pytest.mark.parametrize("model", [("--nodes", NODES), ("--rtol", "1e-3")])
+@pytest.mark.parametrize("model", [("--nodes", NODES), ("--rtol", "1e-3"), ()])
 def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeypatch, model):
     """Ctrl-C in the third chunk: a checkpoint of two chunks; --resume then equals an uninterrupted run
-    (on the grid, and on the mesh adapted once to the whole history)."""
+    (on the grid, on the mesh adapted once to the whole history, and with the default model)."""
     monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
     monkeypatch.setattr(cli, "CHUNK_SECONDS", 0.0)  # chunks of 20 steps each
     write(workdir / "shear.toml", CONTACT + SHEAR)
@@ -205,6 +205,8 @@ def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
     assert "found a run with nodes = 32, expected nodes = 40" in capsys.readouterr().err
     assert run("run", "shear.toml", "--rtol", "1e-4", "--resume") == 2
     assert "found a run with nodes = 32, expected rtol = 0.0001" in capsys.readouterr().err
+    assert run("run", "shear.toml", "--resume") == 2  # the default runs rtol 1e-4 or 384 nodes
+    assert "found a run with nodes = 32, expected the default model" in capsys.readouterr().err
     write(history, history.read_text() + "# edited\n")
     assert run("run", "shear.toml", "--nodes", NODES, "--resume") == 2
     assert "found a run of another version of shear.toml" in capsys.readouterr().err

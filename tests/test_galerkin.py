@@ -10,6 +10,7 @@ targets of every increment, refine, until the mesh stays.
 
 import numpy as np
 import pytest
+import xarray as xr
 from conftest import hertz_si
 from scipy import integrate, special
 
@@ -446,6 +447,21 @@ def test_many_steps_per_cycle_at_default_settings(hertz, psi):
     assert result.attrs["rtol"] == gk.DEFAULT_RTOL
     steady = result.cycle_dissipation.values[1:]  # the first cycle starts from the virgin contact
     np.testing.assert_allclose(steady, hertz_cycle_energy(hertz, Q_star), rtol=1e-4)
+
+
+def test_default_runs_the_grid_where_the_mesh_would_be_too_large():
+    """Out-of-phase Q = 0.47 fP, sigma = 1.19 f p0 (103 degrees) on a rounded flat: at rtol 1e-4
+    the mesh would take 1138 nodes (25 s to adapt for 3 cycles); the default stops adapting once
+    a refinement passes MAX_DEFAULT_MESH and runs the grid, the same run as nodes=DEFAULT_NODES."""
+    contact = fr.Contact(fr.RoundedFlat(1e-3, 0.02), 115e9, 0.3, 3e4)
+    history = fr.History.sinusoidal(
+        0.474 * contact.f * contact.P, 1.187 * contact.f * contact.p0, 103.6, cycles=3, steps_per_cycle=32
+    )
+    assert fr.adapted_mesh(contact, history, max_nodes=fr.MAX_DEFAULT_MESH) is None
+    result = fr.simulate(contact, history)
+    grid = fr.simulate(contact, history, nodes=fr.DEFAULT_NODES)
+    assert "rtol" not in result.attrs and "theta" not in result
+    xr.testing.assert_identical(result, grid)
 
 
 @pytest.mark.parametrize(("Q", "sigma"), [(0.6, 0.0), (0.0, 0.9)])
