@@ -41,11 +41,12 @@ singular derivative). ``rtol`` is the relative accuracy asked of the energy diss
 increment; the stick/slip boundaries of the increments asked about are then located to about
 ``10 rtol a``. An increment from one turning point to the next slips where the boundaries of
 the steps between have swept, so its slip zones get elements of ``BOUNDARY_SPAN rtol a`` in x
-too: those boundaries are then located to 1.3e-3 a at rtol 1e-4 (9e-3 a without,
-results/speed_vs_error.md). Measured at the default 1e-4 (benchmarks/galerkin_convergence.py):
-energy per cycle of a Hertz contact under ``+-Q*`` within 3.7e-5 for Q*/fP in [0.05, 0.95] and
-1.2e-5 down to 1e-6, stick ends within 2.2e-4 a, tractions within 3.5e-4 f p0 and slips within
-4.5e-4 of their maximum, on 200 to 550 nodes.
+too: those boundaries are then located to 1.3e-3 a at rtol 1e-4 (results/speed_vs_error.md).
+Measured at the default 1e-4 (``python benchmarks/galerkin_convergence.py --rtol 1e-4
+--no-chebyshev``): energy per cycle of a Hertz contact under ``+-Q*`` within 3.0e-5 for Q*/fP
+in [0.05, 0.95] and 1.2e-5 down to 1e-6, stick ends within 2.2e-4 a, tractions within 3.5e-4
+f p0 and slips within 3.2e-4 of their maximum, on 268 to 765 nodes (765 at Q/fP = 0.999999,
+just under `fretting.simulate.MAX_DEFAULT_MESH`).
 """
 
 import numpy as np

@@ -79,6 +79,24 @@ def test_tabulated_gap_next_to_the_file(tmp_path):
     assert contact.centre == pytest.approx(0, abs=1e-9 * hertz.a)
 
 
+@pytest.mark.parametrize(
+    ("value", "expected"),
+    [("[5e-4, -5e-4]", (-5e-4, 5e-4)), ('"corners"', 'found "corners", expected a list of numbers')],
+)
+def test_tabulated_gap_breakpoints(tmp_path, value, expected):
+    """Where the gap's curvature jumps: read into the profile, sorted; anything else is named."""
+    x = np.linspace(-2e-3, 2e-3, 41)
+    write(tmp_path, "x,h0\n" + "\n".join(f"{a:.17g},{a * a / 0.1:.17g}" for a in x), "gap.csv")
+    table = f'profile = "gap"\ntable = "gap.csv"\nbreakpoints = {value}'
+    text = CONTACT.replace('profile = "hertz"\nR = 0.05', table) + SHEAR
+    if isinstance(expected, tuple):
+        contact, _ = read(tmp_path, text)
+        assert contact.profile.breakpoints == expected
+    else:
+        error = error_of(tmp_path, text)
+        assert error.key == "contact.breakpoints" and expected in str(error)
+
+
 def test_tabulated_gap_must_cover_the_contact(tmp_path):
     x = np.linspace(-1e-4, 1e-4, 11)
     write(tmp_path, "x,h0\n" + "\n".join(f"{a:.17g},{a * a / 0.1:.17g}" for a in x), "gap.csv")

@@ -1,0 +1,36 @@
+"""Energy per steady cycle of a Hertz contact under Q = +-Q* at default settings.
+
+Sine cycles of 64 steps, three of them; cycles 2 and 3 against the Mindlin-Deresiewicz (Masing)
+closed form of tests/test_hard_cases.py, with the nodes of the mesh and the wall time of each
+run (adaptation included). tests/test_galerkin.py holds six of these amplitudes to 1e-4.
+
+Run:  python benchmarks/default_energy.py   (a few seconds)
+"""
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import fretting as fr
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from test_hard_cases import hertz_cycle_energy  # noqa: E402
+
+AMPLITUDES = (1e-6, 1e-3, 0.01, 0.05, 0.1, 0.2, 0.35, 0.5, 0.65, 0.8, 0.95)
+
+
+def main():
+    contact = fr.Contact(fr.Hertz(R=0.05), 115.4e9, 0.6, 1e5)
+    for psi in AMPLITUDES:
+        Q_star = psi * contact.f * contact.P
+        began = time.perf_counter()
+        result = fr.simulate(contact, fr.History.sinusoidal(Q_star, cycles=3, steps_per_cycle=64))
+        seconds = time.perf_counter() - began
+        error = np.max(np.abs(result.cycle_dissipation.values[1:] / hertz_cycle_energy(contact, Q_star) - 1))
+        print(f"Q*/fP = {psi:<6g} {result.attrs['nodes']:4d} nodes {seconds:5.2f} s  energy error {error:.1e}")
+
+
+if __name__ == "__main__":
+    main()
