@@ -49,7 +49,7 @@ class History:
         arrays = {"Q": Q, "sigma": sigma, "vertex_step": vertex_step}
         if self.cycle is not None:
             cycle = np.asarray(self.cycle, dtype=np.int64)
-            if cycle.shape != Q.shape or np.any(cycle < 0) or np.any(np.diff(cycle[cycle > 0]) < 0):
+            if cycle.shape != Q.shape or np.any(cycle < 0) or _decreases(cycle[cycle > 0]):
                 raise HistoryError("cycle must give a cycle number >= 0 for every step, non-zero ones non-decreasing")
             arrays["cycle"] = cycle
         for name, value in arrays.items():
@@ -102,7 +102,9 @@ class History:
         kept[[0, -1]] = True
         kept[self.vertex_step] = True
         for load in (self.Q, self.sigma):
-            before, after = np.sign(np.diff(load[:-1])), np.sign(np.diff(load[1:]))
+            direction = np.diff(load)
+            np.sign(direction, out=direction)  # in place: the history may be long
+            before, after = direction[:-1], direction[1:]
             kept[1:-1] |= (before != after) & (before != 0)
         steps = np.flatnonzero(kept)
         cycle = None if self.cycle is None else self.cycle[steps]
@@ -133,6 +135,8 @@ class History:
         histories = list(histories)
         if not histories:
             raise HistoryError("no histories to concatenate")
+        if len(histories) == 1:  # not copied: its arrays may be large, and they cannot change
+            return histories[0]
         first = histories[0]
         Q, sigma, vertex_step, cycle = [first.Q], [first.sigma], [first.vertex_step], [_cycles(first)]
         end, last_vertex, counted = len(first) - 1, first.vertex_step.max(initial=-1), first.cycle_count
@@ -218,11 +222,17 @@ class History:
         phase = np.radians(_number("phase_deg", phase_deg))
         steps = _count("steps_per_cycle", steps_per_cycle, minimum=4)
         count = _count("cycles", cycles)
-        theta = 2 * np.pi * (np.arange(count * steps + 1) % steps) / steps  # exactly 0 again at each cycle end
-        Q = mean[0] + amplitude[0] * np.sin(theta)
-        sigma = mean[1] + amplitude[1] * np.sin(theta + phase)
-        cycle = np.concatenate([[0], np.repeat(np.arange(1, count + 1), steps)])
-        waves = cls(Q, sigma, np.arange(0, theta.size, steps), cycle)
+        n = count * steps + 1
+        theta = np.remainder(np.arange(n, dtype=float), steps)
+        theta *= 2 * np.pi
+        theta /= steps  # 2 pi (k mod steps) / steps: exactly 0 again at each cycle end
+        Q = _wave(theta, amplitude[0], mean[0])
+        theta += phase
+        sigma = _wave(theta, amplitude[1], mean[1])
+        del theta  # arrays of a long history are large (51 MB each for 10^5 cycles of 64 steps)
+        cycle = np.arange(n) + (steps - 1)
+        cycle //= steps  # 0, then each cycle's number over its steps
+        waves = cls(Q, sigma, np.arange(0, n, steps), cycle)
         return _reached_from(start, waves, _count("ramp_steps", ramp_steps))
 
     @classmethod
@@ -283,9 +293,22 @@ def _reached_from(start, history, ramp_steps):
     return History.concatenate([ramp, history])
 
 
+def _decreases(values):
+    """Whether any of `values` is less than the one before (without a temporary array of differences)."""
+    return bool(np.any(values[1:] < values[:-1]))
+
+
 def _cycles(history):
     """Cycle numbers of every step, zeros for a history without cycles."""
     return np.zeros(len(history), dtype=np.int64) if history.cycle is None else history.cycle
+
+
+def _wave(theta, amplitude, mean):
+    """``mean + amplitude sin(theta)`` [N/m or Pa] for `theta` [rad], with no temporary array."""
+    values = np.sin(theta)
+    values *= amplitude
+    values += mean
+    return values
 
 
 def _segments(vertices, fractions):

@@ -122,23 +122,18 @@ def join_results(parts):
 
 
 class Joiner:
-    """`join_results` of parts that arrive one at a time, holding each cycle's fields once.
+    """`join_results` of parts that arrive one at a time, holding each run of equal cycle rows once.
 
     A long run's per-cycle fields outweigh the rest of its result (10^5 cycles of ``w`` and
-    ``slip_amplitude`` at 384 nodes: 307 MB), so each part's rows are copied into arrays for
-    the whole run as the part is added, and the part itself need not be kept.
-
-    Parameters
-    ----------
-    cycles : int
-        Rows to allocate at first (the history's cycle count); the arrays grow if more arrive.
+    ``slip_amplitude`` at 273 nodes: 218 MB), yet the cycles of a periodic state repeat them
+    exactly. Each part's rows are taken into `_Rows` as the part is added, so the part itself
+    need not be kept and a repeated row is held once; `result` expands them.
     """
 
-    def __init__(self, cycles=0):
-        self._capacity = cycles
+    def __init__(self):
         self._pieces, self._vertices, self._end = [], [], 0
         self._first_attrs, self._last = None, None
-        self._rows, self._numbers, self._count = {}, None, 0
+        self._rows, self._count = {}, 0
 
     def __len__(self):
         """Number of parts added."""
@@ -163,30 +158,17 @@ class Joiner:
         self._last = part.drop_vars(per_cycle)
 
     def _add_rows(self, cycles):
-        """Copy the per-cycle variables `cycles` (name -> xarray.Variable) of a part into the run's rows."""
+        """Take the per-cycle variables `cycles` (name -> xarray.Variable) of a part into the run's rows."""
         numbers = cycles["cycle_number"].values
-        spans = self._count and numbers.size and self._numbers[self._count - 1] == numbers[0]  # the later row is whole
+        held = self._rows.get("cycle_number")
+        spans = self._count and numbers.size and held.last == numbers[0]  # the later row is whole
         start = self._count - 1 if spans else self._count
-        stop = start + numbers.size
-        if not self._rows or stop > self._numbers.size:
-            self._grow(cycles, max(stop, 2 * self._count, self._capacity))
         for name, variable in cycles.items():
-            self._rows[name][2][start:stop] = variable.values
-        self._count = stop
-
-    def _grow(self, cycles, size):
-        """Room for `size` rows in every per-cycle array, keeping the rows held so far."""
-        for name, variable in cycles.items():
-            rows = np.empty((size, *variable.shape[1:]), dtype=variable.dtype)
-            if name in self._rows:
-                rows[: self._count] = self._rows[name][2][: self._count]
-            self._rows[name] = (variable.dims, variable.attrs, rows)
-        self._numbers = self._rows["cycle_number"][2]
+            self._rows.setdefault(name, _Rows(variable)).put(start, variable.values)
+        self._count = start + numbers.size
 
     def result(self):
-        """The joined result of the parts added so far; its per-cycle arrays are views of the joiner's
-        own, valid until the next `add`.
-        """
+        """The joined result of the parts added so far."""
         if self._last is None:
             raise ResultError("no results to join")
         zones = max(piece.sizes["zone"] for piece in self._pieces)
@@ -205,10 +187,48 @@ class Joiner:
         joined = joined.assign(
             vertex_step=(last.vertex_step.dims, np.concatenate(self._vertices), last.vertex_step.attrs)
         )
-        cycles = {
-            name: xr.Variable(dims, rows[: self._count], attrs) for name, (dims, attrs, rows) in self._rows.items()
-        }
+        cycles = {name: rows.variable() for name, rows in self._rows.items()}
         return joined.assign(cycles).assign_attrs(self._first_attrs | {"steps": self._end + 1})
+
+
+class _Rows:
+    """The rows of one per-cycle variable of a run: each run of equal rows held once, and the
+    index of every cycle's row among them."""
+
+    def __init__(self, variable):
+        self._dims, self._attrs = variable.dims, variable.attrs
+        self._distinct = np.empty((1, *variable.shape[1:]), dtype=variable.dtype)
+        self._held = 0  # rows of _distinct in use
+        self._index = np.empty(0, dtype=np.int64)
+
+    @property
+    def last(self):
+        """The row of the last cycle held."""
+        return self._distinct[self._index[-1]]
+
+    def put(self, start, values):
+        """Rows `values` for the cycles from number `start` (counted from 0) on, replacing any held there."""
+        replaced = self._index[start:]
+        if replaced.size and replaced[0] == self._held - 1 and (start == 0 or self._index[start - 1] != replaced[0]):
+            self._held -= 1  # the replaced row was the last one taken and no earlier cycle has it
+        changed = np.ones(len(values), dtype=bool)
+        if len(values) > 1:
+            changed[1:] = (values[1:] != values[:-1]).reshape(len(values) - 1, -1).any(axis=1)
+        if start and len(values):
+            changed[0] = not np.array_equal(values[0], self._distinct[self._index[start - 1]])
+        new = values[changed]
+        if self._held + len(new) > len(self._distinct):
+            grown = np.empty((max(self._held + len(new), 2 * len(self._distinct)), *values.shape[1:]), values.dtype)
+            grown[: self._held] = self._distinct[: self._held]
+            self._distinct = grown
+        self._distinct[self._held : self._held + len(new)] = new
+        index = self._held - 1 + np.cumsum(changed)  # row held - 1 is cycle start - 1's
+        self._held += len(new)
+        self._index = np.concatenate([self._index[:start], index])
+
+    def variable(self):
+        """The rows of every cycle, as an xarray.Variable."""
+        return xr.Variable(self._dims, self._distinct[self._index], self._attrs)
 
 
 def _check_continues(previous, part):

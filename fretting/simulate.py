@@ -274,7 +274,8 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
         recorded_rtol = None if mesh is None else DEFAULT_RTOL
     scene = _scene(contact, history, rtol, nodes, mesh, state)
     steps = recorded_steps(record, len(history))
-    data = _Run(scene, history, steps).follow(State.virgin(scene) if state is None else state)
+    run = _Run(scene, history, steps)
+    data = run.data(run.follow(State.virgin(scene) if state is None else state))
     return build_dataset(data, _attributes(scene, recorded_rtol) | {"steps": len(history)})
 
 
@@ -413,7 +414,7 @@ class _Run:
         self.cycles = []  # (number, tally, repeated) of every cycle the run touches
 
     def follow(self, state):
-        """Data of the run from `state` (whose loads are the history's first)."""
+        """Run from `state` (whose loads are the history's first); return the state at the end."""
         previous = None  # the last cycle solved whole in this run: the one a repeating cycle copies
         before, outcomes = None, []  # state before the cycle in progress (if it began here), its increments
         repeated = False  # the cycle in progress is a copy
@@ -440,7 +441,7 @@ class _Run:
             step += 1
         if state.tally.number:
             self.cycles.append((state.tally.number, state.tally, repeated))
-        return self._data(state)
+        return state
 
     def _increment(self, step, state):
         scene = self.scene
@@ -516,7 +517,8 @@ class _Run:
         self.fields["dissipation"][k] = outcome.dissipation
         self.zones[k] = stick_zones(self.scene.t, state.slip - state.episode_start)
 
-    def _data(self, state):
+    def data(self, state):
+        """The arrays of the result (names from `fretting.variables.VARIABLES`) of a run that ended in `state`."""
         scene, history, steps = self.scene, self.history, self.steps
         data = self.fields | _zone_ends(scene, self.zones)
         if history.cycle is not None:

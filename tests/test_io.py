@@ -112,6 +112,23 @@ def test_run_in_parts_equals_the_whole_run(history, whole, splits):
     xr.testing.assert_identical(join_results(parts), whole)
 
 
+@pytest.mark.parametrize("splits", [[8], [9, 40], [3, 4, 17, 29, 30, 77], list(range(5, 96, 13))])
+def test_periodic_run_in_parts_equals_the_whole_run(splits):
+    """Cycles whose state repeats give equal rows, which the joiner holds once: cut into parts
+    inside and between such runs of rows, and between parts that each solve their first cycles
+    anew, the join is still the whole run bit for bit (but for which cycles were copied)."""
+    contact = _contact()
+    history = fr.History.sinusoidal(0.4 * contact.f * contact.P, cycles=12, steps_per_cycle=8)
+    whole = fr.simulate(contact, history, nodes=NODES)
+    assert whole.cycle_copied.values.sum() >= 9  # the state became periodic
+    bounds = [0, *splits, len(history) - 1]
+    parts = [fr.simulate(contact, history[: bounds[1] + 1], nodes=NODES)]
+    for start, stop in itertools.pairwise(bounds[1:]):
+        parts.append(fr.simulate(contact, history[start : stop + 1], nodes=NODES, state=fr.final_state(parts[-1])))
+    joined = join_results(parts)
+    xr.testing.assert_identical(joined.drop_vars("cycle_copied"), whole.drop_vars("cycle_copied"))
+
+
 def test_join_of_one_part_and_of_a_repeated_end(whole):
     xr.testing.assert_identical(join_results([whole]), whole)
     last = fr.History(whole.Q.values[-1:], whole.sigma.values[-1:], [0], whole.cycle.values[-1:])
