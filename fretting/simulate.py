@@ -269,10 +269,10 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
         )
     recorded_rtol = rtol
     if all(value is None for value in (nodes, rtol, mesh, state)):
-        model = default_model(contact, history)
-        nodes, mesh = model.get("nodes"), model.get("mesh")
-        recorded_rtol = None if mesh is None else DEFAULT_RTOL
-    scene = _scene(contact, history, rtol, nodes, mesh, state)
+        scene = _default_scene(contact, history)
+        recorded_rtol = DEFAULT_RTOL if isinstance(scene, GalerkinScene) else None
+    else:
+        scene = _scene(contact, history, rtol, nodes, mesh, state)
     steps = recorded_steps(record, len(history))
     run = _Run(scene, history, steps)
     data = run.data(run.follow(State.virgin(scene) if state is None else state))
@@ -285,8 +285,14 @@ def default_model(contact, history):
     ``{"mesh": theta}``, the Galerkin mesh adapted to `DEFAULT_RTOL`, unless that mesh would
     need more than `MAX_DEFAULT_MESH` nodes; then ``{"nodes": DEFAULT_NODES}``, the grid.
     """
-    theta = adapted_mesh(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH)
-    return {"nodes": DEFAULT_NODES} if theta is None else {"mesh": theta}
+    scene = _default_scene(contact, history)
+    return {"mesh": scene.theta} if isinstance(scene, GalerkinScene) else {"nodes": scene.x.size}
+
+
+def _default_scene(contact, history):
+    """The scene of the default model (see `default_model`)."""
+    scene = _adapted_scene(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH)
+    return _Scene(contact, DEFAULT_NODES) if scene is None else scene
 
 
 def _scene(contact, history, rtol, nodes, mesh, state):
@@ -306,13 +312,22 @@ def _scene(contact, history, rtol, nodes, mesh, state):
         return GalerkinScene(contact, mesh)
     if nodes is not None:
         return _Scene(contact, nodes)
-    return GalerkinScene(contact, adapted_mesh(contact, history, rtol))
+    return _adapted_scene(contact, history, rtol)
 
 
 def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
     """Galerkin mesh ``theta`` [rad] that resolves the stick and slip zones of `history` to `rtol`.
 
     None, without running it, as soon as a refinement would give more than `max_nodes` nodes.
+    See `_adapted_scene`.
+    """
+    scene = _adapted_scene(contact, history, rtol, max_nodes)
+    return None if scene is None else scene.theta
+
+
+def _adapted_scene(contact, history, rtol, max_nodes=None):
+    """`GalerkinScene` on the mesh that resolves the stick and slip zones of `history` to `rtol`
+    (that of its last pass, which the run then uses), or None.
 
     Runs the history's turning points (`History.turning_points`, from the contact just formed)
     on a mesh graded toward the edges, refines every element that
@@ -347,7 +362,7 @@ def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
             lower = refined[refined <= np.pi / 2]
             refined = np.concatenate([lower, np.pi - lower[::-1][int(lower[-1] == np.pi / 2) :]])
         if np.array_equal(refined, theta):
-            return theta
+            return scene
         if max_nodes is not None and refined.size > max_nodes:
             return None
         theta = refined
