@@ -16,9 +16,11 @@ Hats have constant derivatives on each element, so the stiffness ``K_kl = B(phi_
 needs the mean of ``Cl1(theta -+ phi)`` over each pair of elements. ``F = zeta(3) - Cl3`` has
 ``F'' = Cl1``, so the integral over a rectangle is a four-corner combination of ``F``; away from
 the singularities of ``Cl1`` that combination cancels, and a Taylor series about the
-rectangle's centre takes over. The means are then right to about 1e-14 for elements of similar
-size and to ``~ 1e-16`` times the ratio of the sizes otherwise: at most 4e-10 on the meshes
-that `element_targets` settles on, with elements down to 3e-6 rad.
+rectangle's centre takes over: a polynomial in ``cot^2`` of half the centre's argument whose
+coefficients depend on the two element sizes only, so that both kernels share them. The means
+are then right to about 1e-14 for elements of similar size and to ``~ 1e-16`` times the ratio
+of the sizes otherwise: at most 4e-10 on the meshes that `element_targets` settles on, with
+elements down to 3e-6 rad.
 
 Loads. The fully stuck traction of eqs (9) and (20) does the work
 ``F_k = int q_st phi_k dx = int (Q / pi + sigma a cos(theta) / 4) phi_k dtheta``, that is
@@ -81,6 +83,9 @@ FAR_PAIRS = 8.0
 #: Even Taylor orders ``0, 2, ..., 2 (TAYLOR_TERMS - 1)`` of the far-pair series: the next term
 #: is below ``8^-16 / 2000``, i.e. 1e-18.
 TAYLOR_TERMS = 8
+#: Pairs of elements per block of rows in which the series is summed: its temporaries then
+#: stay in the cache.
+BLOCK_PAIRS = 2**15
 
 #: Gauss-Legendre points per element for the friction limit: exact for the polynomial part
 #: of degree 15, far beyond the smoothness of the pressures on one element.
@@ -174,9 +179,10 @@ def clausen3_complement(x):
 
 
 def _clausen1_even_derivative_polynomials(terms):
-    """Coefficients in ``c = cot(x/2)`` of ``d^(2j) Cl1 / dx^(2j)``, ``j = 1 .. terms - 1``.
+    """Coefficients in ``s = cot(x/2)^2`` of ``d^(2j) Cl1 / dx^(2j)``, ``j = 1 .. terms - 1``.
 
-    ``Cl1' = -c/2`` and ``dc/dx = -(1 + c^2)/2``, so each derivative is a polynomial in ``c``.
+    With ``c = cot(x/2)``, ``Cl1' = -c/2`` and ``dc/dx = -(1 + c^2)/2``, so each derivative is a
+    polynomial in ``c``; the even ones are even in ``c``, of degree ``j`` in ``s``.
     """
     derivative = np.array([0.0, -0.5])
     half_one_plus_c2 = np.array([-0.5, 0.0, -0.5])
@@ -184,71 +190,89 @@ def _clausen1_even_derivative_polynomials(terms):
     for order in range(2, 2 * terms - 1):
         derivative = polynomial.polymul(polynomial.polyder(derivative), half_one_plus_c2)
         if order % 2 == 0:
-            even.append(derivative)
+            even.append(derivative[::2])
     return even
 
 
-_EVEN_DERIVATIVES = _clausen1_even_derivative_polynomials(TAYLOR_TERMS)
-_FACTORIALS = special.factorial(np.arange(2 * TAYLOR_TERMS + 1), exact=False)
+def _series_hankel(terms):
+    """``D[k, p, q]`` [rad^(-2p-2q)]: the coefficient of ``s^k`` in ``Cl1^(2p+2q)``, ``p + q = 1 .. terms - 1``.
 
-
-def _taylor_weights(h_e, h_f):
-    """Weights ``m_j`` [rad^(2j)] of ``mean = sum_j Cl1^(2j)(centre) m_j`` over elements of sizes `h_e`, `h_f`.
-
-    The second difference of ``F`` over the rectangle, expanded about its centre, leaves the
-    even terms ``m_j = 2 (A^(j+1) - B^(j+1)) / ((2j+2)! h_e h_f)`` with ``A = ((h_e + h_f)/2)^2``,
-    ``B = ((h_e - h_f)/2)^2``; as ``A - B = h_e h_f`` this is ``2 sum_i A^i B^(j-i) / (2j+2)!``,
-    which does not cancel.
+    Zero for ``p + q = 0`` or ``>= terms``; each ``D[k]`` is a Hankel matrix (a function of ``p + q``).
     """
-    A, B = ((h_e + h_f) / 2) ** 2, ((h_e - h_f) / 2) ** 2
-    weights, power_sum = [], np.zeros_like(A)
-    A_power = np.ones_like(A)
-    for j in range(TAYLOR_TERMS):
-        power_sum = power_sum * B + A_power if j else np.ones_like(A)
-        A_power = A_power * A
-        weights.append(2 * power_sum / _FACTORIALS[2 * j + 2])
-    return weights
+    hankel = np.zeros((terms, terms, terms))
+    for j, derivative in enumerate(_clausen1_even_derivative_polynomials(terms), start=1):
+        for p in range(j + 1):
+            hankel[: j + 1, p, j - p] = derivative
+    return hankel
 
 
-def _pair_means(lo, hi, plus):
-    """Mean of ``Cl1(theta - phi)`` (or ``Cl1(theta + phi)`` if `plus`) over every pair of elements.
+_SERIES_HANKEL = _series_hankel(TAYLOR_TERMS)
+_ODD_FACTORIALS = special.factorial(2 * np.arange(TAYLOR_TERMS) + 1)
+
+
+def _taylor_factors(h):
+    """Factors of the coefficients ``a_k[e, f] = sum_p x[e, p] y[k, p, f]`` [-] of `_series_means`.
+
+    Over ``t``, ``t'`` uniform on ``[-h_e/2, h_e/2]``, ``[-h_f/2, h_f/2]`` (`h`: the element
+    sizes [rad]), the mean of ``Cl1(u + t -+ t') = sum_n Cl1^(n)(u) (t -+ t')^n / n!`` keeps the
+    even ``n``: ``sum_(p,q) x_p(h_e) x_q(h_f) Cl1^(2p+2q)(u)``, with ``x_p(h) = (h/2)^(2p) / (2p+1)!``
+    the mean of ``t^(2p) / (2p)!``, summed over ``p + q < TAYLOR_TERMS``. The terms ``p + q >= 1``
+    are polynomials in ``s = cot(u/2)^2`` (`_SERIES_HANKEL` ``D``), so
+    ``y[k, p, f] = sum_q D[k, p, q] x_q(h_f)``, the same for both kernels.
+
+    Returns
+    -------
+    x : ndarray, shape (M, TAYLOR_TERMS)
+        ``x_p(h_e)`` [rad^(2p)].
+    y : ndarray, shape (TAYLOR_TERMS, TAYLOR_TERMS, M)
+        ``y[k, p, f]`` [rad^(-2p)].
+    """
+    x = (h[:, None] / 2) ** (2 * np.arange(TAYLOR_TERMS)) / _ODD_FACTORIALS
+    return x, np.matmul(_SERIES_HANKEL, x.T)
+
+
+def _series_means(u, coefficients):
+    """Far-pair means [-] ``Cl1(u) + sum_k a_k s^k``, ``s = cot(u/2)^2``, at arguments `u` [rad] in ``(0, pi]``.
+
+    One ``tan`` serves both parts: ``Cl1(u) = -ln|2 sin(u/2)| = ln(1 + s)/2 - ln 2``. The
+    polynomial by Horner, its `coefficients` ``a_k`` (`_taylor_factors`) broadcast against `u`.
+    """
+    s = np.tan(0.5 * u)
+    np.divide(1.0, s, out=s)
+    s *= s
+    means = coefficients[-1] * s
+    for a in coefficients[-2:0:-1]:
+        means += a
+        means *= s
+    means += coefficients[0] - np.log(2)
+    np.log1p(s, out=s)
+    s *= 0.5
+    means += s
+    return means
+
+
+def _corner_means(lo, hi, e, f, plus):
+    """Mean of ``Cl1(theta - phi)`` (or ``Cl1(theta + phi)`` if `plus`) over the pairs of elements ``(e, f)`` [-].
+
+    The four-corner formula: over ``[a1, a2] x [b1, b2]``,
+    ``(F(a2 - b1) + F(a1 - b2) - F(a1 - b1) - F(a2 - b2)) / (h_e h_f)``, and for `plus`
+    ``(F(a2 + b2) + F(a1 + b1) - F(a2 + b1) - F(a1 + b2)) / (h_e h_f)``. Pairs of `plus` nearer
+    ``2 pi`` than 0 are reflected, ``theta -> pi - theta``, so that their small arguments are
+    differences of nodes computed without rounding.
 
     Parameters
     ----------
     lo, hi : ndarray, shape (M,)
         Ends of the elements [rad], ``0 <= lo < hi <= pi``.
+    e, f : ndarray of int
+        The elements of each pair.
     plus : bool
-        Kernel of the sum; pairs nearer ``2 pi`` than 0 are reflected, ``theta -> pi - theta``,
-        so that their small arguments are differences of nodes computed without rounding.
-
-    Returns
-    -------
-    ndarray, shape (M, M)
-        Symmetric matrix of means [-].
+        Kernel of the sum.
     """
     h = hi - lo
-    centre = (lo + hi) / 2
-    sign = 1.0 if plus else -1.0
-    u = centre[:, None] + sign * centre[None, :]
     if plus:
-        reflect = u > np.pi
-        u = np.where(reflect, 2 * np.pi - u, u)
-    u = np.abs(u)
-    h_e, h_f = np.broadcast_arrays(h[:, None], h[None, :])
-    near = u < FAR_PAIRS * (h_e + h_f) / 2
-    means = np.empty(u.shape)
-
-    far = ~near
-    c = 1 / np.tan(u[far] / 2)
-    weights = _taylor_weights(h_e[far], h_f[far])
-    total = clausen1(u[far]) * weights[0]
-    for poly, weight in zip(_EVEN_DERIVATIVES, weights[1:], strict=True):
-        total += polynomial.polyval(c, poly) * weight
-    means[far] = total
-
-    e, f = np.nonzero(near)
-    if plus:
-        flip = reflect[e, f]
+        centre = (lo + hi) / 2
+        flip = centre[e] + centre[f] > np.pi
         a1 = np.where(flip, np.pi - hi[e], lo[e])
         a2 = np.where(flip, np.pi - lo[e], hi[e])
         b1 = np.where(flip, np.pi - hi[f], lo[f])
@@ -257,8 +281,76 @@ def _pair_means(lo, hi, plus):
     else:
         a1, a2, b1, b2 = lo[e], hi[e], lo[f], hi[f]
         corners = (a2 - b1, a1 - b2, a1 - b1, a2 - b2)
-    F = [clausen3_complement(v) for v in corners]
-    means[e, f] = (F[0] + F[1] - F[2] - F[3]) / (h[e] * h[f])
+    F = clausen3_complement(np.stack(corners))
+    return (F[0] + F[1] - F[2] - F[3]) / (h[e] * h[f])
+
+
+def _arguments(centre_e, centre_f):
+    """Arguments [rad] of the two kernels at the centres of pairs of elements, in ``[0, pi]``.
+
+    ``|c_e - c_f|`` and ``c_e + c_f``, the latter reflected to ``2 pi - c_e - c_f`` beyond pi
+    (``Cl1`` is even with period ``2 pi``); shape ``(2, *shape)`` of the centres broadcast.
+    """
+    u = np.empty((2, *np.broadcast_shapes(centre_e.shape, centre_f.shape)))
+    np.abs(np.subtract(centre_e, centre_f, out=u[0]), out=u[0])
+    np.add(centre_e, centre_f, out=u[1])
+    np.minimum(u[1], 2 * np.pi - u[1], out=u[1])
+    return u
+
+
+def _series_rows(means, centre, h, factors, rows):
+    """Fill ``means[:, rows, rows.start:]`` and its mirror image with `_series_means`.
+
+    `centre`, `h`: the elements' [rad]; `factors`: `_taylor_factors` of `h`. Returns the near
+    pairs among them, to be filled yet, as ``(kernel, e, f)`` with ``e <= f`` (kernel 0:
+    ``theta - phi``, 1: ``theta + phi``).
+    """
+    start = rows.start
+    x, y = factors
+    u = _arguments(centre[rows, None], centre[None, start:])
+    near = u < FAR_PAIRS * (h[rows, None] + h[None, start:]) / 2
+    np.copyto(u, np.pi, where=near)  # any argument away from 0 will do: `_pair_means` fills these
+    block = _series_means(u, np.matmul(x[rows], y[:, :, start:]))
+    means[:, start:, rows] = block.transpose(0, 2, 1)
+    means[:, rows, start:] = block
+    kernel, e, f = np.unravel_index(np.flatnonzero(near), near.shape)  # np.nonzero is slower in 3-D
+    upper = f >= e
+    return kernel[upper], start + e[upper], start + f[upper]
+
+
+def _both_ways(e, f):
+    """The pairs ``(e, f)``, ``e <= f``, and their mirror images ``(f, e)`` off the diagonal, as index arrays."""
+    off = e != f
+    return np.concatenate([e, f[off]]), np.concatenate([f, e[off]])
+
+
+def _pair_means(lo, hi):
+    """Means of ``Cl1(theta - phi)`` and of ``Cl1(theta + phi)`` over every pair of elements.
+
+    Both are symmetric: the series (`_series_rows`) runs over blocks of about `BLOCK_PAIRS`
+    pairs, rows ``e`` by columns ``f`` from the block's first row on, and is mirrored. The near
+    pairs then get `_corner_means`, for ``(e, f)`` and ``(f, e)`` alike: it rounds the two
+    differently.
+
+    Parameters
+    ----------
+    lo, hi : ndarray, shape (M,)
+        Ends of the elements [rad], ``0 <= lo < hi <= pi``.
+
+    Returns
+    -------
+    ndarray, shape (2, M, M)
+        The means [-] of ``Cl1(theta - phi)`` and of ``Cl1(theta + phi)``.
+    """
+    h, centre = hi - lo, (lo + hi) / 2
+    factors = _taylor_factors(h)
+    means = np.empty((2, h.size, h.size))
+    step = max(1, BLOCK_PAIRS // h.size)
+    near = [_series_rows(means, centre, h, factors, slice(start, start + step)) for start in range(0, h.size, step)]
+    kernel, e, f = (np.concatenate(index) for index in zip(*near, strict=True))
+    for plus in (0, 1):
+        pairs = _both_ways(e[kernel == plus], f[kernel == plus])
+        means[plus][pairs] = _corner_means(lo, hi, *pairs, plus=bool(plus))
     return means
 
 
@@ -268,10 +360,12 @@ def stiffness(theta, E_star):
     ``K = (E_star / (2 pi)) C^T (means(theta - phi) - means(theta + phi)) C`` with ``C`` the
     element difference of nodal values: symmetric, positive semi-definite, ``K 1 = 0``.
     """
-    lo, hi = theta[:-1], theta[1:]
-    kernel = _pair_means(lo, hi, plus=False) - _pair_means(lo, hi, plus=True)
-    padded = np.pad(kernel, 1)
-    return E_star / (2 * np.pi) * np.diff(np.diff(padded, axis=0), axis=1)
+    minus, plus = _pair_means(theta[:-1], theta[1:])
+    padded = np.zeros((theta.size + 1, theta.size + 1))
+    np.subtract(minus, plus, out=padded[1:-1, 1:-1])
+    K = np.diff(np.diff(padded, axis=0), axis=1)
+    K *= E_star / (2 * np.pi)
+    return K
 
 
 # --- one-dimensional integrals of hats --------------------------------------------------------

@@ -147,18 +147,49 @@ def test_clausen_against_direct_sums():
         np.testing.assert_allclose(second, gk.clausen1(point), rtol=1e-6)
 
 
-def test_pair_means_series_meets_corners():
+def test_pair_means_series_meets_corners(monkeypatch):
     """The far-pair Taylor series and the four-corner formula agree where both are accurate."""
     lo, hi = np.array([0.2, 1.0, 2.0]), np.array([0.25, 1.04, 2.1])
-    for plus in (False, True):
-        series = gk._pair_means(lo, hi, plus)
-        saved = gk.FAR_PAIRS
-        try:
-            gk.FAR_PAIRS = np.inf
-            corners = gk._pair_means(lo, hi, plus)
-        finally:
-            gk.FAR_PAIRS = saved
-        np.testing.assert_allclose(series, corners, rtol=1e-11)
+    series = gk._pair_means(lo, hi)
+    monkeypatch.setattr(gk, "FAR_PAIRS", np.inf)
+    np.testing.assert_allclose(series, gk._pair_means(lo, hi), rtol=1e-11)
+
+
+def test_pair_means_against_quadrature(monkeypatch):
+    """Means on a graded mesh, summed a row at a time (mirrored across blocks), against quadrature:
+    Gauss-Legendre on the pairs the series serves, nested adaptive quadrature on pairs that touch a
+    singularity of ``Cl1``."""
+    monkeypatch.setattr(gk, "BLOCK_PAIRS", 1)
+    theta = gk.initial_theta(8)  # 8 elements, the edge ones bisected down to 1e-4: sizes differ 4096-fold
+    lo, hi = theta[:-1], theta[1:]
+    means = gk._pair_means(lo, hi)
+    centre, h = (lo + hi) / 2, hi - lo
+    points, weights = np.polynomial.legendre.leggauss(24)
+    at = centre[:, None] + h[:, None] / 2 * points  # (M, 24)
+    distance = {  # from the centre of a pair to the nearest singularity
+        0: np.abs(centre[:, None] - centre[None, :]),
+        1: np.minimum(centre[:, None] + centre[None, :], 2 * np.pi - centre[:, None] - centre[None, :]),
+    }
+    for plus, sign in ((0, -1), (1, 1)):
+        e, f = np.nonzero(distance[plus] >= gk.FAR_PAIRS * (h[:, None] + h[None, :]) / 2)
+        quadrature = gk.clausen1(at[e, :, None] + sign * at[f, None, :]) @ weights @ weights / 4
+        np.testing.assert_allclose(means[plus, e, f], quadrature, rtol=0, atol=1e-14)
+    M = h.size
+    for plus, e, f in ((0, 0, 0), (0, 1, 0), (0, M // 2, M // 2), (1, 0, 0), (1, 0, 1), (1, M - 1, M - 2)):
+        mean = nested_mean(lo[e], hi[e], lo[f], hi[f], 1 if plus else -1)
+        np.testing.assert_allclose(means[plus, e, f], mean, rtol=1e-12, err_msg=f"kernel {plus}, pair {e, f}")
+
+
+def nested_mean(a1, a2, b1, b2, sign):
+    """Mean of ``Cl1(theta + sign phi)`` over ``[a1, a2] x [b1, b2]`` by nested adaptive quadrature."""
+
+    def inner(t):
+        singular = [t] if sign < 0 and b1 < t < b2 else None
+        return integrate.quad(
+            lambda p: gk.clausen1(t + sign * p), b1, b2, points=singular, epsabs=1e-15, epsrel=1e-13, limit=200
+        )[0]
+
+    return integrate.quad(inner, a1, a2, epsabs=1e-15, epsrel=1e-13, limit=200)[0] / ((a2 - a1) * (b2 - b1))
 
 
 def test_stiffness_energy_of_smooth_slip(hertz):
