@@ -48,6 +48,7 @@ from scipy import integrate
 
 import fretting as fr
 from fretting import closed_forms as cf
+from fretting.simulate import stick_zones
 
 __all__ = [
     "BAND",
@@ -715,9 +716,9 @@ def baseline_simulate(contact, history, nodes):
     dir_S f p_S sqrt(1 - t_S^2)`` with `numpy.linalg.solve`, stick the slipping nodes whose slip
     went against its direction, release the stuck nodes whose traction exceeds the friction
     limit, until nothing moves. Independent of `fretting.solver`; the same discretisation, so
-    its increments equal the engine's Chebyshev model's. Stick-zone ends use the same sub-grid
-    estimate as the engine (``|episode slip|^(2/3)`` extrapolated), so that the two are compared
-    as solvers, not as post-processing.
+    its increments equal the engine's Chebyshev model's. Stick-zone ends are the engine's own
+    sub-grid estimate (`fretting.simulate.stick_zones`), so that the two are compared as solvers,
+    not as post-processing.
 
     Returns
     -------
@@ -748,7 +749,7 @@ def baseline_simulate(contact, history, nodes):
         episode_start = np.where(ds == 0, new_slip, np.where(np.sign(ds) * np.sign(episode) < 0, slip, episode_start))
         slip = new_slip
         q[k], slips[k], dissipation[k] = g / root, slip, weight * np.abs(ds) @ limit
-        zones.append(_sub_grid_zones(t, slip - episode_start))
+        zones.append(stick_zones(t, slip - episode_start))
     q[0] = (history.Q[0] / np.pi + history.sigma[0] * a * t / 4) / a / root
     width = max(len(z) for z in zones)
     ends = np.full((steps, width, 2), np.nan)
@@ -799,32 +800,6 @@ def _baseline_increment(G, g_trial, limit, direction, tolerance):
         direction[backwards] = 0
         direction[released] = np.sign(g[released])
     raise fr.SolverError(f"baseline: the slip set did not settle in {BASELINE_ITERATIONS} iterations")
-
-
-def _sub_grid_zones(t, episode):
-    """Stick intervals in ``t`` from each node's slip since its slip episode began (zero: stuck).
-
-    The episode slip grows like ``d^(3/2)`` from a stick/slip boundary, so ``|episode|^(2/3)``
-    is extrapolated from the two nearest slipping nodes; a run of stuck nodes that reaches the
-    end of the grid ends at the contact edge.
-    """
-    stuck = np.concatenate([[False], episode == 0, [False]])
-    starts = np.flatnonzero(stuck[1:] & ~stuck[:-1])
-    stops = np.flatnonzero(stuck[:-1] & ~stuck[1:]) - 1
-    return [(_boundary(t, episode, i, -1), _boundary(t, episode, j, +1)) for i, j in zip(starts, stops, strict=True)]
-
-
-def _boundary(t, episode, inner, side):
-    outer, beyond = inner + side, inner + 2 * side
-    if not 0 <= outer < t.size:
-        return float(side)
-    near = abs(episode[outer]) ** (2 / 3)
-    if 0 <= beyond < t.size and np.sign(episode[beyond]) == np.sign(episode[outer]):
-        far = abs(episode[beyond]) ** (2 / 3)
-        if far > near:
-            estimate = t[outer] - near * (t[beyond] - t[outer]) / (far - near)
-            return float(np.clip(estimate, *sorted((2 * t[inner] - t[outer], t[outer]))))
-    return float((t[inner] + t[outer]) / 2)
 
 
 # -- Measurement ------------------------------------------------------------------------------

@@ -609,19 +609,31 @@ def stick_zones(t, ds):
     extrapolated linearly from the two nearest slipping nodes: 0.05 to 0.1 of the node spacing
     at the centre on the closed forms (benchmarks/accuracy_vs_nodes.py). A run of stuck nodes
     that reaches the end of the grid ends at the contact edge.
+
+    One interval per run of stuck nodes, in order: each lies between the slipping nodes around
+    its run and holds the run's middle, so ``start <= end`` and intervals do not overlap.
     """
     stuck = ds == 0
     edges = np.flatnonzero(np.diff(np.concatenate([[0], stuck.astype(np.int8), [0]])))
     runs = edges.reshape(-1, 2)  # [first stuck node, one past the last]
-    return [(_boundary(t, ds, first, -1), _boundary(t, ds, last - 1, +1)) for first, last in runs]
+    return [_zone(t, ds, first, last - 1) for first, last in runs]
 
 
-def _boundary(t, ds, inner, side):
+def _zone(t, ds, first, last):
+    """Stick interval of the run of stuck nodes `first` .. `last`."""
+    middle = (t[first] + t[last]) / 2
+    return _boundary(t, ds, first, -1, middle), _boundary(t, ds, last, +1, middle)
+
+
+def _boundary(t, ds, inner, side, middle):
     """Stick/slip boundary beyond the stuck node `inner` on `side` (-1 below, +1 above).
 
     The discrete stick zone may overshoot the true one by part of a node spacing, so the
-    estimate may lie up to one spacing inside the last stuck node, never beyond the first
-    slipping one.
+    estimate may lie up to one spacing inside the last stuck node, but never past `middle`, the
+    middle of the run of stuck nodes, nor beyond the first slipping node. The bound at `middle`
+    keeps the two ends of a zone ordered where the d^(3/2) law fails at the node scale: a stick
+    zone narrower than a spacing between slip zones of opposite directions, whose episode slips
+    cross zero nearly linearly, so that each side's extrapolation overshoots past the other's.
     """
     outer = inner + side
     if outer < 0 or outer >= t.size:
@@ -629,7 +641,7 @@ def _boundary(t, ds, inner, side):
     estimate = extrapolated_end(t, ds, outer, outer + side)
     if estimate is None:
         return float((t[inner] + t[outer]) / 2)
-    deepest = t[inner] - (t[outer] - t[inner])
+    deepest = t[inner] - side * min(abs(t[outer] - t[inner]), abs(t[inner] - middle))
     return float(np.clip(estimate, *sorted((deepest, t[outer]))))
 
 

@@ -11,6 +11,7 @@ and slips away from stick/slip boundaries keep the project's 1e-3 (of ``f p0``, 
 slip) of tests/test_closed_forms.py.
 """
 
+import functools
 import warnings
 
 import numpy as np
@@ -62,6 +63,27 @@ def assert_friction_conditions(result, contact):
     assert np.all(ds[~stick] != 0), "a node marked slipping did not move"
     assert np.all(result.dissipation.values >= 0)
     assert np.all(result.dissipation.values[np.all(stick, axis=1)] == 0)
+
+
+def assert_zone_ends_are_consistent(result):
+    """At every step: one stick zone per run of stuck nodes, in order along x; ``start <= end``;
+    each zone overlaps its run and lies between the slipping nodes around it (or the contact's
+    ends), so zones do not overlap and lie within the contact."""
+    x = result.x.values
+    edge = np.array([-1.0, 1.0]) * result.attrs["a"] + result.attrs["centre"]
+    bounded = np.concatenate([[edge[0]], x, [edge[1]]])  # a slipping node's place, or the contact's end
+    for step, stick in enumerate(result.stick.values):
+        runs = np.flatnonzero(np.diff(np.concatenate([[0], stick.astype(np.int8), [0]]))).reshape(-1, 2)
+        first, last = runs[:, 0], runs[:, 1] - 1
+        start, end = result.stick_start.values[step], result.stick_end.values[step]
+        recorded = ~np.isnan(start)
+        assert np.array_equal(recorded, ~np.isnan(end)) and np.count_nonzero(recorded) == first.size, f"step {step}"
+        start, end = start[recorded], end[recorded]
+        assert np.all(start <= end), f"step {step}: inverted zones {np.stack([start, end], axis=-1).tolist()}"
+        assert np.all(end[:-1] <= start[1:]), f"step {step}: overlapping zones"
+        assert np.all(bounded[first] <= start) and np.all(end <= bounded[last + 2]), f"step {step}: past a slip node"
+        assert np.all(start <= x[last]) and np.all(x[first] <= end), f"step {step}: a zone misses its stuck nodes"
+        assert edge[0] <= start.min() and end.max() <= edge[1], f"step {step}: outside the contact"
 
 
 def away_from(x, ends, a):
@@ -126,6 +148,64 @@ def test_ciavarella_jaeger_stick_zone_tends_to_the_flat(psi):
     e = (3 * R * P_c / (contact.E_star * flat**2)) ** (1 / 3)
     assert c > flat
     np.testing.assert_allclose(c - flat, flat * e**2 / 2, rtol=1e-2)
+
+
+#: Q / fP of the rounded flat close to sliding: the strip c - b beyond the flat is 1.3e-3 a, then 1.3e-5 a.
+CLOSE_TO_SLIDING = (0.999, 0.999999)
+
+#: Open engine bug at Q/fP = 0.999999 (measured): the default mesh would exceed MAX_DEFAULT_MESH
+#: (rtol 1e-4 adapts to 897 nodes), so the default runs the 384-node grid, whose friction force
+#: (Gauss-Chebyshev quadrature of p) is 2e-5 below f P: the last step is taken for gross slip.
+#: The mesh itself misplaces the ends by 1.02 (c - b) (rtol 1e-5, 2283 nodes: 0.05 (c - b)): the
+#: stick zone is the contact of P_c = P - Q/f under the gap f h0 that the mesh's slip under
+#: q = f p everywhere stands for, and that slip is flat over the flat only to 1.6e-13 m (rtol 1e-5:
+#: 4.6e-15 m) where f h0 at c is 2.6e-15 m.
+SLIDING_BUG = pytest.mark.xfail(
+    strict=True, raises=fr.GrossSlipError, reason="issue 6: Q/fP = 0.999999 on the rounded flat (SLIDING_BUG)"
+)
+
+
+@functools.cache
+def rounded_flat_close_to_sliding(psi):
+    """Last step of `proportional` to ``Q = psi f P`` on `rounded_flat()`, at the default settings."""
+    return proportional(rounded_flat(), psi).isel(step=-1)
+
+
+def strip_beyond_the_flat(psi):
+    """``c - b`` [m] of the engine's stick zone at ``Q = psi f P`` (mean of its two ends) and of Ciavarella-Jaeger."""
+    contact = rounded_flat()
+    start, end = zones(rounded_flat_close_to_sliding(psi))[0]
+    c = cf.ciavarella_jaeger(contact, psi * contact.f * contact.P, np.zeros(1))[1].a
+    return (end - start) / 2 - contact.profile.b, c - contact.profile.b
+
+
+@pytest.mark.parametrize("psi", [CLOSE_TO_SLIDING[0], pytest.param(CLOSE_TO_SLIDING[1], marks=SLIDING_BUG)])
+def test_rounded_flat_shear_close_to_sliding_sticks_beyond_the_flat(psi):
+    """Ciavarella-Jaeger (its reference checked above): the stick zone is [-c, c] with c > b, the
+    strip c - b located to 1 % of itself; the traction within 1e-3 f p0 of q = f (p(P) - p(P_c))
+    away from the stick/slip boundaries. At the default settings."""
+    contact = rounded_flat()
+    result = rounded_flat_close_to_sliding(psi)
+    x = result.x.values
+    q_exact, corrective = cf.ciavarella_jaeger(contact, psi * contact.f * contact.P, x)
+    c, flat = corrective.a, contact.profile.b
+    assert_zones(result, [[-c, c]], min(RESOLVED * (c - flat), PROJECT * contact.a))
+    assert np.all(np.abs(zones(result)) > flat)  # the stick zone covers the flat
+    band = away_from(x, [-c, c], contact.a)
+    assert np.max(np.abs(result.q.values - q_exact)[band]) < PROJECT * contact.f * contact.p0
+
+
+@SLIDING_BUG
+def test_rounded_flat_strip_beyond_the_flat_shrinks_like_the_two_thirds_power():
+    """c - b -> b e^2 / 2 with P_c -> E_star b^2 e^3 / (3R) (test above): c - b follows (fP - Q)^(2/3).
+    The engine's strips at Q/fP = 0.999 and 0.999999 give that exponent to within what two
+    strips each located to 1 % allow; Ciavarella-Jaeger's give it to 5e-5."""
+    (low, low_exact), (high, high_exact) = (strip_beyond_the_flat(psi) for psi in CLOSE_TO_SLIDING)
+    decades = np.log((1 - CLOSE_TO_SLIDING[0]) / (1 - CLOSE_TO_SLIDING[1]))
+    assert np.log(low_exact / high_exact) / decades == pytest.approx(2 / 3, abs=5e-5)
+    assert high > 0
+    tolerance = np.log((1 + RESOLVED) / (1 - RESOLVED)) / decades
+    assert np.log(low / high) / decades == pytest.approx(2 / 3, abs=tolerance)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -655,6 +735,19 @@ def test_tension_reversed_in_one_step_keeps_a_stick_zone_narrower_than_an_elemen
         assert_friction_conditions(result, contact)
         assert np.all(result.dissipation.values >= 0)
         assert result.stick.values[-1].any()
+        assert_zone_ends_are_consistent(result)
+
+
+@pytest.mark.parametrize("nodes", [32, 64, 128, 256])
+def test_a_stick_zone_narrower_than_a_spacing_keeps_its_ends_in_order(nodes):
+    """The scene above on grids: the stick zone left by the reversal is narrower than a node
+    spacing, between slip zones of opposite directions. Each side's d^(3/2) extrapolation
+    overshot past the single stuck node (64 nodes: a zone from 0.038 a to -0.024 a about the
+    centre, 32 and 128 nodes alike); the ends now stay ordered and hold the stuck node."""
+    contact = fr.Contact(fr.Gap(*asymmetric_flat()), 115e9, 0.3, 3e4)
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.piecewise_linear(np.array([0, 0.5, 0]) * fP, np.array([0, -2.2055744280043355, 2]) * fp0, 1)
+    assert_zone_ends_are_consistent(fr.simulate(contact, history, nodes=nodes))
 
 
 # ----------------------------------------------------------------------------------------------

@@ -11,7 +11,7 @@ import functools
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_hard_cases import assert_friction_conditions, asymmetric_flat
+from test_hard_cases import assert_friction_conditions, assert_zone_ends_are_consistent, asymmetric_flat
 
 import fretting as fr
 
@@ -68,6 +68,17 @@ def test_friction_conditions_on_random_profiles(scene, vertices, steps):
     history = fr.History.piecewise_linear(psi * scene.f * scene.P, tau * scene.f * scene.p0, steps)
     result = fr.simulate(scene, history)
     assert_friction_conditions(result, scene)
+    assert_zone_ends_are_consistent(result)
+
+
+@settings(max_examples=60, deadline=None)
+@given(scene=scenes(sorted(SHAPES)), vertices=loads, steps=st.integers(1, 3), nodes=st.sampled_from([16, 32, 64]))
+def test_zone_ends_are_ordered_on_coarse_grids(scene, vertices, steps, nodes):
+    """Any path, any profile, on grids coarse enough that stick zones narrower than a spacing
+    are common: zone ends ordered, within the contact, consistent with the stuck nodes."""
+    psi, tau = np.array([(0.0, 0.0), *vertices]).T
+    history = fr.History.piecewise_linear(psi * scene.f * scene.P, tau * scene.f * scene.p0, steps)
+    assert_zone_ends_are_consistent(fr.simulate(scene, history, nodes=nodes))
 
 
 @settings(max_examples=6, deadline=None)
