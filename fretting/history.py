@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fretting._validate import finite, finite_array
+from fretting._validate import finite, finite_array, positive
 from fretting.errors import HistoryError
 
 __all__ = ["History", "RAMP_STEPS"]
@@ -89,14 +89,25 @@ class History:
         """Number of the last load cycle; 0 for a history without cycles."""
         return int(_cycles(self).max())
 
-    def turning_points(self):
-        """The path through its turning points only: the first and last steps, the vertices, and the
-        steps where Q or sigma reverses or stops.
+    def turning_points(self, max_turn=None, units=(1.0, 1.0)):
+        """The path through its turning points only: the first and last steps, the vertices, the
+        steps where Q or sigma reverses or stops, and, given `max_turn`, the steps where a curved
+        stretch bends.
 
         Between turning points Q and sigma are monotonic, and along a proportional stretch the
         state reached does not depend on the steps taken (a slip zone only grows while the load
         grows), so the stick and slip zones at these steps are those that the energy of a
-        proportional path depends on. Vertices, cycles and loads are kept; steps are renumbered.
+        proportional path depends on. A curved (non-proportional) stretch is cut where its
+        direction in the plane of ``(Q / units[0], sigma / units[1])`` has turned by another
+        `max_turn` [rad] from its first direction, so that each piece is nearly straight; a
+        straight stretch is not cut. Vertices, cycles and loads are kept; steps are renumbered.
+
+        Parameters
+        ----------
+        max_turn : float, optional
+            Turn of the path's direction [rad] between cuts of a curved stretch (None: no cuts).
+        units : tuple of float
+            Units of Q [N/m] and sigma [Pa] in which the direction is measured.
         """
         kept = np.zeros(len(self), dtype=bool)
         kept[[0, -1]] = True
@@ -106,6 +117,9 @@ class History:
             np.sign(direction, out=direction)  # in place: the history may be long
             before, after = direction[:-1], direction[1:]
             kept[1:-1] |= (before != after) & (before != 0)
+        if max_turn is not None and np.ptp(self.Q) and np.ptp(self.sigma):  # a path along one axis never bends
+            max_turn, units = positive("max_turn", max_turn), [positive("units", unit) for unit in units]
+            kept[_bends(self.Q, self.sigma, kept, max_turn, units)] = True
         steps = np.flatnonzero(kept)
         cycle = None if self.cycle is None else self.cycle[steps]
         return History(self.Q[steps], self.sigma[steps], np.searchsorted(steps, self.vertex_step), cycle)
@@ -296,6 +310,23 @@ def _reached_from(start, history, ramp_steps):
 def _decreases(values):
     """Whether any of `values` is less than the one before (without a temporary array of differences)."""
     return bool(np.any(values[1:] < values[:-1]))
+
+
+def _bends(Q, sigma, kept, max_turn, units):
+    """Steps where the path ``(Q / units[0], sigma / units[1])`` has turned by another `max_turn`
+    [rad] from the first direction of its stretch, the steps from one `kept` step to the next.
+
+    Increments that do not move have no direction and are passed over. On a straight stretch
+    every direction is the first up to rounding, which `np.trunc` takes to no turn.
+    """
+    dQ, dsigma = np.diff(Q) / units[0], np.diff(sigma) / units[1]
+    moving = np.flatnonzero((dQ != 0) | (dsigma != 0))
+    direction = np.arctan2(dsigma[moving], dQ[moving])
+    stretch = np.cumsum(kept)[moving]
+    first = np.flatnonzero(np.diff(stretch, prepend=-1))  # the first moving increment of each stretch
+    turn = direction - np.repeat(direction[first], np.diff(first, append=moving.size))
+    turns = np.trunc((np.remainder(turn + np.pi, 2 * np.pi) - np.pi) / max_turn)
+    return moving[1:][(turns[1:] != turns[:-1]) & (stretch[1:] == stretch[:-1])]
 
 
 def _cycles(history):
