@@ -6,7 +6,7 @@ asymmetric flat profiles; f, P, and Q, sigma amplitudes and phase as its
 32 steps at default settings and prints the model each got and the wall time: the default
 gives up a mesh of more than `fretting.MAX_DEFAULT_MESH` nodes for the grid.
 
-Run:  python benchmarks/default_out_of_phase.py [SEED] [SCENES]   (defaults 1 and 40; about a minute)
+Run:  python benchmarks/default_out_of_phase.py [SEED] [SCENES]   (defaults 1 and 40; about 2 minutes)
 """
 
 import sys
