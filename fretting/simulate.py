@@ -47,8 +47,9 @@ REFINEMENTS = 60
 #: ``sqrt(1 - t^2) q_st = Q / (pi a) + sigma t / 4`` of eqs (9) and (20). A quarter of a
 #: 90-degree out-of-phase cycle is then run as two increments: on the bench's scene
 #: (`fretting.bench.scenes`, hertz_out_of_phase) the energy per cycle is within 4.7e-6 of the
-#: 1536-node grid on 380 nodes; with a turn of 60 degrees 6.6e-5 (355 nodes), of 30 degrees
-#: 5.4e-6 (445 nodes); without cuts 5.8e-4 (287 nodes).
+#: 1536-node grid on 380 nodes, without cuts 5.8e-4 on 287 (results/speed_vs_error.md, before
+#: and after); in one scratch comparison on that scene a turn of 60 degrees gave 6.6e-5 (355
+#: nodes) and of 30 degrees 5.4e-6 (445 nodes), not rerun.
 MAX_TURN = np.pi / 4
 
 #: Collocation nodes of the Gauss-Chebyshev model: worst errors 3.7e-4 a (stick-zone ends), 2.6e-4 f p0 (traction)
@@ -329,15 +330,6 @@ def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
     """Galerkin mesh ``theta`` [rad] that resolves the stick and slip zones of `history` to `rtol`.
 
     None, without running it, as soon as a refinement would give more than `max_nodes` nodes.
-    See `_adapted_scene`.
-    """
-    scene = _adapted_scene(contact, history, rtol, max_nodes)
-    return None if scene is None else scene.theta
-
-
-def _adapted_scene(contact, history, rtol, max_nodes=None):
-    """`GalerkinScene` on the mesh that resolves the stick and slip zones of `history` to `rtol`
-    (that of its last pass, which the run then uses), or None.
 
     Runs the history's turning points (`History.turning_points`, from the contact just formed),
     each curved stretch between them cut where its direction has turned by `MAX_TURN`, on a
@@ -358,6 +350,12 @@ def _adapted_scene(contact, history, rtol, max_nodes=None):
     Under Q alone or sigma alone on a symmetric profile the mesh is kept symmetric, as the
     solution is. A history that reaches gross slip is adapted to the steps before it.
     """
+    scene = _adapted_scene(contact, history, rtol, max_nodes)
+    return None if scene is None else scene.theta
+
+
+def _adapted_scene(contact, history, rtol, max_nodes=None):
+    """`GalerkinScene` of the last pass of `adapted_mesh` (the run then uses it, assembled once), or None."""
     rtol = positive("rtol", rtol)
     sliding = np.flatnonzero(np.abs(history.Q) >= contact.f * contact.P)
     if sliding.size:  # the run will stop there: adapt to the steps before

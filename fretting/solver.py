@@ -25,12 +25,11 @@ blocks the step and sticks; at a minimiser every stuck node whose traction excee
 is released in the direction of its traction. ``J`` falls at every step, so no working set
 repeats and the method ends, exactly, in finitely many steps.
 
-The releases of one increment grow the slip zones a few nodes at a time (five or six solves
-per increment on a 764-node mesh), so the Cholesky factor of the slipping nodes' block of
-``G`` is kept through an increment and bordered by the nodes released (`_Factor`); a working
-set that loses nodes is factored anew. Each increment starts a new factor, so what it
-computes depends on its loads and starting state alone, and a repeating state repeats bit
-for bit.
+The releases of one increment grow the slip zones a few nodes at a time, one solve after
+another, so the Cholesky factor of the slipping nodes' block of ``G`` is kept through an
+increment and bordered by the nodes released (`_Factor`); a working set that loses nodes is
+factored anew. Each increment starts a new factor, so what it computes depends on its loads
+and starting state alone, and a repeating state repeats bit for bit.
 """
 
 from dataclasses import dataclass
