@@ -1214,6 +1214,16 @@ def _table(header, lines):
     return out + ["| " + " | ".join(str(cell) for cell in line) + " |" for line in lines]
 
 
+def _field_table(rows, columns):
+    """`_table` of the dicts `rows`; `columns` are ``(header, key, format)``, format None: the value as it is.
+
+    A key a row lacks (a measurement not made) shows as ``-``.
+    """
+    header = tuple(title for title, _, _ in columns)
+    cells = [[_fmt(row.get(key), spec or "") for _, key, spec in columns] for row in rows]
+    return _table(header, cells)
+
+
 def markdown(report, png_name):
     """The short report: how it was measured, one table per scene, the baseline, scaling, long runs."""
     meta, ratio = report["meta"], report["ratio"]
@@ -1257,42 +1267,25 @@ def markdown(report, png_name):
             ],
         )
     lines += ["", "## Baseline", "", _ratio_text(ratio), "", "## Cost against resolution", ""]
-    lines += _table(
-        ("model", "configuration", "points", "ms/step", "exponent d ln t / d ln N", "peak MB"),
-        [
-            (
-                r["model"],
-                r["label"],
-                r["points"],
-                _fmt(r["ms_per_step"], ".3g"),
-                _fmt(r["exponent"], ".2f"),
-                _fmt(r["peak_MB"], ".3g"),
-            )
-            for r in report["resolution"]
-        ],
-    )
+    lines += _field_table(
+        report["resolution"],
+        [("model", "model", None), ("configuration", "label", None), ("points", "points", None),
+         ("ms/step", "ms_per_step", ".3g"), ("exponent d ln t / d ln N", "exponent", ".2f"),
+         ("peak MB", "peak_MB", ".3g")],
+    )  # fmt: skip
     lines += ["", "## Cost against steps (default, Hertz Q cycling, last step recorded)", ""]
-    lines += _table(
-        ("cycles", "steps", "total s", "ms/step", "peak MB"),
-        [
-            (
-                r["cycles"],
-                r["steps"],
-                _fmt(r["total_s"], ".3g"),
-                _fmt(r["ms_per_step"], ".3g"),
-                _fmt(r["peak_MB"], ".3g"),
-            )
-            for r in report["steps"]
-        ],
-    )
+    lines += _field_table(
+        report["steps"],
+        [("cycles", "cycles", None), ("steps", "steps", None), ("total s", "total_s", ".3g"),
+         ("ms/step", "ms_per_step", ".3g"), ("peak MB", "peak_MB", ".3g")],
+    )  # fmt: skip
     lines += ["", "## Long runs (default settings, fresh process each)", ""]
-    lines += _table(
-        ("target", "history", "cycles", "steps", "time s", "limit s", "energy", "limit", "peak RSS GB", "status"),
-        [
-            (r["target"], r["title"], r["cycles"], r["steps"], _fmt(r["seconds"], ".3g"), _fmt(r["limit_s"], "g"),
-             _fmt(r.get("energy_rel")), _fmt(r["energy_limit"], "g"), _fmt(r.get("peak_rss_GB"), ".3g"), r["status"])
-            for r in report["long"]
-        ],
+    lines += _field_table(
+        report["long"],
+        [("target", "target", None), ("history", "title", None), ("cycles", "cycles", None),
+         ("steps", "steps", None), ("time s", "seconds", ".3g"), ("limit s", "limit_s", "g"),
+         ("energy", "energy_rel", ".2e"), ("limit", "energy_limit", "g"), ("peak RSS GB", "peak_rss_GB", ".3g"),
+         ("status", "status", None)],
     )  # fmt: skip
     lines += [
         "",
