@@ -20,7 +20,11 @@ rectangle's centre takes over: a polynomial in ``cot^2`` of half the centre's ar
 coefficients depend on the two element sizes only, so that both kernels share them. The means
 are then right to about 1e-14 for elements of similar size and to ``~ 1e-16`` times the ratio
 of the sizes otherwise: at most 4e-10 on the meshes that `element_targets` settles on, with
-elements down to 3e-6 rad.
+elements down to 3e-6 rad. Each mean is computed from its own two elements alone, in operations
+that do not depend on the other elements, so that the scene of a refined mesh copies the means
+of the pairs of elements it shares with the scene before (`GalerkinScene`'s ``previous``) and
+its stiffness equals, bit for bit, one assembled afresh (as a run resumed from a saved state
+assembles it).
 
 Loads. The fully stuck traction of eqs (9) and (20) does the work
 ``F_k = int q_st phi_k dx = int (Q / pi + sigma a cos(theta) / 4) phi_k dtheta``, that is
@@ -53,6 +57,8 @@ in [0.05, 0.95] and 1.2e-5 down to 1e-6, stick ends within 2.2e-4 a, tractions w
 f p0 and slips within 3.2e-4 of their maximum, on 268 to 765 nodes (765 at Q/fP = 0.999999,
 just under `fretting.simulate.MAX_DEFAULT_MESH`).
 """
+
+from typing import NamedTuple
 
 import numpy as np
 from numpy.polynomial import polynomial
@@ -210,18 +216,20 @@ def _series_hankel(terms):
 
 
 _SERIES_HANKEL = _series_hankel(TAYLOR_TERMS)
-_ODD_FACTORIALS = special.factorial(2 * np.arange(TAYLOR_TERMS) + 1)
 
 
 def _taylor_factors(h):
-    """Factors of the coefficients ``a_k[e, f] = sum_p x[e, p] y[k, p, f]`` [-] of `_series_means`.
+    """Factors of the coefficients ``a_k(h_e, h_f) = sum_p x[e, p] y[k, p, f]`` [-] of `_series_means`.
 
     Over ``t``, ``t'`` uniform on ``[-h_e/2, h_e/2]``, ``[-h_f/2, h_f/2]`` (`h`: the element
     sizes [rad]), the mean of ``Cl1(u + t -+ t') = sum_n Cl1^(n)(u) (t -+ t')^n / n!`` keeps the
     even ``n``: ``sum_(p,q) x_p(h_e) x_q(h_f) Cl1^(2p+2q)(u)``, with ``x_p(h) = (h/2)^(2p) / (2p+1)!``
     the mean of ``t^(2p) / (2p)!``, summed over ``p + q < TAYLOR_TERMS``. The terms ``p + q >= 1``
     are polynomials in ``s = cot(u/2)^2`` (`_SERIES_HANKEL` ``D``), so
-    ``y[k, p, f] = sum_q D[k, p, q] x_q(h_f)``, the same for both kernels.
+    ``y[k, p, f] = sum_q D[k, p, q] x_q(h_f)``, the same for both kernels. Both are products and
+    sums in a fixed order, elementwise (``x_p = x_(p-1) (h/2)^2 / (2p (2p+1))``; no BLAS, whose
+    rounding depends on the shapes of the arrays): each row of `x` and column of `y` depends on
+    its own size alone, bit for bit.
 
     Returns
     -------
@@ -230,15 +238,45 @@ def _taylor_factors(h):
     y : ndarray, shape (TAYLOR_TERMS, TAYLOR_TERMS, M)
         ``y[k, p, f]`` [rad^(-2p)].
     """
-    x = (h[:, None] / 2) ** (2 * np.arange(TAYLOR_TERMS)) / _ODD_FACTORIALS
-    return x, np.matmul(_SERIES_HANKEL, x.T)
+    half_squared = (h / 2) * (h / 2)
+    x = np.empty((h.size, TAYLOR_TERMS))
+    x[:, 0] = 1.0
+    for p in range(1, TAYLOR_TERMS):
+        x[:, p] = x[:, p - 1] * half_squared / ((2 * p) * (2 * p + 1))
+    y = _SERIES_HANKEL[..., 0, None] * x[:, 0]
+    for q in range(1, TAYLOR_TERMS):
+        y += _SERIES_HANKEL[..., q, None] * x[:, q]
+    return x, y
+
+
+def _series_coefficients(sizes):
+    """``a_k(h_e, h_f)`` [-] of `_series_means` for every pair of the distinct element `sizes` [rad].
+
+    ``a_k = sum_p x_p(h_e) y[k, p](h_f)`` (`_taylor_factors`), summed over ``p`` in order for
+    ``h_e <= h_f`` and mirrored: symmetric, and each entry a function of its two sizes alone, bit
+    for bit, whatever other sizes there are. A mesh of bisected elements has few distinct sizes
+    (48 among the 763 elements of the bench's baseline scene), so this table is cheap; one of
+    ``M`` distinct sizes (random nodes) costs ``~ 64 M^2`` operations here: 70 ms at 763
+    elements, where the rest of the assembly takes 10 ms.
+
+    Returns
+    -------
+    ndarray, shape (TAYLOR_TERMS, U, U)
+        ``a_k`` of the sizes ``(sizes[i], sizes[j])``.
+    """
+    x, y = _taylor_factors(sizes)
+    a = x[:, 0, None] * y[:, 0, None, :]
+    for p in range(1, TAYLOR_TERMS):
+        a += x[:, p, None] * y[:, p, None, :]
+    ascending = np.arange(sizes.size)[:, None] <= np.arange(sizes.size)
+    return np.where(ascending, a, a.transpose(0, 2, 1))
 
 
 def _series_means(u, coefficients):
     """Far-pair means [-] ``Cl1(u) + sum_k a_k s^k``, ``s = cot(u/2)^2``, at arguments `u` [rad] in ``(0, pi]``.
 
     One ``tan`` serves both parts: ``Cl1(u) = -ln|2 sin(u/2)| = ln(1 + s)/2 - ln 2``. The
-    polynomial by Horner, its `coefficients` ``a_k`` (`_taylor_factors`) broadcast against `u`.
+    polynomial by Horner, its `coefficients` ``a_k`` (`_series_coefficients`) broadcast against `u`.
     """
     s = np.tan(0.5 * u)
     np.divide(1.0, s, out=s)
@@ -258,10 +296,12 @@ def _corner_means(lo, hi, e, f, plus):
     """Mean of ``Cl1(theta - phi)`` (or ``Cl1(theta + phi)`` if `plus`) over the pairs of elements ``(e, f)`` [-].
 
     The four-corner formula: over ``[a1, a2] x [b1, b2]``,
-    ``(F(a2 - b1) + F(a1 - b2) - F(a1 - b1) - F(a2 - b2)) / (h_e h_f)``, and for `plus`
-    ``(F(a2 + b2) + F(a1 + b1) - F(a2 + b1) - F(a1 + b2)) / (h_e h_f)``. Pairs of `plus` nearer
-    ``2 pi`` than 0 are reflected, ``theta -> pi - theta``, so that their small arguments are
-    differences of nodes computed without rounding.
+    ``((F(a2 - b1) + F(a1 - b2)) - (F(a1 - b1) + F(a2 - b2))) / (h_e h_f)``, and for `plus`
+    ``((F(a2 + b2) + F(a1 + b1)) - (F(a2 + b1) + F(a1 + b2))) / (h_e h_f)``: swapping ``e`` and
+    ``f`` swaps the two terms of a sum (``F`` is even), so the mean of ``(f, e)`` is that of
+    ``(e, f)``, bit for bit. Pairs of `plus` nearer ``2 pi`` than 0 are reflected,
+    ``theta -> pi - theta``, so that their small arguments are differences of nodes computed
+    without rounding.
 
     Parameters
     ----------
@@ -285,7 +325,7 @@ def _corner_means(lo, hi, e, f, plus):
         a1, a2, b1, b2 = lo[e], hi[e], lo[f], hi[f]
         corners = (a2 - b1, a1 - b2, a1 - b1, a2 - b2)
     F = clausen3_complement(np.stack(corners))
-    return (F[0] + F[1] - F[2] - F[3]) / (h[e] * h[f])
+    return ((F[0] + F[1]) - (F[2] + F[3])) / (h[e] * h[f])
 
 
 def _arguments(centre_e, centre_f):
@@ -301,74 +341,139 @@ def _arguments(centre_e, centre_f):
     return u
 
 
-def _series_rows(means, centre, h, factors, rows):
-    """Fill ``means[:, rows, rows.start:]`` and its mirror image with `_series_means`.
+class _Elements(NamedTuple):
+    """The elements of a mesh as `_series_block` and `_near_pairs` read them."""
 
-    `centre`, `h`: the elements' [rad]; `factors`: `_taylor_factors` of `h`. Returns the near
-    pairs among them, to be filled yet, as ``(kernel, e, f)`` with ``e <= f`` (kernel 0:
-    ``theta - phi``, 1: ``theta + phi``).
-    """
-    start = rows.start
-    x, y = factors
-    u = _arguments(centre[rows, None], centre[None, start:])
-    near = u < FAR_PAIRS * (h[rows, None] + h[None, start:]) / 2
-    np.copyto(u, np.pi, where=near)  # any argument away from 0 will do: `_pair_means` fills these
-    block = _series_means(u, np.matmul(x[rows], y[:, :, start:]))
-    means[:, start:, rows] = block.transpose(0, 2, 1)
-    means[:, rows, start:] = block
-    kernel, e, f = np.unravel_index(np.flatnonzero(near), near.shape)  # np.nonzero is slower in 3-D
-    upper = f >= e
-    return kernel[upper], start + e[upper], start + f[upper]
+    lo: np.ndarray  #: ends [rad], shape (M,)
+    hi: np.ndarray
+    centre: np.ndarray  #: [rad]
+    h: np.ndarray  #: sizes [rad]
+    size_index: np.ndarray  #: of each element's size among the distinct ones
+    coefficients: np.ndarray  #: `_series_coefficients` of the distinct sizes, shape (TAYLOR_TERMS, U, U)
 
 
-def _both_ways(e, f):
-    """The pairs ``(e, f)``, ``e <= f``, and their mirror images ``(f, e)`` off the diagonal, as index arrays."""
-    off = e != f
-    return np.concatenate([e, f[off]]), np.concatenate([f, e[off]])
+def _elements(lo, hi):
+    """`_Elements` of the elements ``[lo, hi]`` [rad]."""
+    h = hi - lo
+    sizes, size_index = np.unique(h, return_inverse=True)
+    return _Elements(lo, hi, (lo + hi) / 2, h, size_index, _series_coefficients(sizes))
 
 
-def _pair_means(lo, hi):
-    """Means of ``Cl1(theta - phi)`` and of ``Cl1(theta + phi)`` over every pair of elements.
+def _series_block(elements, rows, columns):
+    """`_series_means` of both kernels over the pairs of elements `rows` x `columns` (slices or indices).
 
-    Both are symmetric: the series (`_series_rows`) runs over blocks of about `BLOCK_PAIRS`
-    pairs, rows ``e`` by columns ``f`` from the block's first row on, and is mirrored. The near
-    pairs then get `_corner_means`, for ``(e, f)`` and ``(f, e)`` alike: it rounds the two
-    differently.
-
-    Parameters
-    ----------
-    lo, hi : ndarray, shape (M,)
-        Ends of the elements [rad], ``0 <= lo < hi <= pi``.
+    Every mean is computed elementwise from its own two elements (arguments, nearness and the
+    coefficients of its two sizes), the same for ``(e, f)`` and ``(f, e)``: it does not depend, to
+    the last bit, on the block it is computed in.
 
     Returns
     -------
-    ndarray, shape (2, M, M)
+    block : ndarray, shape (2, R, C)
         The means [-] of ``Cl1(theta - phi)`` and of ``Cl1(theta + phi)``.
+    near : ndarray of bool, shape (2, R, C)
+        Where they are yet to be replaced by `_corner_means`.
     """
-    h, centre = hi - lo, (lo + hi) / 2
-    factors = _taylor_factors(h)
-    means = np.empty((2, h.size, h.size))
-    step = max(1, BLOCK_PAIRS // h.size)
-    near = [_series_rows(means, centre, h, factors, slice(start, start + step)) for start in range(0, h.size, step)]
-    kernel, e, f = (np.concatenate(index) for index in zip(*near, strict=True))
+    centre, h = elements.centre, elements.h
+    u = _arguments(centre[rows, None], centre[None, columns])
+    near = u < FAR_PAIRS * (h[rows, None] + h[None, columns]) / 2
+    np.copyto(u, np.pi, where=near)  # any argument away from 0 will do: `_near_pairs` replaces these
+    sizes = elements.coefficients.shape[-1]
+    pair_sizes = elements.size_index[rows, None] * sizes + elements.size_index[None, columns]
+    block = _series_means(u, elements.coefficients.reshape(TAYLOR_TERMS, -1).take(pair_sizes, axis=1))
+    return block, near
+
+
+def _series_pairs(means, elements, rows, columns, computed):
+    """Fill ``means[rows, columns]`` and its mirror image with the difference of the kernels' `_series_block`.
+
+    Returns the pairs ``(e, f)`` among them that are near in either kernel, to be filled by
+    `_near_pairs`, once each (``f >= e``, or `f` no row of `computed`): ``e``, ``f``, the two
+    kernels' series means, shape (2, n), and where they are near.
+    """
+    block, near = _series_block(elements, rows, columns)
+    difference = block[0] - block[1]
+    means[rows, columns] = difference
+    means[columns, rows] = difference.T
+    i, j = np.nonzero(near[0] | near[1])
+    element = np.arange(computed.size)
+    e, f = element[rows][i], element[columns][j]
+    once = (f >= e) | ~computed[f]
+    i, j = i[once], j[once]
+    return e[once], f[once], block[:, i, j], near[:, i, j]
+
+
+def _near_pairs(means, elements, e, f, series, near):
+    """Fill ``means[e, f]`` and ``means[f, e]``: `_corner_means` in a kernel where the pair is near, else `series`."""
     for plus in (0, 1):
-        pairs = _both_ways(e[kernel == plus], f[kernel == plus])
-        means[plus][pairs] = _corner_means(lo, hi, *pairs, plus=bool(plus))
-    return means
+        corner = near[plus]
+        series[plus, corner] = _corner_means(elements.lo, elements.hi, e[corner], f[corner], plus=bool(plus))
+    means[e, f] = means[f, e] = series[0] - series[1]
 
 
-def stiffness(theta, E_star):
+def _recurring_elements(lo, hi, previous):
+    """Index of each element ``[lo, hi]`` [rad] among those of the mesh `previous` [rad], -1 if not one of them.
+
+    An element recurs if `previous` has an element with the same two ends, exactly.
+    """
+    k = np.minimum(np.searchsorted(previous, lo), previous.size - 2)
+    return np.where((previous[k] == lo) & (previous[k + 1] == hi), k, -1)
+
+
+def _kernel_means(lo, hi, previous=None):
+    """Means [-] of ``Cl1(theta - phi) - Cl1(theta + phi)`` over every pair of elements ``[lo, hi]`` [rad].
+
+    In a border of zeros, shape ``(M + 2, M + 2)``, that `_stiffness` differences as it is.
+    Symmetric: the series (`_series_pairs`) runs over blocks of about `BLOCK_PAIRS` pairs, rows
+    ``e`` by columns ``f`` from the block's first row on, and is mirrored; the near pairs then
+    get `_corner_means` (`_near_pairs`). With `previous` (any `GalerkinScene`: the means are
+    geometry alone), the pairs of elements that recur in its mesh (`_recurring_elements`) copy
+    its means and the series runs over the rows of the new elements by every column, unless half
+    the elements or more are new (every pair, mirrored, is then the cheaper). Each mean is computed
+    from its two elements alone, elementwise, so the result is the same, bit for bit, with any
+    `previous` or none.
+    """
+    M = lo.size
+    bordered = np.zeros((M + 2, M + 2))
+    means = bordered[1:-1, 1:-1]
+    origin = np.full(M, -1) if previous is None else _recurring_elements(lo, hi, previous.theta)
+    computed = origin < 0
+    step = max(1, BLOCK_PAIRS // M)
+    if 2 * np.count_nonzero(computed) < M:
+        source = np.maximum(origin, 0)  # the rows and columns of the new elements are overwritten
+        means[...] = previous._kernel_means[1:-1, 1:-1].take(source, axis=0).take(source, axis=1)
+        new = np.flatnonzero(computed)
+        blocks = [(new[start : start + step], slice(None)) for start in range(0, new.size, step)]
+    else:
+        computed[:] = True
+        blocks = [(slice(start, start + step), slice(start, None)) for start in range(0, M, step)]
+    if blocks:  # none on the mesh of `previous` itself
+        elements = _elements(lo, hi)
+        near = [_series_pairs(means, elements, rows, columns, computed) for rows, columns in blocks]
+        _near_pairs(means, elements, *(np.concatenate(part, axis=-1) for part in zip(*near, strict=True)))
+    return bordered
+
+
+def _stiffness(kernel_means, E_star):
+    """``K = (E_star / (2 pi)) C^T W C`` [Pa] from the bordered `_kernel_means` ``W``, ``C`` the element differences.
+
+    Of ``W`` reversed in both axes (a view), the same differences give ``K`` reversed, bit for
+    bit: ``x - y = -(y - x)`` exactly.
+    """
+    K = np.diff(np.diff(kernel_means, axis=0), axis=1)
+    K *= E_star / (2 * np.pi)
+    return K
+
+
+def stiffness(theta, E_star, previous=None):
     """``K_kl = B(phi_k, phi_l)`` [Pa] of the hats on the mesh `theta` (ascending, 0 to pi).
 
     ``K = (E_star / (2 pi)) C^T (means(theta - phi) - means(theta + phi)) C`` with ``C`` the
     element difference of nodal values: symmetric, positive semi-definite, ``K 1 = 0``.
+    `previous`, any `GalerkinScene` (worth it when its mesh shares most elements with `theta`,
+    as a coarser one that `refine` bisected does), lends the means of the pairs of elements with
+    the same two ends: the result is the same, bit for bit, as without it (`_kernel_means`).
     """
-    minus, plus = _pair_means(theta[:-1], theta[1:])
-    padded = np.zeros((theta.size + 1, theta.size + 1))
-    np.subtract(minus, plus, out=padded[1:-1, 1:-1])
-    K = np.diff(np.diff(padded, axis=0), axis=1)
-    K *= E_star / (2 * np.pi)
-    return K
+    return _stiffness(_kernel_means(theta[:-1], theta[1:], previous), E_star)
 
 
 # --- one-dimensional integrals of hats --------------------------------------------------------
@@ -511,6 +616,10 @@ class GalerkinScene:
     contact : Contact
     theta : array_like, shape (M + 1,)
         Mesh nodes [rad], strictly increasing from 0 to pi.
+    previous : GalerkinScene, optional
+        A scene whose mesh shares elements with `theta` (one that `refine` bisected): its means
+        over the pairs of shared elements are reused, and the scene is the same, bit for bit, as
+        without it (`stiffness`).
 
     Attributes
     ----------
@@ -531,7 +640,7 @@ class GalerkinScene:
         inside the contact), for `element_targets`.
     """
 
-    def __init__(self, contact, theta):
+    def __init__(self, contact, theta, previous=None):
         theta = _validated_mesh(theta)
         self.contact = contact
         self.theta = theta
@@ -540,7 +649,8 @@ class GalerkinScene:
         self.t = np.cos(theta[order])
         self.t[0], self.t[-1] = -1.0, 1.0
         self.x = contact.centre + a * self.t
-        self.G = np.ascontiguousarray(stiffness(theta, contact.E_star)[order, order])
+        self._kernel_means = _kernel_means(theta[:-1], theta[1:], previous)  # for the scene of a refined mesh
+        self.G = _stiffness(self._kernel_means[order, order], contact.E_star)
         cos_integral, sin_integral = _hat_trig_integrals(theta)
         self._dQ = (_assemble(np.diff(theta) / 2, np.diff(theta) / 2) / np.pi)[order]
         self._dsig = (a / 4 * cos_integral)[order]

@@ -370,8 +370,9 @@ def _adapted_scene(contact, history, rtol, max_nodes=None):
     mirrored = contact.profile.SYMMETRIC and not (history.Q.any() and history.sigma.any())
     theta = initial_theta()
     directions = {}  # step: the slip directions the last pass found there, and its nodes' x
+    scene = None
     for _ in range(REFINEMENTS):
-        scene = GalerkinScene(contact, theta)
+        scene = GalerkinScene(contact, theta, previous=scene)
         targets, known, directions = np.full(theta.size - 1, np.inf), directions, {}
 
         def observe(step, ds, scene=scene, targets=targets, found=directions):

@@ -151,34 +151,34 @@ def test_clausen_against_direct_sums():
 def test_pair_means_series_meets_corners(monkeypatch):
     """The far-pair Taylor series and the four-corner formula agree where both are accurate."""
     lo, hi = np.array([0.2, 1.0, 2.0]), np.array([0.25, 1.04, 2.1])
-    series = gk._pair_means(lo, hi)
+    series = gk._kernel_means(lo, hi)
     monkeypatch.setattr(gk, "FAR_PAIRS", np.inf)
-    np.testing.assert_allclose(series, gk._pair_means(lo, hi), rtol=1e-11)
+    np.testing.assert_allclose(series, gk._kernel_means(lo, hi), rtol=1e-11)
 
 
 def test_pair_means_against_quadrature(monkeypatch):
-    """Means on a graded mesh, summed a row at a time (mirrored across blocks), against quadrature:
-    Gauss-Legendre on the pairs the series serves, nested adaptive quadrature on pairs that touch a
-    singularity of ``Cl1``."""
+    """Means of ``Cl1(theta - phi) - Cl1(theta + phi)`` on a graded mesh, summed a row at a time
+    (mirrored across blocks), against quadrature: Gauss-Legendre on the pairs the series serves in
+    both kernels, nested adaptive quadrature on pairs that touch a singularity of ``Cl1``."""
     monkeypatch.setattr(gk, "BLOCK_PAIRS", 1)
     theta = gk.initial_theta(8)  # 8 elements, the edge ones bisected down to 1e-4: sizes differ 4096-fold
     lo, hi = theta[:-1], theta[1:]
-    means = gk._pair_means(lo, hi)
+    means = gk._kernel_means(lo, hi)[1:-1, 1:-1]
     centre, h = (lo + hi) / 2, hi - lo
     points, weights = np.polynomial.legendre.leggauss(24)
     at = centre[:, None] + h[:, None] / 2 * points  # (M, 24)
     distance = {  # from the centre of a pair to the nearest singularity
-        0: np.abs(centre[:, None] - centre[None, :]),
+        -1: np.abs(centre[:, None] - centre[None, :]),
         1: np.minimum(centre[:, None] + centre[None, :], 2 * np.pi - centre[:, None] - centre[None, :]),
     }
-    for plus, sign in ((0, -1), (1, 1)):
-        e, f = np.nonzero(distance[plus] >= gk.FAR_PAIRS * (h[:, None] + h[None, :]) / 2)
-        quadrature = gk.clausen1(at[e, :, None] + sign * at[f, None, :]) @ weights @ weights / 4
-        np.testing.assert_allclose(means[plus, e, f], quadrature, rtol=0, atol=1e-14)
+    far = np.all([distance[sign] >= gk.FAR_PAIRS * (h[:, None] + h[None, :]) / 2 for sign in (-1, 1)], axis=0)
+    e, f = np.nonzero(far)
+    kernel = gk.clausen1(at[e, :, None] - at[f, None, :]) - gk.clausen1(at[e, :, None] + at[f, None, :])
+    np.testing.assert_allclose(means[e, f], kernel @ weights @ weights / 4, rtol=0, atol=1e-14)
     M = h.size
-    for plus, e, f in ((0, 0, 0), (0, 1, 0), (0, M // 2, M // 2), (1, 0, 0), (1, 0, 1), (1, M - 1, M - 2)):
-        mean = nested_mean(lo[e], hi[e], lo[f], hi[f], 1 if plus else -1)
-        np.testing.assert_allclose(means[plus, e, f], mean, rtol=1e-12, err_msg=f"kernel {plus}, pair {e, f}")
+    for e, f in ((0, 0), (1, 0), (0, 1), (M // 2, M // 2), (M - 1, M - 2)):
+        minus, plus = (nested_mean(lo[e], hi[e], lo[f], hi[f], sign) for sign in (-1, 1))
+        np.testing.assert_allclose(means[e, f], minus - plus, rtol=0, atol=1e-12 * (abs(minus) + abs(plus)))
 
 
 def nested_mean(a1, a2, b1, b2, sign):
@@ -191,6 +191,66 @@ def nested_mean(a1, a2, b1, b2, sign):
         )[0]
 
     return integrate.quad(inner, a1, a2, epsabs=1e-15, epsrel=1e-13, limit=200)[0] / ((a2 - a1) * (b2 - b1))
+
+
+def refinement_chain(seed, refinements=4):
+    """`initial_theta` refined again and again, one element in 20 at random to a quarter of its size (and graded)."""
+    rng = np.random.default_rng(seed)
+    chain = [gk.initial_theta()]
+    for _ in range(refinements):
+        h = np.diff(chain[-1])
+        chain.append(gk.refine(chain[-1], np.where(rng.random(h.size) < 0.05, h / 4, np.inf)))
+    return chain
+
+
+def test_series_coefficients_of_two_sizes_do_not_depend_on_the_others():
+    """The table entry of two element sizes is the same, bit for bit, among any other sizes (BLAS would round
+    the products of a 5-size table and of a 40-size one differently)."""
+    sizes = np.sort(np.random.default_rng(0).uniform(1e-6, 0.05, 40))
+    table = gk._series_coefficients(sizes)
+    for subset in (slice(1), slice(5), slice(9), slice(17), slice(None, None, 3)):
+        np.testing.assert_array_equal(gk._series_coefficients(sizes[subset]), table[:, subset, subset])
+
+
+@pytest.mark.parametrize("block_pairs", [1, 2**9, 2**20])
+def test_pair_means_do_not_depend_on_the_blocks(monkeypatch, block_pairs):
+    """Each mean is its two elements' alone, bit for bit, whatever block it is summed in (not so with a BLAS
+    product over the block, whose rounding depends on its shape)."""
+    theta = refinement_chain(seed=0)[-1]
+    default = gk._kernel_means(theta[:-1], theta[1:])
+    monkeypatch.setattr(gk, "BLOCK_PAIRS", block_pairs)
+    np.testing.assert_array_equal(gk._kernel_means(theta[:-1], theta[1:]), default)
+
+
+@pytest.mark.parametrize("seed", [0, 3])
+def test_stiffness_reusing_the_mesh_before_is_bit_for_bit_fresh(hertz, seed):
+    """Along a refinement chain each scene reuses most pairs of the one before and equals the scene assembled afresh."""
+    previous = None
+    for theta in refinement_chain(seed):
+        scene = gk.GalerkinScene(hertz, theta, previous=previous)
+        np.testing.assert_array_equal(scene.G, gk.GalerkinScene(hertz, theta).G)
+        if previous is not None:
+            recurring = gk._recurring_elements(theta[:-1], theta[1:], previous.theta) >= 0
+            assert 0.5 < recurring.mean() < 1
+            reused = gk.stiffness(theta, hertz.E_star, previous=previous)
+            np.testing.assert_array_equal(reused, gk.stiffness(theta, hertz.E_star))
+        previous = scene
+
+
+def test_stiffness_reusing_a_mesh_without_common_elements(hertz):
+    """Every other node of the mesh (the last element spans 2 or 3): no element has both ends in common."""
+    theta = refinement_chain(seed=1)[-1]
+    previous = gk.GalerkinScene(hertz, np.append(theta[:-2:2], np.pi))
+    assert np.all(gk._recurring_elements(theta[:-1], theta[1:], previous.theta) < 0)
+    reused = gk.GalerkinScene(hertz, theta, previous=previous)
+    np.testing.assert_array_equal(reused.G, gk.GalerkinScene(hertz, theta).G)
+
+
+def test_stiffness_reusing_the_same_mesh(hertz):
+    theta = refinement_chain(seed=2)[-1]
+    scene = gk.GalerkinScene(hertz, theta)
+    np.testing.assert_array_equal(gk.GalerkinScene(hertz, theta, previous=scene).G, scene.G)
+    np.testing.assert_array_equal(gk.stiffness(theta, hertz.E_star, previous=scene), scene.G[::-1, ::-1])
 
 
 def test_stiffness_energy_of_smooth_slip(hertz):
