@@ -464,6 +464,10 @@ class _Run:
     the state before that cycle bit for bit, would repeat its increments bit for bit (the
     increment depends on the loads and the state only); such cycles are copied instead of
     solved, and marked in `cycle_copied`.
+
+    `observe(step, ds)`, if given, sees the slip increment of every step solved; `guess(step)`,
+    if given, returns the slip directions to start the solver from at `step`, or None for the
+    state's (those of the increment before).
     """
 
     def __init__(self, scene, history, steps, observe=None, guess=None):

@@ -214,9 +214,7 @@ class _Factor:
 
     def solve(self, slipping, rhs):
         """``G[slipping][:, slipping]^-1 rhs`` for ascending node numbers `slipping`."""
-        wanted = np.zeros_like(self.factored)
-        wanted[slipping] = True
-        if not wanted[self.order].all():  # nodes left the set: factor anew
+        if np.count_nonzero(self.factored[slipping]) < self.order.size:  # nodes left the set: factor anew
             self.order, self.blocks = self.order[:0], []
             self.factored[:] = False
         new = slipping[~self.factored[slipping]]

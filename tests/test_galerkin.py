@@ -8,6 +8,8 @@ slips below f P. The adaptive driver here is the loop of the issue: run, reduce 
 targets of every increment, refine, until the mesh stays.
 """
 
+import sys
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -615,3 +617,31 @@ def test_mesh_of_a_history_that_slides_is_that_of_the_steps_before(hertz):
     with pytest.raises(fr.GrossSlipError) as error:
         fr.simulate(hertz, history, rtol=gk.DEFAULT_RTOL)
     assert error.value.step == 6  # Q = 1.0 fP
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_the_increment_does_not_depend_on_the_solver_s_start(hertz, seed):
+    """`solve_increment`'s guess is a start only (the adaptation starts each pass from the slip
+    directions of the pass before): from random directions the increment of a reversed,
+    non-proportional load sticks at the same nodes and slips the same to 1e-12 of its largest."""
+    rng = np.random.default_rng(seed)
+    scene = gk.GalerkinScene(hertz, gk.refine(gk.initial_theta(), np.full(gk.initial_theta().size - 1, 0.02)))
+    fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
+    loaded = solve_increment(scene.G, scene.g_stuck(0.7 * fP, 0.5 * fp0), scene.limit)
+    g_stuck, slip = scene.g_stuck(-0.2 * fP, 0.9 * fp0), loaded.slip
+    plain = solve_increment(scene.G, g_stuck, scene.limit, slip)
+    started = solve_increment(scene.G, g_stuck, scene.limit, slip, rng.integers(-1, 2, slip.size).astype(np.int8))
+    assert np.count_nonzero(plain.ds) and np.count_nonzero(plain.ds == 0)  # partial slip
+    np.testing.assert_array_equal(started.ds == 0, plain.ds == 0)
+    assert np.max(np.abs(started.slip - plain.slip)) <= 1e-12 * np.max(np.abs(plain.slip))
+
+
+def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkeypatch):
+    """Starting each pass's active sets from the directions the pass before found (the default)
+    or from the increment before's (as `simulate` does) gives the same mesh, node for node, on
+    the bench's 10-vertex random scene."""
+    contact = bench.hertz_contact()
+    history = bench.baseline_history(contact, 2)
+    warm = fr.adapted_mesh(contact, history)
+    monkeypatch.setattr(sys.modules["fretting.simulate"], "_interpolated_directions", lambda *args: None)
+    np.testing.assert_array_equal(warm, fr.adapted_mesh(contact, history))
