@@ -4,6 +4,7 @@ import itertools
 from dataclasses import dataclass, replace
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from fretting._validate import positive
 from fretting.contact import Contact
@@ -62,6 +63,15 @@ DEFAULT_NODES = 384
 #: tests/test_galerkin.py's `test_default_runs_the_grid_where_the_mesh_would_be_too_large`, 30
 #: cycles: 1333 nodes in 31 s, the grid 3.9 s; measured 2026-11-21).
 MAX_DEFAULT_MESH = 2 * DEFAULT_NODES
+
+
+#: BLAS and LAPACK threads while the engine runs. Its work is many small products and
+#: factorisations, one after another, which threads only slow down: on the bench's 10-vertex
+#: random scene (764 nodes) the default took 66 ms per step with OpenBLAS's two threads on this
+#: 2-core machine and 3.6 ms with one (wall time, 2026-11-21). Limited with threadpoolctl, which
+#: reaches the BLAS already loaded (an environment variable acts only before numpy is imported).
+BLAS_THREADS = 1
+_engine_threads = threadpool_limits.wrap(limits=BLAS_THREADS, user_api="blas")
 
 
 #: Default recording: every step of histories up to this many steps; of longer ones the first
@@ -249,6 +259,7 @@ class _Scene:
         return self.limit / np.sqrt(1 - self.t**2) * np.abs(ds)
 
 
+@_engine_threads
 def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, record=None):
     """Follow a load history and record the contact.
 
@@ -309,6 +320,7 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
     return build_dataset(data, _attributes(scene, recorded_rtol) | {"steps": len(history)})
 
 
+@_engine_threads
 def default_model(contact, history):
     """Keywords of `simulate` for its default model.
 
@@ -345,6 +357,7 @@ def _scene(contact, history, rtol, nodes, mesh, state):
     return _adapted_scene(contact, history, rtol)
 
 
+@_engine_threads
 def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
     """Galerkin mesh ``theta`` [rad] that resolves the stick and slip zones of `history` to `rtol`.
 
