@@ -54,7 +54,8 @@ on the proportional Hertz scenes of results/speed_vs_error.md (2.6e-3 a on the b
 Measured at the default 1e-4 (``python benchmarks/galerkin_convergence.py --rtol 1e-4
 --no-chebyshev``): energy per cycle of a Hertz contact under ``+-Q*`` within 3.0e-5 for Q*/fP
 in [0.05, 0.95] and 1.2e-5 down to 1e-6, stick ends within 2.2e-4 a, tractions within 3.5e-4
-f p0 and slips within 3.2e-4 of their maximum, on 268 to 765 nodes (765 at Q/fP = 0.999999).
+f p0 and slips within 3.2e-4 of their maximum, on 268 to 765 nodes (765 at Q/fP = 0.999999,
+just under `fretting.simulate.MAX_DEFAULT_MESH`).
 """
 
 from typing import NamedTuple

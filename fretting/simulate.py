@@ -61,13 +61,8 @@ DEFAULT_NODES = 384
 #: `DEFAULT_NODES` instead: a mesh's passes cost ``N^3`` per turning point, and the non-periodic
 #: turning points of out-of-phase cycles can drive it past 1000 nodes (the rounded-flat scene of
 #: tests/test_galerkin.py's `test_default_runs_the_grid_where_the_mesh_would_be_too_large`, 30
-#: cycles: 1333 nodes in 31 s, the grid 3.9 s). On the 40 random out-of-phase scenes of
-#: benchmarks/default_out_of_phase.py the default then takes at most 11.7 s (1017 nodes), median
-#: 0.60 s, 2 of them on the grid; a bound of 768 gave 3.6 s, 0.53 s and 6 on the grid (measured
-#: 2026-11-21, one core). 768 was the bound until this solver was 1.8 times faster and ran BLAS
-#: on one thread (`BLAS_THREADS`): with OpenBLAS's two threads, meshes near 1024 nodes kept the
-#: test suite in tests/test_hard_properties.py for minutes.
-MAX_DEFAULT_MESH = 1024
+#: cycles: 1333 nodes in 31 s, the grid 3.9 s; measured 2026-11-21).
+MAX_DEFAULT_MESH = 2 * DEFAULT_NODES
 
 
 #: BLAS and LAPACK threads while the engine runs. Its work is many small products and
