@@ -388,9 +388,9 @@ def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
 
     Each pass starts the active set at a turning point from the slip directions the pass before
     found there (`_interpolated_directions`), which the answer does not depend on: on the bench's
-    10-vertex random scene the releases after the first solve fall from 6 to 9 per turning point
-    to 0 to 2 on the finer meshes; with the solver's cheaper bordering, the adaptation took 0.14 s
-    instead of 0.34 s (CPU, one core; scratch measurement of 2026-11-21).
+    10-vertex random scene, after the first pass, 0 to 2 releases follow the first solve at a
+    turning point instead of 3 to 9, the passes' runs take 0.07 s instead of 0.17 s and the whole
+    default run 0.28 s instead of 0.38 s (CPU, one core; benchmarks/adaptation_passes.py).
     """
     scene = _adapted_scene(contact, history, rtol, max_nodes)
     return None if scene is None else scene.theta
