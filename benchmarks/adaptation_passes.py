@@ -73,7 +73,10 @@ def main():
     engine._interpolated_directions = warm_start
     G = np.random.default_rng(0).random((764, 764))
     nodes = np.sort(np.random.default_rng(1).choice(764, 550, replace=False))
-    for label, gather in (("np.ix_", lambda: G[np.ix_(nodes, nodes)]), ("rows then columns", lambda: G[nodes][:, nodes])):
+    for label, gather in (
+        ("np.ix_", lambda: G[np.ix_(nodes, nodes)]),
+        ("rows then columns", lambda: G[nodes][:, nodes]),
+    ):
         print(f"gather {label}: {min(timeit.repeat(gather, number=20, repeat=5)) / 20 * 1e3:.2f} ms")
 
 

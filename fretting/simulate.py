@@ -71,9 +71,10 @@ MAX_DEFAULT_MESH = 2 * DEFAULT_NODES
 
 #: BLAS and LAPACK threads while the engine runs. Its work is many small products and
 #: factorisations, one after another, which threads only slow down: on the bench's 10-vertex
-#: random scene (764 nodes) the default took 66 ms per step with OpenBLAS's two threads on this
-#: 2-core machine and 3.6 ms with one (wall time, 2026-11-21). Limited with threadpoolctl, which
-#: reaches the BLAS already loaded (an environment variable acts only before numpy is imported).
+#: random scene (764 nodes) the default takes 68 ms per step with OpenBLAS's two threads on this
+#: 2-core machine and 3.5 ms with one (wall time, benchmarks/blas_threads.py). Limited with
+#: threadpoolctl, which reaches the BLAS already loaded (an environment variable acts only before
+#: numpy is imported).
 BLAS_THREADS = 1
 _engine_threads = threadpool_limits.wrap(limits=BLAS_THREADS, user_api="blas")
 

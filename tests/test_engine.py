@@ -267,9 +267,10 @@ def blas_threads():
 
 @pytest.mark.parametrize("model", [{}, {"nodes": 64}])
 def test_the_engine_runs_blas_on_one_thread_and_gives_the_threads_back(hertz, monkeypatch, model):
-    """Its many small products and factorisations only slow down on more threads (66 against 3.6
-    ms per step on the bench's random scene): every increment, adaptation passes included, runs
-    with BLAS_THREADS per library; the caller's setting is back after the run."""
+    """Its many small products and factorisations only slow down on more threads (68 against 3.5
+    ms per step on the bench's random scene, benchmarks/blas_threads.py): every increment,
+    adaptation passes included, runs with BLAS_THREADS per library; the caller's setting is back
+    after the run."""
     engine = sys.modules["fretting.simulate"]
     solve, seen = engine.solve_increment, []
 

@@ -1,0 +1,45 @@
+"""The default run with BLAS on one thread (as `fretting.simulate` runs it) and on two.
+
+`fretting.simulate`, `adapted_mesh` and `default_model` limit BLAS and LAPACK to
+`fretting.simulate.BLAS_THREADS` threads while they run. This script times the default run of
+the bench's 10-vertex random scene (Hertz, 8 steps per segment, 72 steps) as it is, and
+unwrapped under two threads (`threadpoolctl`), and prints the wall time per step (fastest of 3).
+
+Run:  python benchmarks/blas_threads.py   (about 20 seconds on a 2-core machine)
+"""
+
+import sys
+import time
+
+from threadpoolctl import threadpool_limits
+
+import fretting as fr
+from fretting import bench
+
+engine = sys.modules["fretting.simulate"]
+
+
+def ms_per_step(run, contact, history):
+    """Fastest of 3 wall times of `run` [ms per step]."""
+    run(contact, history)
+    times = []
+    for _ in range(3):
+        start = time.perf_counter()
+        run(contact, history)
+        times.append(time.perf_counter() - start)
+    return min(times) / (len(history) - 1) * 1e3
+
+
+def main():
+    contact = bench.hertz_contact()
+    history = bench.baseline_history(contact, 8)
+    print(
+        f"engine (BLAS_THREADS = {engine.BLAS_THREADS}): {ms_per_step(fr.simulate, contact, history):.2f} ms per step"
+    )
+    with threadpool_limits(limits=2, user_api="blas"):
+        unwrapped = fr.simulate.__wrapped__  # without the engine's limit
+        print(f"BLAS on 2 threads: {ms_per_step(unwrapped, contact, history):.2f} ms per step")
+
+
+if __name__ == "__main__":
+    main()
