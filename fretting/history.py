@@ -343,8 +343,12 @@ def _wave(theta, amplitude, mean):
 
 
 def _segments(vertices, fractions):
-    """Values along straight segments; each segment ends exactly on its vertex."""
-    pieces = [vertices[i] * (1 - u) + vertices[i + 1] * u for i, u in enumerate(fractions)]
+    """Values along straight segments; each segment ends exactly on its vertex, and a segment
+    between equal vertices holds that value exactly (an increment of one unit in the last place
+    is a load change, which the exact model of Q alone slips under)."""
+    pieces = [vertices[i] + (vertices[i + 1] - vertices[i]) * u for i, u in enumerate(fractions)]
+    for i, piece in enumerate(pieces):
+        piece[-1] = vertices[i + 1]
     return np.concatenate([vertices[:1], *pieces])
 
 

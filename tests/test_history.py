@@ -151,3 +151,13 @@ def test_engine_counts_cycles_of_a_history_that_ends_outside_them(hertz):
     result = fr.simulate(hertz, history, nodes=48)
     assert result.cycle_dissipation.shape == (2,)
     assert float(result.cycle_dissipation.sum()) < float(result.dissipation.sum())  # the ramps dissipate too
+
+
+def test_segments_hold_equal_vertices_exactly():
+    """A segment between equal vertices holds their value bit for bit (a unit in the last place
+    is a load change the exact model of Q alone slips under), and every segment ends on its vertex."""
+    Q = [0.0, 0.999 * 0.6 * 1e5, 0.999 * 0.6 * 1e5, 0.1, 0.3]
+    history = fr.History.piecewise_linear(Q, [0.0, 0.7, 0.7, 0.7, -0.2], [8, 3, 5, 7])
+    dwell = slice(history.vertex_step[1], history.vertex_step[2] + 1)
+    assert np.all(history.Q[dwell] == Q[1]) and np.all(history.sigma[history.vertex_step[1] :][:9] == 0.7)
+    np.testing.assert_array_equal(history.Q[history.vertex_step], Q)
