@@ -268,38 +268,53 @@ def fouvry(result):
 def _hilbert_matrix(t):
     """Matrix ``H`` with ``(1/pi) PV int_{-1}^{1} g(tau) / (sqrt(1 - tau^2) (tau - t_j)) dtau = (H @ g)_j``.
 
-    ``g`` is interpolated linearly between the nodes `t` (ascending, inside (-1, 1)) and
-    extrapolated linearly from the two outermost nodes to ``+-1``; each piece ``A + B tau`` is
-    integrated exactly (product integration):
+    ``g`` is interpolated linearly between the nodes `t` (ascending, in [-1, 1]) and extrapolated
+    linearly from the two outermost nodes to ``+-1`` where no node lies there; each piece
+    ``A + B tau`` is integrated exactly (product integration):
     ``int (A + B tau) dtau / (sqrt(1 - tau^2) (tau - t)) = B int dtau / sqrt(1 - tau^2)
     + (A + B t) int dtau / (sqrt(1 - tau^2) (tau - t))``, and with ``tau = cos(theta)``,
     ``t = cos(phi)``, ``int dtheta / (cos(theta) - cos(phi)) = ln|sin((theta + phi)/2) /
     sin((theta - phi)/2)| / sin(phi)``. Writing ``A + B t = g(t) + (A + B t - g(t))``, the first
     part integrates to ``g(t) U_{-1}(t) = 0`` over (-1, 1) (formulation.md section 4) and the second
     vanishes on the two pieces that meet at ``t``, so no principal value is left to take.
+
+    A node at ``t = 1`` or ``-1`` (a Galerkin mesh has both) is its own end knot, and its row is
+    the limit there, finite where ``g`` vanishes at that end as ``g = q sqrt(1 - t^2)`` does: the
+    piece that meets it drops out and the others integrate to differences of ``cot(theta/2)`` at
+    ``t = 1`` and of ``tan(theta/2)`` at ``t = -1`` (``dtau / (sqrt(1 - tau^2) (tau -+ 1))`` in ``theta``).
     """
     N = t.size
-    knots = np.concatenate([[-1.0], t, [1.0]])
-    extend = np.zeros((N + 2, N))  # knot values from node values
-    extend[1:-1] = np.eye(N)
-    for end, (inner, outer) in ((0, (0, 1)), (N + 1, (N - 1, N - 2))):
-        u = (knots[end] - t[inner]) / (t[outer] - t[inner])
-        extend[end, inner], extend[end, outer] = 1 - u, u
-    theta, phi = np.arccos(knots), np.arccos(t)[:, None]
+    lower, upper = int(t[0] > -1.0), int(t[-1] < 1.0)  # end knots to add
+    knots = np.concatenate([[-1.0] * lower, t, [1.0] * upper])
+    at = np.arange(N) + lower  # knot of each node
+    extend = np.zeros((knots.size, N))  # knot values from node values
+    extend[at, np.arange(N)] = 1.0
+    for add, end, (inner, outer) in ((lower, 0, (0, 1)), (upper, knots.size - 1, (N - 1, N - 2))):
+        if add:
+            u = (knots[end] - t[inner]) / (t[outer] - t[inner])
+            extend[end, inner], extend[end, outer] = 1 - u, u
+    theta = np.arccos(knots)
+    cauchy = np.zeros((N, knots.size - 1))  # int over piece k of dtau / (sqrt(1 - tau^2) (tau - t_j))
+    inside = np.abs(t) < 1
+    phi = np.arccos(t[inside])[:, None]
     with np.errstate(divide="ignore"):
         log = np.log(np.abs(np.sin((theta + phi) / 2) / np.sin((theta - phi) / 2))) / np.sin(phi)
-    cauchy = log[:, :-1] - log[:, 1:]  # int over piece k of dtau / (sqrt(1 - tau^2) (tau - t_j))
-    nodes = np.arange(N)
-    cauchy[nodes, nodes] = cauchy[nodes, nodes + 1] = 0.0  # pieces k = j, j + 1 (knots) meet at t_j
+        ends = {1.0: 1 / np.tan(theta / 2), -1.0: np.tan(theta / 2)}
+    cauchy[inside] = log[:, :-1] - log[:, 1:]
+    for j in np.flatnonzero(~inside):
+        cauchy[j] = ends[t[j]][:-1] - ends[t[j]][1:]
+    pieces = np.stack([at - 1, at], axis=1)  # the two pieces that meet at each node
+    valid = (pieces >= 0) & (pieces < knots.size - 1)
+    cauchy[np.nonzero(valid)[0], pieces[valid]] = 0.0
     low, high = knots[:-1], knots[1:]
     width = high - low
     arc = (theta[:-1] - theta[1:]) / width  # B_k times this is the arcsine part
     below = (high - t[:, None]) / width * cauchy  # weight of the piece's lower knot in (A + B t_j) cauchy
     above = (t[:, None] - low) / width * cauchy
-    H = np.zeros((N, N + 2))
+    H = np.zeros((N, knots.size))
     H[:, :-1] += below - arc
     H[:, 1:] += above + arc
-    H[nodes, nodes + 1] -= cauchy.sum(axis=1)  # the - g(t_j) sum_k cauchy_jk part
+    H[np.flatnonzero(inside), at[inside]] -= cauchy[inside].sum(axis=1)  # the - g(t_j) sum_k cauchy_jk part
     return H @ extend / np.pi
 
 
