@@ -20,6 +20,7 @@ from fretting.bench import run as run_bench
 from fretting.errors import FrettingError, GrossSlipError, HistoryError
 from fretting.history_file import read_history_source
 from fretting.io import Joiner, ResultError, load, save, source_attributes
+from fretting.masing import MODEL as MASING_MODEL
 from fretting.simulate import (
     DEFAULT_NODES,
     DEFAULT_RTOL,
@@ -109,8 +110,8 @@ def _parser():
         "--rtol",
         type=_positive,
         help=f"relative accuracy of the energy asked of the P1 Galerkin model, on a mesh adapted to "
-        f"the whole history (default {DEFAULT_RTOL:g}, or --nodes {DEFAULT_NODES} where that mesh "
-        f"would exceed {MAX_DEFAULT_MESH} nodes)",
+        f"the whole history (default: the exact model where Q alone loads a symmetric profile, else "
+        f"{DEFAULT_RTOL:g}, or --nodes {DEFAULT_NODES} where that mesh would exceed {MAX_DEFAULT_MESH} nodes)",
     )
     run.add_argument(
         "--record",
@@ -189,8 +190,10 @@ def _settings(args):
     return {} if args.rtol is None else {"rtol": args.rtol}
 
 
+#: The settings of a run of the exact model of Q alone (`fretting.masing`): its dataset's `model`.
+EXACT_SETTINGS = {"model": MASING_MODEL}
 #: What the default model may be (`fretting.simulate.default_model`).
-DEFAULT_SETTINGS = ({"rtol": DEFAULT_RTOL}, {"nodes": DEFAULT_NODES})
+DEFAULT_SETTINGS = (EXACT_SETTINGS, {"rtol": DEFAULT_RTOL}, {"nodes": DEFAULT_NODES})
 
 
 def _model(contact, history, asked):
@@ -203,6 +206,8 @@ def _model(contact, history, asked):
     if "rtol" in asked:
         return asked, {"mesh": adapted_mesh(contact, history, asked["rtol"])}
     model = default_model(contact, history)
+    if not model:
+        return EXACT_SETTINGS, model
     return ({"nodes": DEFAULT_NODES} if "nodes" in model else {"rtol": DEFAULT_RTOL}), model
 
 
@@ -293,6 +298,8 @@ def _described(settings):
 
 def _found(done):
     """The settings a (partial) result was run with."""
+    if done.attrs.get("model") == MASING_MODEL:
+        return EXACT_SETTINGS
     return {"rtol": done.attrs.get("rtol")} if "theta" in done else {"nodes": done.attrs.get("nodes")}
 
 

@@ -1,4 +1,5 @@
-"""The incremental state machine: follow a load history with method 4 of the seed paper."""
+"""The incremental state machine: follow a load history with method 4 of the seed paper, or,
+under Q alone on a symmetric profile, with the exact model of `fretting.masing`."""
 
 import itertools
 from dataclasses import dataclass, replace
@@ -18,6 +19,8 @@ from fretting.galerkin import (
     refine,
 )
 from fretting.history import History
+from fretting.masing import MODEL as MASING_MODEL
+from fretting.masing import MasingScene, applies, nodes_theta
 from fretting.solver import Grid, solve_increment
 from fretting.variables import build_dataset
 
@@ -149,7 +152,11 @@ class State:
     dissipated : float
         Energy dissipated since the contact was formed [J/m], summed step by step.
     theta : ndarray, shape (N,), optional
-        Galerkin mesh [rad] on which the fields live (None: Gauss-Chebyshev collocation).
+        Galerkin mesh or nodes of the exact model [rad] on which the fields live, ascending
+        (None: Gauss-Chebyshev collocation).
+    turning : tuple of float, optional
+        Turning points [N/m] that the exact model of ``Q`` alone (`fretting.masing`) still
+        remembers, oldest first (None: a state of method 4).
     """
 
     Q: float
@@ -159,12 +166,14 @@ class State:
     tally: Tally
     dissipated: float = 0.0
     theta: np.ndarray | None = None
+    turning: tuple | None = None
 
     @classmethod
     def virgin(cls, scene):
         """The contact of `scene` just formed: no load and no slip."""
         slip = np.zeros(scene.x.size)
-        return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip), theta=getattr(scene, "theta", None))
+        turning = () if isinstance(scene, MasingScene) else None
+        return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip), theta=getattr(scene, "theta", None), turning=turning)
 
     def advance(self, Q, sigma, slip, ds):
         """State with the new `slip` [m], reached by the increment `ds` [m], under the loads `Q`, `sigma`."""
@@ -174,9 +183,9 @@ class State:
         return replace(self, Q=Q, sigma=sigma, slip=slip, episode_start=episode_start)
 
     def repeats(self, other):
-        """True if this state is `other`'s memory bit for bit: the same loads and slip fields."""
+        """True if this state is `other`'s memory bit for bit: the same loads, slip fields and turning points."""
         return (
-            (self.Q, self.sigma) == (other.Q, other.sigma)
+            (self.Q, self.sigma, self.turning) == (other.Q, other.sigma, other.turning)
             and np.array_equal(self.slip, other.slip)
             and np.array_equal(self.episode_start, other.episode_start)
         )
@@ -199,6 +208,7 @@ def final_state(result):
         tally,
         float(result.total_dissipation),
         result.theta.values[::-1].copy() if "theta" in result else None,  # ascending in theta
+        tuple(result.state_turning.values.tolist()) if "state_turning" in result else None,
     )
 
 
@@ -280,13 +290,15 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
     rtol : float, optional
         Relative accuracy of the energy asked of the P1 Galerkin model: the mesh is refined where
         the stick and slip zones of the history need it (`adapted_mesh`). When none of `nodes`,
-        `rtol`, `mesh`, `state` is given, `default_model` chooses: `DEFAULT_RTOL`, or the grid
-        of `DEFAULT_NODES` where that mesh would exceed `MAX_DEFAULT_MESH` nodes.
+        `rtol`, `mesh`, `state` is given, `default_model` chooses: the exact model of ``Q``
+        alone (`fretting.masing`) where the history has no ``sigma`` and the profile is
+        symmetric; else `DEFAULT_RTOL`, or the grid of `DEFAULT_NODES` where that mesh would
+        exceed `MAX_DEFAULT_MESH` nodes.
     mesh : array_like, optional
         Galerkin mesh ``theta`` [rad] to use as it is (see `adapted_mesh`).
     state : State, optional
         State to continue from (see `final_state`); its loads must be the history's first.
-        The run keeps its mesh or grid.
+        The run keeps its mesh or grid, or the exact model (then with ``sigma`` zero throughout).
     record : array_like of int or "all", optional
         Steps whose fields and loads are stored, increasing; the dataset's `step` coordinate
         holds their numbers. Default: every step of histories of up to `RECORD_ALL_STEPS`
@@ -329,15 +341,20 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
 def default_model(contact, history):
     """Keywords of `simulate` for its default model.
 
-    ``{"mesh": theta}``, the Galerkin mesh adapted to `DEFAULT_RTOL`, unless that mesh would
-    need more than `MAX_DEFAULT_MESH` nodes; then ``{"nodes": DEFAULT_NODES}``, the grid.
+    ``{}`` where the exact model of ``Q`` alone applies (`fretting.masing.applies`: it needs
+    none); else ``{"mesh": theta}``, the Galerkin mesh adapted to `DEFAULT_RTOL`, unless that
+    mesh would need more than `MAX_DEFAULT_MESH` nodes; then ``{"nodes": DEFAULT_NODES}``, the grid.
     """
     scene = _default_scene(contact, history)
+    if isinstance(scene, MasingScene):
+        return {}
     return {"mesh": scene.theta} if isinstance(scene, GalerkinScene) else {"nodes": scene.x.size}
 
 
 def _default_scene(contact, history):
     """The scene of the default model (see `default_model`)."""
+    if applies(contact, history):
+        return MasingScene(contact, nodes_theta(contact, history, DEFAULT_NODES))
     scene = _adapted_scene(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH)
     return _Scene(contact, DEFAULT_NODES) if scene is None else scene
 
@@ -348,6 +365,8 @@ def _scene(contact, history, rtol, nodes, mesh, state):
     if len(asked) > 1:
         raise ValueError(f"give one of nodes (Gauss-Chebyshev), rtol or mesh (Galerkin), found {' and '.join(asked)}")
     if state is not None:
+        if state.turning is not None:
+            return _exact_scene(contact, history, state, asked)
         if state.theta is not None and asked:
             raise ValueError(f"the state has its own Galerkin mesh: give no {asked[0]}")
         if state.theta is not None:
@@ -360,6 +379,18 @@ def _scene(contact, history, rtol, nodes, mesh, state):
     if nodes is not None:
         return _Scene(contact, nodes)
     return _adapted_scene(contact, history, rtol)
+
+
+def _exact_scene(contact, history, state, asked):
+    """The scene that continues `state`, a state of the exact model of ``Q`` alone."""
+    if asked:
+        raise ValueError(f"the state is of the exact model of Q alone ({MASING_MODEL}): give no {asked[0]}")
+    if not applies(contact, history):
+        raise HistoryError(
+            "the state is of the exact model of Q alone, which this history leaves (sigma is not zero): "
+            "run the whole history with nodes= or rtol= instead"
+        )
+    return MasingScene(contact, state.theta)
 
 
 @_engine_threads
@@ -459,12 +490,18 @@ def recorded_steps(record, n):
 
 @dataclass(frozen=True, eq=False)
 class _Outcome:
-    """One increment: the traction ``g`` after it, its slip increment ``ds`` and the state it leaves."""
+    """One increment: the traction ``g`` after it, its slip increment ``ds`` and the state it leaves.
+
+    The exact model of ``Q`` alone also gives the increment's stick `zones` (in ``t``) and the
+    state's `delta_Q` [m]; method 4 leaves them None, to be found from the slip.
+    """
 
     g: np.ndarray
     ds: np.ndarray
     dissipation: float
     state: State
+    zones: list | None = None
+    delta_Q: float | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -501,6 +538,8 @@ class _Run:
             "slip": np.empty((steps.size, N)),
             "stick": np.empty((steps.size, N), dtype=bool),
             "dissipation": np.empty(steps.size),
+            "delta_Q": np.empty(steps.size),
+            "delta_sigma": np.empty(steps.size),
         }
         self.zones = [()] * steps.size
         self.cycles = []  # (number, tally, repeated) of every cycle the run touches
@@ -541,6 +580,10 @@ class _Run:
         sliding = min(scene.friction_force, scene.contact.f * scene.contact.P)  # no stick zone from here on
         if abs(Q) >= sliding:
             raise GrossSlipError(step, Q, sigma, sliding)
+        if isinstance(scene, MasingScene):
+            exact = scene.increment(state, Q)
+            outcome = _Outcome(exact.q, exact.ds, exact.dissipation, state, exact.zones, exact.delta_Q)
+            return self._advanced(outcome, exact.slip, Q, sigma, turning=exact.turning)
         if step == 0 and (Q, sigma) == (state.Q, state.sigma):  # the starting state: nothing moves
             ds = np.zeros(state.slip.size)
             return _Outcome(scene.g_stuck(Q, sigma) - scene.G @ state.slip, ds, 0.0, state)
@@ -548,16 +591,19 @@ class _Run:
         if guess is None:  # the last increment's directions
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
         increment = solve_increment(scene.G, scene.g_stuck(Q, sigma), scene.limit, state.slip, guess)
-        ds = increment.ds
         if self.observe is not None:
-            self.observe(step, ds)
-        dissipation = scene.dissipation(ds)
+            self.observe(step, increment.ds)
+        outcome = _Outcome(increment.g, increment.ds, scene.dissipation(increment.ds), state)
+        return self._advanced(outcome, increment.slip, Q, sigma)
+
+    def _advanced(self, outcome, slip, Q, sigma, **memory):
+        """`outcome`, whose state is the one before it, with the state it leaves: `slip` [m] under `Q`, `sigma`."""
+        state, ds, dissipation = outcome.state, outcome.ds, outcome.dissipation
         tally = state.tally
         if tally.number:
-            tally = tally.add(dissipation, scene.dissipation_density(ds), increment.slip)
-        dissipated = state.dissipated + dissipation
-        new = replace(state.advance(Q, sigma, increment.slip, ds), tally=tally, dissipated=dissipated)
-        return _Outcome(increment.g, ds, dissipation, new)
+            tally = tally.add(dissipation, self.scene.dissipation_density(ds), slip)
+        new = state.advance(Q, sigma, slip, ds)
+        return replace(outcome, state=replace(new, tally=tally, dissipated=state.dissipated + dissipation, **memory))
 
     def _repeats(self, previous, state, step):
         """Number of whole cycles from `step` that repeat the complete cycle `previous` bit for bit.
@@ -604,12 +650,15 @@ class _Run:
         k = self.row[step]
         if k < 0:
             return
-        state = outcome.state
-        self.fields["q"][k] = self.scene.traction(outcome.g, outcome.ds)
+        state, scene = outcome.state, self.scene
+        self.fields["q"][k] = scene.traction(outcome.g, outcome.ds)
         self.fields["slip"][k] = state.slip
         self.fields["stick"][k] = outcome.ds == 0
         self.fields["dissipation"][k] = outcome.dissipation
-        self.zones[k] = stick_zones(self.scene.t, state.slip - state.episode_start)
+        exact = outcome.zones is not None
+        self.zones[k] = outcome.zones if exact else stick_zones(scene.t, state.slip - state.episode_start)
+        self.fields["delta_Q"][k] = outcome.delta_Q if exact else scene.delta_Q(state.slip)
+        self.fields["delta_sigma"][k] = 0.0 if exact else scene.delta_sigma(state.slip)  # even slip: zero
 
     def data(self, state):
         """The arrays of the result (names from `fretting.variables.VARIABLES`) of a run that ended in `state`."""
@@ -627,8 +676,6 @@ class _Run:
                 "p": scene.contact.pressure(scene.x),
                 "x": scene.x,
                 "step": steps,
-                "delta_Q": scene.delta_Q(self.fields["slip"]),
-                "delta_sigma": scene.delta_sigma(self.fields["slip"]),
                 "vertex_step": history.vertex_step,
                 "state_Q": state.Q,
                 "state_sigma": state.sigma,
@@ -642,6 +689,7 @@ class _Run:
                 "total_dissipation": state.dissipated,
             }
             | ({} if state.theta is None else {"theta": state.theta[::-1]})
+            | ({} if state.turning is None else {"state_turning": np.array(state.turning, dtype=float)})
         )
 
 
@@ -736,6 +784,8 @@ def _attributes(scene, rtol):
         "profile": repr(contact.profile),
         "nodes": scene.x.size,
     }
+    if isinstance(scene, MasingScene):
+        return attributes | {"model": MASING_MODEL}
     if isinstance(scene, GalerkinScene):
         return attributes | {"model": f"{MODEL}, {GALERKIN}"} | ({} if rtol is None else {"rtol": rtol})
     return attributes | {"model": f"{MODEL}, {COLLOCATION}"}

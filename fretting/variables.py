@@ -39,9 +39,14 @@ VARIABLES = {
     "state_w": (("x",), "J/m2", "energy dissipated per unit area so far in the cycle in progress"),
     "state_slip_min": (("x",), "m", "least slip so far in the cycle in progress"),
     "state_slip_max": (("x",), "m", "greatest slip so far in the cycle in progress"),
+    "state_turning": (
+        ("turning",),
+        "N/m",
+        "turning points of Q still remembered at the last step, oldest first (exact model of Q alone only)",
+    ),
     "total_dissipation": ((), "J/m", "energy dissipated since the contact was formed, up to the last step"),
     "x": (("x",), "m", "position along the contact"),
-    "theta": (("x",), "rad", "Galerkin mesh angle of each node: x = centre + a cos(theta)"),
+    "theta": (("x",), "rad", "angle of each node, x = centre + a cos(theta): Galerkin mesh or exact model"),
     "step": (("step",), "1", "load step (0 is the starting state)"),
 }
 

@@ -572,12 +572,13 @@ def test_default_energy_of_a_90_degree_cycle(hertz):
 
 
 @pytest.mark.parametrize("psi", [1e-6, 0.001, 0.05, 0.2, 0.5, 0.95])
-def test_many_steps_per_cycle_at_default_settings(hertz, psi):
-    """Issue-4 targets at default settings (rtol = DEFAULT_RTOL) with 64 steps per cycle: each
-    cycle's energy is within 1e-4 of the Masing reference, also at 1e-6 fP, where the steps near
-    the peaks move the slip zones of 5e-7 a by loads 1e-13 of f P (measured: 2e-5 or better)."""
+def test_many_steps_per_cycle_at_the_default_rtol(hertz, psi):
+    """Issue-4 targets at the default rtol with 64 steps per cycle: each cycle's energy is within
+    1e-4 of the Masing reference, also at 1e-6 fP, where the steps near the peaks move the slip
+    zones of 5e-7 a by loads 1e-13 of f P (measured: 2e-5 or better). (Q alone on Hertz runs the
+    exact model by default, tests/test_masing.py; the mesh is asked for here.)"""
     Q_star = psi * hertz.f * hertz.P
-    result = fr.simulate(hertz, fr.History.sinusoidal(Q_star, cycles=3, steps_per_cycle=64))
+    result = fr.simulate(hertz, fr.History.sinusoidal(Q_star, cycles=3, steps_per_cycle=64), rtol=gk.DEFAULT_RTOL)
     assert result.attrs["rtol"] == gk.DEFAULT_RTOL
     steady = result.cycle_dissipation.values[1:]  # the first cycle starts from the virgin contact
     np.testing.assert_allclose(steady, hertz_cycle_energy(hertz, Q_star), rtol=1e-4)

@@ -138,8 +138,8 @@ def test_surface_stress_of_cattaneo_mindlin(contact, psi):
 
 @pytest.mark.parametrize(
     ("model", "sliding_error", "partial_error"),
-    [({"rtol": 1e-4}, 1.5e-3, 2.5e-3)],
-    ids=["galerkin"],
+    [({"rtol": 1e-4}, 1.5e-3, 2.5e-3), ({}, 5e-5, 1e-3)],
+    ids=["galerkin", "exact"],
 )
 def test_surface_stress_on_the_mesh_and_the_exact_nodes(contact, model, sliding_error, partial_error):
     """The Galerkin mesh has nodes at the contact ends, t = -1 and 1; the exact model's nodes crowd

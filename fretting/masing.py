@@ -1,0 +1,276 @@
+"""Q alone on a symmetric profile, exactly: Ciavarella-Jaeger and Masing's rule on fixed nodes.
+
+Under the constant normal load ``P`` and a shear force ``Q`` rising from the contact just
+formed, on a symmetric profile, the traction is ``q = f (p(x; P) - p(x; P_c))`` with
+``|Q| = f (P - P_c)`` (Ciavarella 1998, Jaeger 1998; section 2 of the seed): the stick zone is
+the contact ``[-c, c]`` of the corrective load ``P_c``, and the slip is ``f`` times that
+contact's gap, ``s = f g_c(x)`` (literature-notes.md, rounded flat; for Hertz it is eq 19
+integrated, `fretting.closed_forms.cattaneo_mindlin_slip`). Masing's rule gives any history of
+``Q`` from it (Mindlin & Deresiewicz 1953 for Hertz; literature-notes.md, in-phase cycling):
+from the last turning point ``Q_k`` the change is twice the monotonic solution of half the
+change, ``P_c = P - |Q - Q_k| / (2f)``, until ``|Q - Q_k|`` reaches the range of the branch
+before; that loop then closes and the older branch goes on (return-point memory). The memory is
+the list of turning points still open; the slip at the nodes is a sum over its branches.
+
+The gap outside a contact of half-width ``c`` follows from the profile's load ``P(c')``: as the
+contact grows from ``c`` to ``X``, each increment ``dP`` is a flat punch of half-width ``c'``,
+which closes the gap at ``X`` by ``(2 / (pi E_star)) dP arccosh(X / c')`` (eq 1 outside the
+punch), and the gap at ``X`` is zero once the contact reaches it:
+
+    g_c(X) = (2 / (pi E_star)) int_c^X P'(c') arccosh(X / c') dc'
+
+(Hertz: ``g_0 = X^2 / (2R)``). The slope ``P' = dP/dc'`` (`Profile.load_slope`), rather than
+differences of ``P``, keeps the relative precision in slip zones as thin as ``1e-10 a``.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["MODEL", "MasingScene", "Step", "applies", "gap", "nodes_theta"]
+
+MODEL = "Ciavarella-Jaeger with Masing's rule: exact for Q alone on a symmetric profile, at fixed nodes"
+
+#: Gauss-Legendre points of each quadrature (the gap along ``c'``, the energy and ``delta_Q``
+#: along ``X``): on Hertz the slip is within 1e-12 of the closed form's largest value, and on the
+#: rounded flat 256 points change the slip, energy and delta_Q by less than 1e-12 of them, also
+#: at Q/fP = 0.999999 (tests/test_masing.py).
+GAUSS = 64
+_U, _WEIGHTS = np.polynomial.legendre.leggauss(GAUSS)
+
+#: Nodes added toward each edge, per halving of the distance in ``theta``, below the first node
+#: of the Gauss-Chebyshev grid, and the halvings: slip zones down to ``a (2^-12 pi / 2N)^2 / 2``,
+#: ``8e-12 a`` at 384 nodes, hold 4 nodes or more (Q* = 1e-6 f P on Hertz: about 40).
+EDGE_NODES_PER_OCTAVE = 4
+EDGE_OCTAVES = 12
+
+#: Nodes that the smallest stick zone of a history holds at least: where fewer of the grid's lie
+#: in it (Hertz beyond Q/fP = 0.9998), as many Gauss-Chebyshev points of that zone are added.
+STICK_NODES = 16
+
+#: Corrective contacts kept (the slip, traction, energy of each load change met); a run whose
+#: branches need more computes them again.
+CACHED_BRANCHES = 4096
+
+
+def applies(contact, history):
+    """True where the exact model holds: `history` has no ``sigma`` and the profile is symmetric."""
+    return contact.profile.SYMMETRIC and not np.any(history.sigma)
+
+
+def nodes_theta(contact, history, N):
+    """Node angles [rad] of the exact model for `history`, ``x = centre + a cos(theta)``, ascending.
+
+    The `N` Gauss-Chebyshev angles ``(2k - 1) pi / (2N)``, `EDGE_OCTAVES` octaves of
+    `EDGE_NODES_PER_OCTAVE` toward each edge, and `STICK_NODES` Gauss-Chebyshev points of the
+    smallest stick zone ``[-c, c]`` where fewer lie in it: that of the largest ``|Q| < f P`` of
+    the history (a branch from a turning point changes the load by at most twice that, and
+    its corrective load, ``P - |Q - Q_k| / (2f)``, is no smaller).
+    """
+    grid = _chebyshev_angles(N)
+    edge = grid[0] * 2.0 ** (-np.arange(1, EDGE_OCTAVES * EDGE_NODES_PER_OCTAVE + 1) / EDGE_NODES_PER_OCTAVE)
+    theta = np.concatenate([edge[::-1], grid, np.pi - edge])
+    fP = contact.f * contact.P
+    loads = np.abs(history.Q)
+    largest = loads[loads < fP].max(initial=0.0)
+    c = contact.profile.half_width(contact.P - largest / contact.f, contact.E_star)[0] / contact.a
+    if np.count_nonzero(np.abs(np.cos(theta)) < c) < STICK_NODES:
+        theta = np.union1d(theta, np.arccos(c * np.cos(_chebyshev_angles(STICK_NODES))))
+    return theta
+
+
+def _chebyshev_angles(N):
+    """``(2k - 1) pi / (2N)``, k = 1 .. N [rad]: the Gauss-Chebyshev points ``cos`` of them, descending."""
+    return (2 * np.arange(1, N + 1) - 1) * np.pi / (2 * N)
+
+
+@dataclass(frozen=True, eq=False)
+class _Branch:
+    """The monotonic solution of one corrective load ``P_c``, per unit of the branch's factor.
+
+    Attributes: ``c`` the stick half-width [m]; ``q`` the traction ``f (p - p_c)`` [Pa] and
+    ``slip`` ``f g_c`` [m] at the nodes; ``energy`` ``int p g_c dx`` [J/m per unit f^2];
+    ``delta_Q`` ``int f g_c / (pi sqrt(a^2 - x^2)) dx`` [m].
+    """
+
+    c: float
+    q: np.ndarray
+    slip: np.ndarray
+    energy: float
+    delta_Q: float
+
+
+@dataclass(frozen=True, eq=False)
+class Step:
+    """One increment of the exact model: the traction after it, its slip, the state's memory.
+
+    Attributes: ``q`` [Pa], ``ds`` and ``slip`` [m] at the nodes; ``dissipation`` ``int f p |ds| dx``
+    [J/m], exact; ``turning`` the open turning points [N/m]; ``zones`` the stick interval of the
+    increment in ``t = x / a`` (the whole contact where ``Q`` did not change); ``delta_Q`` [m].
+    """
+
+    q: np.ndarray
+    ds: np.ndarray
+    slip: np.ndarray
+    dissipation: float
+    turning: tuple
+    zones: list
+    delta_Q: float
+
+
+class MasingScene:
+    """The exact model of a contact on the nodes `theta`: the interface of the method-4 scenes.
+
+    Parameters
+    ----------
+    contact : Contact
+        On a symmetric profile (`applies`).
+    theta : ndarray
+        Node angles [rad], ascending (`nodes_theta`); the nodes ``x`` ascend.
+    """
+
+    def __init__(self, contact, theta):
+        if not contact.profile.SYMMETRIC:
+            raise ValueError(f"{contact.profile!r}: the exact model of Q alone needs a symmetric profile")
+        self.contact = contact
+        self.theta = theta
+        self.t = np.cos(theta[::-1])
+        self.x = contact.centre + contact.a * self.t
+        self.friction_force = contact.f * contact.P
+        self._p = contact.pressure(self.x)
+        self._branches = {}  # P_c -> _Branch
+        self._memories = {}  # turning points -> (slip, q, delta_Q) summed over their branches
+
+    def traction(self, q, ds=None):
+        """The traction [Pa]: the model gives it at the nodes directly."""
+        return q
+
+    def dissipation_density(self, ds):
+        """``f p |ds|`` [J/m^2] at the nodes."""
+        return self.contact.f * self._p * np.abs(ds)
+
+    def increment(self, state, Q):
+        """`Step` from `state` (its ``Q``, slip and open turning points) to the shear force `Q` [N/m]."""
+        turning = list(state.turning)
+        if Q == state.Q:
+            slip, q, delta_Q = self._at(turning, Q)
+            return Step(q, np.zeros(slip.size), slip, 0.0, state.turning, [(-1.0, 1.0)], delta_Q)
+        direction = np.sign(Q - state.Q)
+        if state.Q != _origin(turning)[0] and np.sign(state.Q - _origin(turning)[0]) != direction:
+            turning.append(state.Q)
+        energy, position = 0.0, state.Q
+        while True:  # each loop that the increment closes, then the branch it ends on
+            closes = None if not turning else (turning[-2] if len(turning) > 1 else -turning[0])
+            passes = closes is not None and (Q - closes) * direction >= 0
+            end = closes if passes else Q
+            factor = _origin(turning)[1]
+            energy += factor * (self._branch(turning, end).energy - self._branch(turning, position).energy)
+            if not passes:
+                break
+            position, turning = end, turning[:-2]
+        slip, q, delta_Q = self._at(turning, Q)
+        c = self._branch(turning, Q).c / self.contact.a
+        dissipation = self.contact.f**2 * energy
+        return Step(q, slip - state.slip, slip, dissipation, tuple(turning), [(-c, c)], delta_Q)
+
+    def _at(self, turning, Q):
+        """Slip [m], traction [Pa] at the nodes and ``delta_Q`` [m] at `Q` with the open `turning` points.
+
+        Summed branch by branch from the first, so a state reached again repeats bit for bit,
+        and where the last branch sticks its terms are exact zeros: ``ds == 0`` exactly there.
+        """
+        return _added(self._memory(tuple(turning)), self._branch(turning, Q), _signed(turning, Q))
+
+    def _memory(self, turning):
+        """Slip, traction and ``delta_Q`` at the last of the `turning` points, summed over their
+        branches from the longest of its beginnings already summed (a loop, not a recursion: the
+        open turning points of a decaying history can number thousands)."""
+        known = len(turning)
+        while known and turning[:known] not in self._memories:
+            known -= 1
+        zero = np.zeros(self.x.size)
+        summed = self._memories[turning[:known]] if known else (zero, zero, 0.0)
+        for k in range(known, len(turning)):
+            before = turning[:k]
+            summed = _added(summed, self._branch(before, turning[k]), _signed(before, turning[k]))
+            if len(self._memories) >= CACHED_BRANCHES:
+                self._memories.clear()
+            self._memories[turning[: k + 1]] = summed
+        return summed
+
+    def _branch(self, turning, Q):
+        """`_Branch` of the last branch of the open `turning` points at `Q` [N/m], computed once per ``P_c``."""
+        origin, factor = _origin(turning)
+        P_c = self.contact.P - abs(Q - origin) / (factor * self.contact.f)
+        if P_c not in self._branches:
+            if len(self._branches) >= CACHED_BRANCHES:
+                self._branches.clear()
+            self._branches[P_c] = self._solved(P_c)
+        return self._branches[P_c]
+
+    def _solved(self, P_c):
+        """`_Branch` of the corrective load `P_c` [N/m]: its contact, traction, slip, energy and delta_Q."""
+        contact, profile = self.contact, self.contact.profile
+        a, f, E_star = contact.a, contact.f, contact.E_star
+        c = float(profile.half_width(P_c, E_star)[0])  # a for the sharp flat punch, whose contact does not grow
+        inside = np.abs(self.x) < c
+        p_c, slip = np.zeros(self.x.size), np.zeros(self.x.size)
+        p_c[inside] = profile.pressure(self.x[inside] / c, c, 0.0, P_c, E_star)
+        q = f * (self._p - p_c)
+        if c >= a:  # nothing slips
+            return _Branch(a, q, slip, 0.0, 0.0)
+        slip[~inside] = f * gap(profile, E_star, c, self.x[~inside])
+        # X = c + (a - c) sin(phi/2)^2: smooth integrands at both ends (g_c ~ (X - c)^(3/2), p ~ sqrt(a - X))
+        phi = np.pi * (_U + 1) / 2
+        X = c + (a - c) * np.sin(phi / 2) ** 2
+        dX = (np.pi / 2) * _WEIGHTS * (a - c) * np.sin(phi) / 2
+        g = gap(profile, E_star, c, X)
+        root = np.sqrt((a - c) * np.cos(phi / 2) ** 2 * (a + X))  # sqrt(a^2 - X^2)
+        energy = 2 * np.dot(contact.pressure(X) * g, dX)
+        delta_Q = (2 / np.pi) * f * np.dot(g / root, dX)
+        return _Branch(c, q, slip, float(energy), float(delta_Q))
+
+
+def _to_breakpoint(profile, c):
+    """Distance [m] from `c` in to the nearest of the profile's breakpoints (infinite if none)."""
+    inside = [c - abs(point) for point in profile.breakpoints if abs(point) <= c]
+    return min(inside, default=np.inf)
+
+
+def _origin(turning):
+    """Start [N/m] and factor of the last branch: the last open turning point and 2 (Masing), or the
+    contact just formed and 1."""
+    return (turning[-1], 2.0) if turning else (0.0, 1.0)
+
+
+def _signed(turning, Q):
+    """Factor of the last branch at `Q`, signed as its change of load."""
+    origin, factor = _origin(turning)
+    return np.sign(Q - origin) * factor
+
+
+def _added(summed, branch, factor):
+    """`summed` (slip, traction, delta_Q) plus `factor` times the `_Branch`."""
+    return summed[0] + factor * branch.slip, summed[1] + factor * branch.q, summed[2] + factor * branch.delta_Q
+
+
+def gap(profile, E_star, c, X):
+    """Gap ``g_c(X)`` [m] at ``|X| >= c`` outside the contact of half-width `c` [m] of a symmetric profile.
+
+    ``(2 / (pi E_star)) int_c^X P'(c') arccosh(X / c') dc'`` (module docstring) by Gauss-Legendre in
+    ``sigma``, with ``c' = beta + tau^2`` and ``tau = tau_X - (tau_X - tau_c) (1 - sigma)^2``:
+    ``beta``, the breakpoint of the profile next inside `c` (0 if none), is where ``P'`` has a
+    square root (the rounded flat's ``sqrt(c'^2 - b^2)``), which ``tau`` makes smooth however
+    close `c` is to it, and ``sigma`` makes the square root of ``arccosh`` at ``c' = X`` smooth.
+    """
+    X = np.abs(np.asarray(X, dtype=float))[:, None]
+    beta = c - min(_to_breakpoint(profile, c), c)
+    tau_c, tau_X = np.sqrt(c - beta), np.sqrt(X - beta)
+    span = (X - c) / (tau_X + tau_c)  # tau_X - tau_c, without its cancellation as X -> c
+    sigma = (_U + 1) / 2
+    tau = tau_X - span * (1 - sigma) ** 2
+    c_ = beta + tau**2
+    arccosh = np.arcsinh(np.sqrt(span * (1 - sigma) ** 2 * (tau_X + tau) * (X + c_)) / c_)  # exact as c' -> X
+    jacobian = 2 * tau * 2 * span * (1 - sigma) / 2  # dc'/dsigma times d(sigma)/du
+    integrand = profile.load_slope(c_, E_star) * arccosh * jacobian
+    return (2 / (np.pi * E_star)) * (integrand @ _WEIGHTS)

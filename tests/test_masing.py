@@ -1,0 +1,197 @@
+"""The exact model of Q alone on a symmetric profile (fretting.masing): Ciavarella-Jaeger and Masing's rule.
+
+Checked against the closed forms of Hertz (Cattaneo-Mindlin, the Masing cycle energy and
+delta_Q), against quadratures of eq (1) on the rounded flat, and against method 4 on a history
+of nested loops.
+"""
+
+import numpy as np
+import pytest
+from scipy import integrate
+from test_galerkin import hertz_cycle_energy
+from test_hard_cases import assert_friction_conditions, hertz_slip_displacement, rounded_flat
+
+import fretting as fr
+from fretting import closed_forms as cf
+from fretting import masing
+
+#: Nested loops: 0.8 fP, back to -0.5, up to 0.6, down to -0.2, then through both closing points
+#: to 0.9 and to -0.9 fP.
+NESTED = [0.0, 0.8, -0.5, 0.6, -0.2, 0.9, -0.9]
+
+
+def exact(contact, history, **keywords):
+    """`fr.simulate` at its default, checked to be the exact model."""
+    result = fr.simulate(contact, history, **keywords)
+    assert result.attrs["model"] == masing.MODEL
+    return result
+
+
+def nested(contact, steps=4):
+    return fr.History.piecewise_linear(np.array(NESTED) * contact.f * contact.P, None, steps)
+
+
+@pytest.mark.parametrize("psi", [0.1, 0.3, 0.999999])
+def test_gap_of_hertz_is_cattaneo_mindlin(hertz, psi):
+    """``s = f g_c`` is eq (19) integrated (closed_forms.cattaneo_mindlin_slip), to 1e-12 of its
+    largest value (the closed form's two terms cancel near ``c``, and at small ``psi`` everywhere)."""
+    Q = psi * hertz.f * hertz.P
+    c = cf.stick_half_width(hertz, Q)
+    x = np.linspace(c, hertz.a, 300)
+    reference = cf.cattaneo_mindlin_slip(hertz, Q, x)
+    slip = hertz.f * masing.gap(hertz.profile, hertz.E_star, c, x)
+    np.testing.assert_allclose(slip, reference, rtol=0, atol=1e-12 * reference.max())
+
+
+@pytest.mark.parametrize("psi", [0.5, 0.99, 0.999999])
+def test_gap_of_the_rounded_flat_solves_eq_1(psi):
+    """Eq (1) outside the corrective contact ``[-c, c]``: with the surface displacement's log
+    potential ``L(x) = int p_c(xi) ln|x - xi| dxi``, the gap is
+    ``g(X) = h0(X) - h0(c) - (2 / (pi E_star)) (L(X) - L(c))``; by adaptive quadrature of ``L``
+    it is the model's gap to 1e-9 at 0.1, 0.5 and 1 of the way from ``c`` to ``a``, also where
+    ``c`` is 1.5e-8 m beyond the flat."""
+    contact = rounded_flat()
+    b, R, E_star = contact.profile.b, contact.profile.R, contact.E_star
+    corrective = cf.ciavarella_jaeger(contact, psi * contact.f * contact.P, np.zeros(1))[1]
+    c = corrective.a
+
+    def potential(X):  # L(X) - L(c), in one integral: its log singularity at xi = c is the endpoint's
+        integrand = lambda xi: corrective.pressure(xi) * np.log((X - xi) / (c - xi))  # noqa: E731
+        return integrate.quad(integrand, -c, c, points=[-b, b], epsabs=0, epsrel=1e-11, limit=400)[0]
+
+    h0 = lambda x: (abs(x) - b) ** 2 / (2 * R)  # noqa: E731 - |x| > b
+    for X in c + (contact.a - c) * np.array([0.1, 0.5, 1.0]):
+        reference = h0(X) - h0(c) - 2 / (np.pi * E_star) * potential(X)
+        assert masing.gap(contact.profile, E_star, c, np.array([X]))[0] == pytest.approx(reference, rel=1e-9)
+
+
+@pytest.mark.parametrize("psi", [1e-6, 1e-3, 0.3, 0.95])
+def test_cycle_energy_and_delta_Q_of_hertz(hertz, psi):
+    """Steady cycles of ``Q = +-Q*``: the energy per cycle is Masing's closed form and ``delta_Q``
+    at the first peak Cattaneo-Mindlin's, from 1e-6 fP (the cubic law, no noise floor) to
+    0.95 fP, to ``1e-12 + 1e-15 / psi``: in a slip zone ``1 - (x/a)^2 <= psi`` wide, the
+    pressure ``p0 sqrt(1 - (x/a)^2)`` at a point ``x`` is known to ``eps / (1 - (x/a)^2)``
+    (measured: 3.5e-10 at 1e-6)."""
+    Q_star = psi * hertz.f * hertz.P
+    rtol = 1e-12 + 1e-15 / psi
+    result = exact(hertz, fr.History.sinusoidal(Q_star, cycles=3, steps_per_cycle=16))
+    np.testing.assert_allclose(result.cycle_dissipation.values[1:], hertz_cycle_energy(hertz, Q_star), rtol=rtol)
+    peak = int(np.argmax(result.Q.values))
+    assert result.delta_Q.values[peak] == pytest.approx(hertz_slip_displacement(hertz, Q_star), rel=rtol)
+    assert np.all(result.delta_sigma.values == 0)
+
+
+def test_tiny_reversal_slips_by_the_cubic_law(hertz):
+    """0.5 fP, then back by 1e-9 fP: the reversed slip zones are 2.5e-10 a wide (method 4 sees
+    none, tests/test_engine.py); the energy is half a Masing cycle of amplitude 5e-10 fP, and the
+    outermost nodes slip backward."""
+    fP = hertz.f * hertz.P
+    result = exact(hertz, fr.History.piecewise_linear(np.array([0, 0.5, 0.5 - 1e-9]) * fP, None, [4, 1]))
+    assert result.dissipation.values[-1] == pytest.approx(hertz_cycle_energy(hertz, 0.5e-9 * fP) / 2, rel=1e-9)
+    ds = result.slip.values[-1] - result.slip.values[-2]
+    assert ds[-1] < 0 and not result.stick.values[-1, -1] and result.stick.values[-1, ds.size // 2]
+
+
+@pytest.mark.parametrize("psi", [1e-6, 0.5, 0.999999])
+def test_quadrature_has_converged(monkeypatch, psi):
+    """Rounded flat: 256 Gauss-Legendre points instead of `masing.GAUSS` change the slip, the energy
+    and delta_Q of a branch by less than 1e-12 of them."""
+    contact = rounded_flat()
+    P_c = contact.P - psi * contact.P
+
+    history = fr.History.piecewise_linear([0.0, psi * contact.f * contact.P], None, 1)
+    theta = masing.nodes_theta(contact, history, fr.DEFAULT_NODES)
+
+    def branch():
+        return masing.MasingScene(contact, theta)._solved(P_c)
+
+    coarse = branch()
+    monkeypatch.setattr(masing, "_U", np.polynomial.legendre.leggauss(256)[0])
+    monkeypatch.setattr(masing, "_WEIGHTS", np.polynomial.legendre.leggauss(256)[1])
+    fine = branch()
+    assert coarse.energy == pytest.approx(fine.energy, rel=1e-12)
+    assert coarse.delta_Q == pytest.approx(fine.delta_Q, rel=1e-12)
+    np.testing.assert_allclose(coarse.slip, fine.slip, rtol=0, atol=1e-12 * np.abs(fine.slip).max())
+
+
+def test_method_4_converges_to_it():
+    """Rounded flat, nested loops: the Galerkin meshes of rtol 1e-4 and 1e-5 give the exact
+    model's total energy to within rtol (measured: 7.5e-6, 4.8e-8); the energy of each increment
+    and delta_Q come 10 times closer on the finer mesh (energy: 1.3e-4 and 7.8e-6 of the largest
+    increment's, the worst just after the first reversal); at 1e-4 the stick ends are within 2e-3 a."""
+    contact = rounded_flat()
+    history = nested(contact)
+    reference = exact(contact, history)
+    dissipation, delta_Q = reference.dissipation.values, reference.delta_Q.values
+    errors = []
+    for rtol in (1e-4, 1e-5):
+        result = fr.simulate(contact, history, rtol=rtol)
+        assert result.total_dissipation.values == pytest.approx(reference.total_dissipation.values, rel=rtol)
+        errors.append(
+            (
+                np.abs(result.dissipation.values - dissipation).max() / dissipation.max(),
+                np.abs(result.delta_Q.values - delta_Q).max() / np.abs(delta_Q).max(),
+            )
+        )
+        if rtol == 1e-4:
+            for end in ("stick_start", "stick_end"):
+                np.testing.assert_allclose(result[end].values[:, 0], reference[end].values[:, 0], atol=2e-3 * contact.a)
+    assert np.all(np.array(errors[1]) < 0.1 * np.array(errors[0])), errors
+
+
+@pytest.mark.parametrize("profile", ["hertz", "rounded_flat", "flat_punch"])
+def test_friction_conditions_and_memory(hertz, profile):
+    """Nested loops: Coulomb's law at every node, and each loop that closes restores the state of its
+    first visit bit for bit (the slip is summed over the open branches in one order)."""
+    flat_punch = fr.Contact(fr.FlatPunch(2e-3), 115e9, 0.5, 3e5)
+    contact = {"hertz": hertz, "rounded_flat": rounded_flat(), "flat_punch": flat_punch}[profile]
+    psi = np.array([0.0, 0.8, -0.5, 0.6, -0.2, 0.6, -0.5, 0.8])
+    history = fr.History.piecewise_linear(psi * contact.f * contact.P, None, 4)
+    result = exact(contact, history)
+    assert_friction_conditions(result, contact)
+    vertex = history.vertex_step
+    for first, again in ((3, 5), (2, 6), (1, 7)):
+        np.testing.assert_array_equal(result.slip.values[vertex[again]], result.slip.values[vertex[first]])
+    assert result.state_turning.values.size == 0  # back at 0.8 fP every loop has closed: the first loading's state
+    if profile == "flat_punch":
+        assert np.all(result.slip.values == 0) and np.all(result.dissipation.values == 0)
+
+
+def test_periodic_cycles_are_copied(hertz):
+    """The state after a cycle repeats the state before it bit for bit, so the cycles after the
+    second are copied, and 10^4 of them take about as long as 3."""
+    history = fr.History.sinusoidal(0.6 * hertz.f * hertz.P, cycles=10_000, steps_per_cycle=16)
+    result = exact(hertz, history, record=[len(history) - 1])
+    assert result.cycle_copied.values[2:].all() and not result.cycle_copied.values[:2].any()
+    np.testing.assert_array_equal(result.cycle_dissipation.values[2:], result.cycle_dissipation.values[1])
+
+
+def test_continued_run_equals_the_whole_run(hertz, tmp_path):
+    """Cut at a vertex, saved, loaded and continued from its state (open turning points included):
+    the same slip and energy, bit for bit. A continuation with sigma is refused."""
+    history = nested(hertz)
+    whole = exact(hertz, history)
+    cut = int(history.vertex_step[4])
+    fr.save(exact(hertz, history[: cut + 1]), tmp_path / "head.h5")
+    state = fr.final_state(fr.load(tmp_path / "head.h5"))
+    assert state.turning == (0.8 * hertz.f * hertz.P, -0.5 * hertz.f * hertz.P, 0.6 * hertz.f * hertz.P)
+    tail = fr.simulate(hertz, history[cut:], state=state)
+    np.testing.assert_array_equal(tail.slip.values, whole.slip.values[cut:])
+    assert tail.total_dissipation.values == whole.total_dissipation.values
+    mixed = fr.History.piecewise_linear([history.Q[cut], 0.0], [0.0, 1e6], 2)
+    with pytest.raises(fr.HistoryError, match="exact model of Q alone"):
+        fr.simulate(hertz, mixed, state=state)
+
+
+def test_a_decaying_history_keeps_every_turning_point(hertz):
+    """Reversals of shrinking range, 0 -> +A_1 -> -A_2 -> ... (1500 of them, none closing a loop):
+    1500 open turning points, and the energy is the first loading's plus Masing's of each range,
+    a quarter and half the closed-form cycle energy of the amplitudes Q_1 and r_k / 2, to 1e-9."""
+    fP = hertz.f * hertz.P
+    amplitude = 0.9 * fP * np.linspace(1.0, 0.1, 1501)
+    Q = np.concatenate([[0.0], amplitude * np.where(np.arange(amplitude.size) % 2, -1.0, 1.0)])
+    result = exact(hertz, fr.History.piecewise_linear(Q, None, 1), record=[Q.size - 1])
+    assert result.state_turning.size == Q.size - 2
+    ranges = np.abs(np.diff(Q[1:]))
+    expected = hertz_cycle_energy(hertz, Q[1]) / 4 + sum(hertz_cycle_energy(hertz, r / 2) / 2 for r in ranges)
+    assert result.total_dissipation.values == pytest.approx(expected, rel=1e-9)
