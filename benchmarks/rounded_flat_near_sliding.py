@@ -3,7 +3,8 @@
 Shear to ``Q = psi f P`` in 8 proportional steps on the rounded flat of tests/test_hard_cases.py
 (flat half-width b = 1 mm, corners of radius 20 mm, E* = 115 GPa, f = 0.5, P = 3e5 N/m). The
 stick zone ``[-c, c]`` tends to the flat, ``c - b`` shrinking like ``(fP - Q)^(2/3)``. For each
-``psi`` and model this prints the nodes, ``c - b`` of the engine (half its zone's width, minus
+``psi`` and model (the default: the exact model of Q alone, fretting.masing; method 4 on the
+mesh of rtol 1e-4 and on grids) this prints the nodes, ``c - b`` of the engine (half its zone's width, minus
 b) and of Ciavarella-Jaeger, the relative error, and whether the zone covers the flat. Then
 what decides stick in the strip ``[b, c]``: the slip ``f h0(c)`` [m] there, against how far from
 flat over the flat each discretisation's slip under ``q = f p`` everywhere is (its range there).

@@ -48,8 +48,9 @@ EDGE_OCTAVES = 12
 #: in it (Hertz beyond Q/fP = 0.9998), as many Gauss-Chebyshev points of that zone are added.
 STICK_NODES = 16
 
-#: Corrective contacts kept (the slip, traction, energy of each load change met); a run whose
-#: branches need more computes them again.
+#: Corrective contacts kept (the slip, traction, energy of each load change met), and as many
+#: sums over open turning points; a run that needs more computes them again (each cache holds
+#: up to 2 x 4096 fields of N nodes: 32 MB at 496).
 CACHED_BRANCHES = 4096
 
 
