@@ -45,7 +45,7 @@ EDGE_NODES_PER_OCTAVE = 4
 EDGE_OCTAVES = 12
 
 #: Nodes that the smallest stick zone of a history holds at least: where fewer of the grid's lie
-#: in it (Hertz beyond Q/fP = 0.9998), as many Gauss-Chebyshev points of that zone are added.
+#: in it (Hertz beyond Q/fP = 0.997), as many Gauss-Chebyshev points of that zone are added.
 STICK_NODES = 16
 
 #: Corrective contacts kept (the slip, traction, energy of each load change met), and as many
@@ -157,7 +157,8 @@ class MasingScene:
             slip, q, delta_Q = self._at(turning, Q)
             return Step(q, np.zeros(slip.size), slip, 0.0, state.turning, [(-1.0, 1.0)], delta_Q)
         direction = np.sign(Q - state.Q)
-        if state.Q != _origin(turning)[0] and np.sign(state.Q - _origin(turning)[0]) != direction:
+        origin = _origin(turning)[0]
+        if state.Q != origin and np.sign(state.Q - origin) != direction:  # a reversal: Q_k is a turning point
             turning.append(state.Q)
         energy, position = 0.0, state.Q
         while True:  # each loop that the increment closes, then the branch it ends on
