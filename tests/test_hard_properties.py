@@ -133,16 +133,21 @@ def nested_turning_points(draw):
     return t
 
 
+#: Models of the Q-only properties: the default (on a symmetric profile the exact model of
+#: fretting.masing, else method 4's mesh) and method 4's mesh asked for.
+Q_ONLY_MODELS = st.sampled_from([{}, {"rtol": fr.DEFAULT_RTOL}])
+
+
 @settings(max_examples=15, deadline=None)
-@given(scene=scenes(SMOOTH), turning=nested_turning_points(), steps=st.integers(1, 6))
-def test_return_point_memory_of_nested_loops(scene, turning, steps):
-    """Q only, any profile: after the nested excursions t1, t2, ..., tm, coming back through
-    t_{m-1}, t_{m-3}, ... closes one loop at each and restores the state of its first visit."""
+@given(scene=scenes(SMOOTH), turning=nested_turning_points(), steps=st.integers(1, 6), model=Q_ONLY_MODELS)
+def test_return_point_memory_of_nested_loops(scene, turning, steps, model):
+    """Q only, any profile, either model: after the nested excursions t1, t2, ..., tm, coming back
+    through t_{m-1}, t_{m-3}, ... closes one loop at each and restores the state of its first visit."""
     m = len(turning)
     back = turning[m - 2 :: -2]
     path = np.array([0.0, *turning, *back])
     history = fr.History.piecewise_linear(path * scene.f * scene.P, None, steps)
-    slip = fr.simulate(scene, history, record=history.vertex_step).slip.values
+    slip = fr.simulate(scene, history, record=history.vertex_step, **model).slip.values
     scale = np.abs(slip).max()
     for j, k in enumerate(range(m - 1, 0, -2)):  # turning point t_k (1-based) and its return
         first, again = slip[k], slip[m + 1 + j]
@@ -154,14 +159,15 @@ def test_return_point_memory_of_nested_loops(scene, turning, steps):
     scene=scenes(SMOOTH),
     psi=st.lists(st.floats(-0.95, 0.95), min_size=1, max_size=5),
     steps=st.integers(2, 12),
+    model=Q_ONLY_MODELS,
 )
-def test_vertex_states_of_shear_paths_do_not_depend_on_the_step(scene, psi, steps):
-    """Q-only segments from the virgin state, any profile: each node slips one way within a
-    segment, so the state at every vertex is the same in 1 and in `steps` increments."""
+def test_vertex_states_of_shear_paths_do_not_depend_on_the_step(scene, psi, steps, model):
+    """Q-only segments from the virgin state, any profile, either model: each node slips one way
+    within a segment, so the state at every vertex is the same in 1 and in `steps` increments."""
     Q = np.array([0.0, *psi]) * scene.f * scene.P
     slips = []
     for n in (1, steps):
         history = fr.History.piecewise_linear(Q, None, n)
-        slips.append(fr.simulate(scene, history, record=history.vertex_step).slip.values)
+        slips.append(fr.simulate(scene, history, record=history.vertex_step, **model).slip.values)
     scale = max(np.abs(slips[0]).max(), np.finfo(float).tiny)
     np.testing.assert_allclose(slips[1], slips[0], rtol=0, atol=1e-9 * scale)
