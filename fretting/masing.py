@@ -27,6 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fretting.solver import chebyshev_angles
+
 __all__ = ["MODEL", "MasingScene", "Step", "applies", "gap", "nodes_theta"]
 
 MODEL = "Ciavarella-Jaeger with Masing's rule: exact for Q alone on a symmetric profile, at fixed nodes"
@@ -68,7 +70,7 @@ def nodes_theta(contact, history, N):
     the history (a branch from a turning point changes the load by at most twice that, and
     its corrective load, ``P - |Q - Q_k| / (2f)``, is no smaller).
     """
-    grid = _chebyshev_angles(N)
+    grid = chebyshev_angles(N)
     edge = grid[0] * 2.0 ** (-np.arange(1, EDGE_OCTAVES * EDGE_NODES_PER_OCTAVE + 1) / EDGE_NODES_PER_OCTAVE)
     theta = np.concatenate([edge[::-1], grid, np.pi - edge])
     fP = contact.f * contact.P
@@ -76,13 +78,8 @@ def nodes_theta(contact, history, N):
     largest = loads[loads < fP].max(initial=0.0)
     c = contact.profile.half_width(contact.P - largest / contact.f, contact.E_star)[0] / contact.a
     if np.count_nonzero(np.abs(np.cos(theta)) < c) < STICK_NODES:
-        theta = np.union1d(theta, np.arccos(c * np.cos(_chebyshev_angles(STICK_NODES))))
+        theta = np.union1d(theta, np.arccos(c * np.cos(chebyshev_angles(STICK_NODES))))
     return theta
-
-
-def _chebyshev_angles(N):
-    """``(2k - 1) pi / (2N)``, k = 1 .. N [rad]: the Gauss-Chebyshev points ``cos`` of them, descending."""
-    return (2 * np.arange(1, N + 1) - 1) * np.pi / (2 * N)
 
 
 @dataclass(frozen=True, eq=False)

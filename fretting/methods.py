@@ -33,6 +33,7 @@ from fretting.contact import Contact
 from fretting.history import History
 from fretting.profiles import Hertz
 from fretting.simulate import DEFAULT_NODES, simulate
+from fretting.solver import chebyshev_angles
 from fretting.variables import VARIABLES
 
 __all__ = ["METHODS", "partial_slip", "comparison_figure"]
@@ -91,14 +92,9 @@ def _second_kind_angles(n):
     return np.arange(1, n + 1) * np.pi / (n + 1)
 
 
-def _first_kind_angles(n):
-    """``theta_k = (2k - 1) pi / (2n)``, k = 1..n: nodes of the unbounded Gauss-Chebyshev rule."""
-    return (2 * np.arange(1, n + 1) - 1) * np.pi / (2 * n)
-
-
 def _grid(nodes):
     """Output positions ``t``: the engine's Gauss-Chebyshev nodes (first kind), ascending."""
-    return np.cos(_first_kind_angles(nodes))[::-1]
+    return np.cos(chebyshev_angles(nodes))[::-1]
 
 
 def _sine_coefficients(values):
@@ -113,7 +109,7 @@ def _sine_series(alpha, t):
 
 
 def _chebyshev_coefficients(values):
-    """``b_n``, n = 0..N-1, through `values` at `_first_kind_angles` (N), ``t`` descending.
+    """``b_n``, n = 0..N-1, through `values` at `chebyshev_angles` (N), ``t`` descending.
 
     The N-point Gauss-Chebyshev rule of the first kind: ``b_n = (2/N) sum_k F(t_k) T_n(t_k)``,
     ``b_0`` half of that.
@@ -154,7 +150,7 @@ class _BoundedRule(NamedTuple):
     @classmethod
     def of_size(cls, n):
         theta = _second_kind_angles(n)
-        collocation = np.cos(_first_kind_angles(n + 1))
+        collocation = np.cos(chebyshev_angles(n + 1))
         system = np.sin(theta) / ((n + 1) * (np.cos(theta) - collocation[:, None]))
         return cls(theta, collocation, *linalg.qr(system, mode="economic"))
 
@@ -337,7 +333,7 @@ def _method_3(contact, Q, *, nodes=DEFAULT_NODES, modes=MODES):
     if _adhered_holds(contact, Q, t):
         return _fully_stuck(contact, Q, t)
     alpha = _pressure_coefficients(contact, modes)
-    rule_nodes = np.cos(_first_kind_angles(modes + 1))
+    rule_nodes = np.cos(chebyshev_angles(modes + 1))
 
     def b(c):
         return _chebyshev_coefficients(-_sliding_slip_gradient(contact, alpha, c * rule_nodes / contact.a))

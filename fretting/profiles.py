@@ -22,7 +22,10 @@ _RTOL = 4 * np.finfo(float).eps
 class Profile(abc.ABC):
     """Base class: a profile gives the contact interval and the pressure for a normal load."""
 
-    #: The gap, and so the pressure, is even about the centre of the contact.
+    #: The gap, and so the pressure, is even about the centre of the contact. A symmetric profile
+    #: whose contact grows with the load gives ``load_slope(a, E_star)``, ``dP/da`` [N/m^2], from
+    #: which `fretting.masing` builds the gap outside a contact (`Hertz`, `RoundedFlat`; the sharp
+    #: `FlatPunch`, whose contact does not grow, needs none).
     SYMMETRIC = False
     #: Positions [m] where the gap's curvature jumps: the pressure's derivative is singular there.
     breakpoints = ()
@@ -34,14 +37,6 @@ class Profile(abc.ABC):
     @abc.abstractmethod
     def pressure(self, t, a, centre, P, E_star):
         """Contact pressure [Pa] at the normalised positions ``t`` in (-1, 1)."""
-
-    def load_slope(self, a, E_star):
-        """``dP/da`` [N/m^2], the rate at which the load grows with the contact half-width `a` [m].
-
-        Known for the symmetric profiles whose contact grows with the load (`Hertz`,
-        `RoundedFlat`); `fretting.masing` builds the gap outside a contact from it.
-        """
-        raise NotImplementedError(f"{self!r}: no closed-form load for a contact half-width")
 
     def peak_pressure(self, a, centre, P, E_star):
         """Largest contact pressure [Pa], found numerically unless a subclass knows it."""
@@ -75,6 +70,7 @@ class Hertz(Profile):
         return np.sqrt(4 * P * self.R / (np.pi * E_star)), 0.0
 
     def load_slope(self, a, E_star):
+        """``dP/da = pi E_star a / (2R)`` [N/m^2], from ``a = sqrt(4 P R / (pi E_star))``."""
         return np.pi * E_star * np.asarray(a) / (2 * self.R)
 
     def pressure(self, t, a, centre, P, E_star):
@@ -257,10 +253,8 @@ def _x_minus_sin(x):
     it the difference, which then loses at most ``5e-15`` relative.
     """
     x = np.asarray(x, dtype=float)
-    square, series = x**2, 0.0
-    for coefficient in reversed(_X_MINUS_SIN):  # Horner in x^2
-        series = series * square + coefficient
-    return np.where(x < 0.5, series * square * x, x - np.sin(x))
+    series = np.polynomial.polynomial.polyval(x**2, _X_MINUS_SIN) * x**3
+    return np.where(x < 0.5, series, x - np.sin(x))
 
 
 def _bracket(function, low, high, lower):

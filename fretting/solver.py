@@ -43,7 +43,7 @@ from scipy import linalg
 
 from fretting.errors import SolverError
 
-__all__ = ["Grid", "Increment", "solve_increment"]
+__all__ = ["Grid", "Increment", "chebyshev_angles", "solve_increment"]
 
 #: Rounding allowance on the friction limit, relative to the largest term of the traction: the
 #: Cholesky solves leave nodes at the limit over it by up to 2e-13 of that term (measured on
@@ -60,7 +60,7 @@ class Grid:
     def __post_init__(self):
         if not isinstance(self.N, (int, np.integer)) or self.N < 4:
             raise ValueError(f"nodes must be an integer >= 4, found {self.N!r}")
-        theta = (2 * np.arange(self.N, 0, -1) - 1) * np.pi / (2 * self.N)  # ascending t
+        theta = chebyshev_angles(self.N)[::-1]  # ascending t
         T = np.cos(np.multiply.outer(theta, np.arange(self.N)))
         object.__setattr__(self, "t", np.cos(theta))
         object.__setattr__(self, "stiffness", (T * np.arange(self.N)) @ T.T / self.N)
@@ -69,6 +69,12 @@ class Grid:
     def weight(self):
         """Gauss-Chebyshev weight ``pi / N`` of ``int_{-1}^{1} F(t) / sqrt(1 - t^2) dt``."""
         return np.pi / self.N
+
+
+def chebyshev_angles(N):
+    """``theta_k = (2k - 1) pi / (2N)``, k = 1..N [rad]: ``cos(theta_k)`` are the `N` Gauss-Chebyshev
+    points of the first kind (the unbounded rule), descending."""
+    return (2 * np.arange(1, N + 1) - 1) * np.pi / (2 * N)
 
 
 @dataclass(frozen=True, eq=False)
