@@ -250,7 +250,8 @@ def _x_minus_sin(x):
     """``x - sin(x)`` for ``x >= 0`` without the cancellation of the difference at small ``x``.
 
     Below 0.5 its Taylor series to ``x^17`` (the next term is ``1e-21`` of the sum there), above
-    it the difference, which then loses at most ``5e-15`` relative.
+    it the difference: within 3.3e-16 and 1.7e-15 relative of a 60-digit sum of the series
+    (tests/test_profiles.py).
     """
     x = np.asarray(x, dtype=float)
     series = np.polynomial.polynomial.polyval(x**2, _X_MINUS_SIN) * x**3

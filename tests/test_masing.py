@@ -195,3 +195,19 @@ def test_a_decaying_history_keeps_every_turning_point(hertz):
     ranges = np.abs(np.diff(Q[1:]))
     expected = hertz_cycle_energy(hertz, Q[1]) / 4 + sum(hertz_cycle_energy(hertz, r / 2) / 2 for r in ranges)
     assert result.total_dissipation.values == pytest.approx(expected, rel=1e-9)
+
+
+def test_nodes_hold_thin_slip_zones_and_small_stick_zones(hertz):
+    """The edge nodes: a slip zone 8e-12 a wide holds 4 or more (measured 9), the reversed zones
+    of a 1e-6 fP cycle (1 - c/a = 5e-7) about 40; the stick-zone nodes: none added at Q/fP = 0.996
+    (480 nodes), 16 from 0.997 on Hertz, where fewer grid nodes than that lie in the stick zone."""
+    fP = hertz.f * hertz.P
+    t = np.cos(masing.nodes_theta(hertz, fr.History.sinusoidal(1e-6 * fP, cycles=1), fr.DEFAULT_NODES))
+    assert np.count_nonzero(t > 1 - 8e-12) >= 4
+    assert 36 <= np.count_nonzero(t > np.sqrt(1 - 1e-6)) <= 44
+    sizes = []
+    for psi in (0.996, 0.997):
+        theta = masing.nodes_theta(hertz, fr.History.piecewise_linear([0.0, psi * fP], None, 1), fr.DEFAULT_NODES)
+        sizes.append(theta.size)
+        assert np.count_nonzero(np.abs(np.cos(theta)) < np.sqrt(1 - psi)) >= masing.STICK_NODES
+    assert sizes == [480, 496]

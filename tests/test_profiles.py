@@ -88,3 +88,25 @@ def test_load_slope_is_the_derivative_of_the_load(profile, P):
     a = profile.half_width(P, E_star)[0]
     lower, upper = (profile.half_width(P * (1 + side * h), E_star)[0] for side in (-1, 1))
     assert profile.load_slope(a, E_star) == pytest.approx(2 * h * P / (upper - lower), rel=1e-6)
+
+
+def test_x_minus_sin_keeps_its_relative_precision():
+    """``x - sin x`` of the rounded flat's load, against its Taylor series summed in 60 decimal
+    digits: within 1e-15 below x = 0.5 (the series; measured 3.3e-16) and 5e-15 above (the
+    difference; measured 1.7e-15); computed directly, ``x - sin x`` is off by 3e-8 at x = 1e-4."""
+    from decimal import Decimal, localcontext
+
+    from fretting.profiles import _x_minus_sin
+
+    def reference(x):
+        with localcontext() as context:
+            context.prec = 60
+            x = Decimal(float(x))
+            term, total, n = x**3 / 6, Decimal(0), 3
+            while abs(term) >= Decimal(10) ** -55 * abs(total):
+                total, term, n = total + term, -term * x * x / ((n + 1) * (n + 2)), n + 2
+            return float(total)
+
+    x = np.concatenate([np.geomspace(1e-8, 0.5, 200, endpoint=False), np.linspace(0.5, 3.0, 200)])
+    error = np.abs(_x_minus_sin(x) / np.array([reference(v) for v in x]) - 1)
+    assert error[x < 0.5].max() < 1e-15 and error[x >= 0.5].max() < 5e-15
