@@ -134,8 +134,7 @@ class MasingScene:
             raise ValueError(f"{contact.profile!r}: the exact model of Q alone needs a symmetric profile")
         self.contact = contact
         self.theta = theta
-        self.t = np.cos(theta[::-1])
-        self.x = contact.centre + contact.a * self.t
+        self.x = contact.centre + contact.a * np.cos(theta[::-1])
         self.friction_force = contact.f * contact.P
         self._p = contact.pressure(self.x)
         self._branches = {}  # P_c -> _Branch
