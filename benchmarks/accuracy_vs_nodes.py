@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 import fretting as fr
-from fretting import closed_forms as cf
+from fretting.physics import closed_forms as cf
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from conftest import final, hertz_si  # noqa: E402

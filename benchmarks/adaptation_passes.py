@@ -7,7 +7,7 @@ the directions of the increment before (cold). On the bench's 10-vertex random s
 8 steps per segment) this prints, for each pass of both, the nodes, the releases after the
 first solve per turning point (min to max) and the CPU time of its run, then the CPU time of the
 whole default run (fastest of 5), and of gathering the block of 550 of 764 nodes' rows and columns of ``G``
-both ways `fretting.solver._Factor` could.
+both ways `fretting.models.solver._Factor` could.
 
 Run:  python benchmarks/adaptation_passes.py   (about 10 seconds; set OPENBLAS_NUM_THREADS=1)
 """
@@ -21,7 +21,7 @@ import numpy as np
 import fretting as fr
 from fretting import bench
 
-engine = sys.modules["fretting.simulate"]
+engine = sys.modules["fretting.engine.simulation"]
 
 
 def cpu():

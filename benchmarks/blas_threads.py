@@ -1,7 +1,7 @@
-"""The default run with BLAS on one thread (as `fretting.simulate` runs it) and on two.
+"""The default run with BLAS on one thread (as `fretting.engine.simulation` runs it) and on two.
 
-`fretting.simulate`, `adapted_mesh` and `default_model` limit BLAS and LAPACK to
-`fretting.simulate.BLAS_THREADS` threads while they run. This script times the default run of
+`fretting.engine.simulation`, `adapted_mesh` and `default_model` limit BLAS and LAPACK to
+`fretting.engine.simulation.BLAS_THREADS` threads while they run. This script times the default run of
 the bench's 10-vertex random scene (Hertz, 8 steps per segment, 72 steps) as it is, and
 unwrapped under two threads (`threadpoolctl`), and prints the wall time per step (fastest of 3).
 
@@ -16,7 +16,7 @@ from threadpoolctl import threadpool_limits
 import fretting as fr
 from fretting import bench
 
-engine = sys.modules["fretting.simulate"]
+engine = sys.modules["fretting.engine.simulation"]
 
 
 def ms_per_step(run, contact, history):

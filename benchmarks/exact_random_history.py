@@ -2,7 +2,7 @@
 
 Seeded random vertices of Q in [-0.9, 0.9] f P, 8 steps per segment, from the contact just
 formed, on Hertz and on the rounded flat of tests/test_hard_cases.py. Every step is a new load
-change, so the exact model (fretting.masing, the default here) builds a new corrective contact
+change, so the exact model (fretting.models.exact, the default here) builds a new corrective contact
 at every step, and no cycle repeats for method 4 to copy. Method 4 runs on the Galerkin mesh
 adapted to the default rtol (adaptation included; asked for with rtol=). The total energy of
 the two is compared.

@@ -16,7 +16,7 @@ Cases (Hertz, R = 50 mm, E = 210 GPa, nu = 0.3, P = 100 N/mm, f = 0.6):
 - tension tau: bulk tension sigma = tau f p0 alone (eq 23), stick ends /a;
 - rounded flat psi: b = 1 mm, R = 20 mm, Ciavarella-Jaeger stick ends /a;
 - flat punch: Q up to 0.999999 f P, largest |slip| (must be exactly 0).
-The Chebyshev rows run the same histories on the fixed grid of `fretting.simulate` (384 is the
+The Chebyshev rows run the same histories on the fixed grid of `fretting.engine.simulation` (384 is the
 default, 1536 four times finer).
 """
 
@@ -44,9 +44,9 @@ from test_galerkin import (  # noqa: E402
 )
 
 import fretting as fr  # noqa: E402
-from fretting import closed_forms as cf  # noqa: E402
-from fretting import galerkin as gk  # noqa: E402
-from fretting.simulate import _Scene  # noqa: E402
+from fretting.physics import closed_forms as cf  # noqa: E402
+from fretting.models import galerkin as gk  # noqa: E402
+from fretting.engine.simulation import _Scene  # noqa: E402
 
 CYCLE_STEPS = 4
 CYCLE_PSI = (0.95, 0.8, 0.5, 0.3, 0.2, 0.1, 0.05, 0.01, 0.001, 1e-6)
@@ -91,7 +91,7 @@ def traction(scene, g, ds):
 
 def stick_ends(scene, slip):
     if isinstance(scene, _ChebyshevScene):
-        from fretting.simulate import stick_zones
+        from fretting.engine.simulation import stick_zones
 
         return scene.contact.centre + scene.contact.a * np.array(stick_zones(scene.grid.t, slip))
     return ends(scene, slip)

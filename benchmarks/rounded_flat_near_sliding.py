@@ -3,7 +3,7 @@
 Shear to ``Q = psi f P`` in 8 proportional steps on the rounded flat of tests/test_hard_cases.py
 (flat half-width b = 1 mm, corners of radius 20 mm, E* = 115 GPa, f = 0.5, P = 3e5 N/m). The
 stick zone ``[-c, c]`` tends to the flat, ``c - b`` shrinking like ``(fP - Q)^(2/3)``. For each
-``psi`` and model (the default: the exact model of Q alone, fretting.masing; method 4 on the
+``psi`` and model (the default: the exact model of Q alone, fretting.models.exact; method 4 on the
 mesh of rtol 1e-4 and on grids) this prints the nodes, ``c - b`` of the engine (half its zone's width, minus
 b) and of Ciavarella-Jaeger, the relative error, and whether the zone covers the flat. Then
 what decides stick in the strip ``[b, c]``: the slip ``f h0(c)`` [m] there, against how far from
@@ -15,9 +15,9 @@ Run:  python benchmarks/rounded_flat_near_sliding.py   (about 3 seconds)
 import numpy as np
 
 import fretting as fr
-from fretting import closed_forms
-from fretting.galerkin import GalerkinScene
-from fretting.simulate import _Scene
+from fretting.physics import closed_forms
+from fretting.models.galerkin import GalerkinScene
+from fretting.engine.simulation import _Scene
 
 CONTACT = fr.Contact(fr.RoundedFlat(b=1e-3, R=0.02), 115e9, 0.5, 3e5)
 MODELS = {"default": {}, "rtol 1e-4": {"rtol": 1e-4}, "grid 384": {"nodes": 384}, "grid 1536": {"nodes": 1536}}

@@ -1,13 +1,13 @@
 """fretting: partial-slip half-plane contacts under arbitrary shear and bulk-tension histories."""
 
-from fretting.contact import Contact, plane_strain_modulus
+from fretting.physics.contact import Contact, plane_strain_modulus
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, SolverError
-from fretting.history import History
-from fretting.history_file import HistoryFileError, read_history
-from fretting.io import ResultError, join_results, load, save
-from fretting.methods import partial_slip
-from fretting.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
-from fretting.simulate import (
+from fretting.loading.history import History
+from fretting.loading.history_file import HistoryFileError, read_history
+from fretting.results.io import ResultError, join_results, load, save
+from fretting.physics.methods import partial_slip
+from fretting.physics.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
+from fretting.engine.simulation import (
     DEFAULT_NODES,
     DEFAULT_RTOL,
     MAX_DEFAULT_MESH,
@@ -16,7 +16,7 @@ from fretting.simulate import (
     final_state,
     simulate,
 )
-from fretting.sweep import sweep
+from fretting.studies.sweeps import sweep
 
 __all__ = [
     "Contact",

@@ -47,8 +47,8 @@ import xarray as xr
 from scipy import integrate
 
 import fretting as fr
-from fretting import closed_forms as cf
-from fretting.simulate import stick_zones
+from fretting.physics import closed_forms as cf
+from fretting.engine.simulation import stick_zones
 
 __all__ = [
     "BAND",
@@ -122,7 +122,7 @@ def configurations(quick=False):
     Returns
     -------
     list of (str, dict)
-        Label and keyword arguments of `fretting.simulate`.
+        Label and keyword arguments of `fretting.engine.simulation`.
     """
     nodes = (32, 64) if quick else (64, 128, 256, 384, 512, 768, 1024)
     tolerances = () if quick else (1e-3, 1e-4)
@@ -715,9 +715,9 @@ def baseline_simulate(contact, history, nodes):
     starts from the previous increment's slip set and iterates: solve ``G_SS ds_S = g_trial_S -
     dir_S f p_S sqrt(1 - t_S^2)`` with `numpy.linalg.solve`, stick the slipping nodes whose slip
     went against its direction, release the stuck nodes whose traction exceeds the friction
-    limit, until nothing moves. Independent of `fretting.solver`; the same discretisation, so
+    limit, until nothing moves. Independent of `fretting.models.solver`; the same discretisation, so
     its increments equal the engine's Chebyshev model's. Stick-zone ends are the engine's own
-    sub-grid estimate (`fretting.simulate.stick_zones`), so that the two are compared as solvers,
+    sub-grid estimate (`fretting.engine.simulation.stick_zones`), so that the two are compared as solvers,
     not as post-processing.
 
     Returns

@@ -18,10 +18,10 @@ from fretting._validate import positive
 from fretting.bench import add_arguments as add_bench_arguments
 from fretting.bench import run as run_bench
 from fretting.errors import FrettingError, GrossSlipError, HistoryError
-from fretting.history_file import read_history_source
-from fretting.io import Joiner, ResultError, load, save, source_attributes
-from fretting.masing import MODEL as MASING_MODEL
-from fretting.simulate import (
+from fretting.loading.history_file import read_history_source
+from fretting.results.io import Joiner, ResultError, load, save, source_attributes
+from fretting.models.exact import MODEL as MASING_MODEL
+from fretting.engine.simulation import (
     DEFAULT_NODES,
     DEFAULT_RTOL,
     MAX_DEFAULT_MESH,
@@ -33,8 +33,8 @@ from fretting.simulate import (
     recorded_steps,
     simulate,
 )
-from fretting.sweep import add_arguments as add_sweep_arguments
-from fretting.sweep import run as run_sweep
+from fretting.studies.sweeps import add_arguments as add_sweep_arguments
+from fretting.studies.sweeps import run as run_sweep
 
 __all__ = ["main"]
 
@@ -190,9 +190,9 @@ def _settings(args):
     return {} if args.rtol is None else {"rtol": args.rtol}
 
 
-#: The settings of a run of the exact model of Q alone (`fretting.masing`): its dataset's `model`.
+#: The settings of a run of the exact model of Q alone (`fretting.models.exact`): its dataset's `model`.
 EXACT_SETTINGS = {"model": MASING_MODEL}
-#: What the default model may be (`fretting.simulate.default_model`).
+#: What the default model may be (`fretting.engine.simulation.default_model`).
 DEFAULT_SETTINGS = (EXACT_SETTINGS, {"rtol": DEFAULT_RTOL}, {"nodes": DEFAULT_NODES})
 
 

@@ -10,7 +10,7 @@ returns the axes; none shows or saves a figure. `FIGURES` names the figures that
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
-from fretting import nucleation
+from fretting.analysis import nucleation
 
 __all__ = [
     "FIGURES",
@@ -48,7 +48,7 @@ def snapshot_steps(result):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate`.
+        A result of `fretting.engine.simulation`.
 
     Returns
     -------
@@ -66,7 +66,7 @@ def traction(result, steps=None, ax=None):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate`.
+        A result of `fretting.engine.simulation`.
     steps : sequence of int, optional
         Steps to draw; `snapshot_steps` when omitted.
     ax : matplotlib.axes.Axes, optional
@@ -140,7 +140,7 @@ def loops(result, cycles=None, ax=None):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate` with load cycles.
+        A result of `fretting.engine.simulation` with load cycles.
     cycles : sequence of int, optional
         Cycle numbers; by default up to `CURVES` of the cycles recorded whole, from the first
         to the last.
@@ -218,7 +218,7 @@ def peak_density(result, ax=None):
 def surface_stress(result, steps=None, ax=None, body=1, bulk=0.0):
     """Surface direct stress ``sigma_xx / (f p0)`` of `body` against ``x / a`` at `steps`.
 
-    See `fretting.nucleation.surface_stress` for `body` and `bulk`; `steps` default to
+    See `fretting.analysis.nucleation.surface_stress` for `body` and `bulk`; `steps` default to
     `snapshot_steps`.
     """
     ax = _axes(ax)

@@ -13,8 +13,8 @@ import tempfile
 from pathlib import Path
 
 from fretting import cli
-from fretting.methods import comparison_figure
-from fretting.sweep import read_sweep, run_sweep, save_map
+from fretting.physics.methods import comparison_figure
+from fretting.studies.sweeps import read_sweep, run_sweep, save_map
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "results"

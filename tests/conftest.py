@@ -10,7 +10,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 import fretting as fr  # noqa: E402
-from fretting.contact import plane_strain_modulus  # noqa: E402
+from fretting.physics.contact import plane_strain_modulus  # noqa: E402
 
 E_SI, NU_SI = 210e9, 0.3
 

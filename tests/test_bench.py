@@ -10,7 +10,7 @@ from scipy import integrate
 
 import fretting as fr
 from fretting import bench
-from fretting import closed_forms as cf
+from fretting.physics import closed_forms as cf
 
 
 @pytest.fixture(scope="module")

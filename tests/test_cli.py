@@ -15,8 +15,8 @@ from conftest import HERTZ_TOML as CONTACT
 
 import fretting as fr
 from fretting import cli, plots
-from fretting.history_file import read_history
-from fretting.io import load
+from fretting.loading.history_file import read_history
+from fretting.results.io import load
 
 NODES = "32"
 
@@ -215,7 +215,7 @@ def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
 def test_long_runs_record_their_ends_and_every_cycle_and_resume(workdir, capsys, monkeypatch):
     """Past the recording threshold only the first and last steps keep their fields; energy and
     slip range per cycle cover every cycle; an interrupted run resumes to the same result."""
-    engine = importlib.import_module("fretting.simulate")
+    engine = importlib.import_module("fretting.engine.simulation")
     monkeypatch.setattr(engine, "RECORD_ALL_STEPS", 100)
     monkeypatch.setattr(engine, "RECORDED_ENDS", 30)
     monkeypatch.setattr(cli, "CHUNK_STEPS", 20)

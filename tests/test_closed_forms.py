@@ -12,7 +12,7 @@ import pytest
 from conftest import final
 
 import fretting as fr
-from fretting import closed_forms as cf
+from fretting.physics import closed_forms as cf
 
 BOUNDARY_BAND = 0.02  # [a], see the module docstring
 

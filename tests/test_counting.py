@@ -15,7 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import fretting as fr
-from fretting import counting
+from fretting.analysis import counting
 
 NODES = 64
 MASING_RTOL = 1e-9

@@ -274,7 +274,7 @@ def test_the_engine_runs_blas_on_one_thread_and_gives_the_threads_back(hertz, mo
     ms per step on the bench's random scene, benchmarks/blas_threads.py): every increment,
     adaptation passes included, runs with BLAS_THREADS per library; the caller's setting is back
     after the run."""
-    engine = sys.modules["fretting.simulate"]
+    engine = sys.modules["fretting.engine.simulation"]
     solve, seen = engine.solve_increment, []
 
     def spying(*args):

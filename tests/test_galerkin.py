@@ -1,4 +1,4 @@
-"""The P1 Galerkin scene and its mesh refinement (fretting.galerkin) against closed forms.
+"""The P1 Galerkin scene and its mesh refinement (fretting.models.galerkin) against closed forms.
 
 Targets: energy per cycle of a Hertz contact under Q = +-Q* within 1e-4 relative for Q*/fP in
 [0.05, 0.95] and 1e-3 at 0.001; stick-zone ends within 1e-3 a (Cattaneo-Mindlin up to
@@ -18,10 +18,10 @@ from scipy import integrate, special
 
 import fretting as fr
 from fretting import bench
-from fretting import closed_forms as cf
-from fretting import galerkin as gk
-from fretting.simulate import _Scene, stick_zones
-from fretting.solver import solve_increment
+from fretting.physics import closed_forms as cf
+from fretting.models import galerkin as gk
+from fretting.engine.simulation import _Scene, stick_zones
+from fretting.models.solver import solve_increment
 
 BOUNDARY_BAND = 0.02  # [a]: the traction has a square-root kink at a stick/slip boundary
 #: Below this Q*/fP the energy per cycle is summed as its power series (the closed form cancels).
@@ -644,5 +644,5 @@ def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkey
     contact = bench.hertz_contact()
     history = bench.baseline_history(contact, 2)
     warm = fr.adapted_mesh(contact, history)
-    monkeypatch.setattr(sys.modules["fretting.simulate"], "_interpolated_directions", lambda *args: None)
+    monkeypatch.setattr(sys.modules["fretting.engine.simulation"], "_interpolated_directions", lambda *args: None)
     np.testing.assert_array_equal(warm, fr.adapted_mesh(contact, history))

@@ -22,9 +22,9 @@ from scipy import integrate, interpolate, optimize, special
 
 import fretting as fr
 from fretting import cli
-from fretting import closed_forms as cf
-from fretting.galerkin import initial_theta
-from fretting.simulate import _Scene
+from fretting.physics import closed_forms as cf
+from fretting.models.galerkin import initial_theta
+from fretting.engine.simulation import _Scene
 
 RESOLVED = 1e-2  # of the feature's own size
 PROJECT = 1e-3  # of a (ends), of f p0 (traction), of the largest slip
@@ -98,7 +98,7 @@ def away_from(x, ends, a):
 def proportional(contact, psi, tau=0.0, steps=8, **model):
     """Result of a straight path from the virgin contact to ``Q = psi f P``, ``sigma = tau f p0``.
 
-    `model`: keyword arguments of `fretting.simulate` that choose the model (the default if none).
+    `model`: keyword arguments of `fretting.engine.simulation` that choose the model (the default if none).
     """
     history = fr.History.piecewise_linear(
         [0.0, psi * contact.f * contact.P], [0.0, tau * contact.f * contact.p0], steps
@@ -144,7 +144,7 @@ def rounded_flat():
 
 @pytest.mark.parametrize("psi", [0.999, 0.999999])
 def test_ciavarella_jaeger_stick_zone_tends_to_the_flat(psi):
-    """Check of the reference used below (fretting.closed_forms): the stick zone is the contact
+    """Check of the reference used below (fretting.physics.closed_forms): the stick zone is the contact
     of P_c = P - Q/f; for small P_c, with pi/2 - phi0 = e, P_c = E_star b^2 (2e - sin 2e) / (4R)
     -> E_star b^2 e^3 / (3R) and c - b -> b e^2 / 2, so c - b shrinks like (fP - Q)^(2/3)."""
     contact = rounded_flat()
@@ -164,7 +164,7 @@ CLOSE_TO_SLIDING = (0.999, 0.999999)
 #: slip of f h0(c) = 2.6e-15 m at 0.999999, below the error of either discretisation's slip under
 #: q = f p over the flat (4.9e-11 m on the 384-node grid, 1.6e-13 m on the rtol 1e-4 mesh; python
 #: benchmarks/rounded_flat_near_sliding.py). The default runs Q alone on this symmetric profile
-#: with the exact model (fretting.masing), whose stick zone is the corrective contact itself; the
+#: with the exact model (fretting.models.exact), whose stick zone is the corrective contact itself; the
 #: mesh of the default rtol is held to the same checks where it resolves the strip, at 0.999.
 MODELS_CLOSE_TO_SLIDING = [(CLOSE_TO_SLIDING[0], "rtol"), *((psi, "default") for psi in CLOSE_TO_SLIDING)]
 

@@ -134,7 +134,7 @@ def nested_turning_points(draw):
 
 
 #: Models of the Q-only properties: the default (on a symmetric profile the exact model of
-#: fretting.masing, else method 4's mesh) and method 4's mesh asked for.
+#: fretting.models.exact, else method 4's mesh) and method 4's mesh asked for.
 Q_ONLY_MODELS = st.sampled_from([{}, {"rtol": fr.DEFAULT_RTOL}])
 
 

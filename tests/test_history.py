@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import fretting as fr
-from fretting.history import RAMP_STEPS
+from fretting.loading.history import RAMP_STEPS
 
 History = fr.History
 

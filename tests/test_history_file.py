@@ -7,8 +7,8 @@ import pytest
 from conftest import HERTZ_TOML as CONTACT
 
 import fretting as fr
-from fretting.history import RAMP_STEPS
-from fretting.history_file import HistoryFileError, read_history, read_history_source
+from fretting.loading.history import RAMP_STEPS
+from fretting.loading.history_file import HistoryFileError, read_history, read_history_source
 
 EXAMPLES = sorted((Path(__file__).parents[1] / "histories").glob("*.toml"))
 

@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 
 import fretting as fr
-from fretting.io import ResultError, join_results, load, save
+from fretting.results.io import ResultError, join_results, load, save
 
 NODES = 48
 

@@ -1,4 +1,4 @@
-"""The exact model of Q alone on a symmetric profile (fretting.masing): Ciavarella-Jaeger and Masing's rule.
+"""The exact model of Q alone on a symmetric profile (fretting.models.exact): Ciavarella-Jaeger and Masing's rule.
 
 Checked against the closed forms of Hertz (Cattaneo-Mindlin, the Masing cycle energy and
 delta_Q), against quadratures of eq (1) on the rounded flat, and against method 4 on a history
@@ -12,8 +12,8 @@ from test_galerkin import hertz_cycle_energy
 from test_hard_cases import assert_friction_conditions, hertz_slip_displacement, rounded_flat
 
 import fretting as fr
-from fretting import closed_forms as cf
-from fretting import masing
+from fretting.physics import closed_forms as cf
+from fretting.models import exact as masing
 
 #: Nested loops: 0.8 fP, back to -0.5, up to 0.6, down to -0.2, then through both closing points
 #: to 0.9 and to -0.9 fP.

@@ -96,7 +96,7 @@ def test_x_minus_sin_keeps_its_relative_precision():
     difference; measured 1.7e-15); computed directly, ``x - sin x`` is off by 3e-8 at x = 1e-4."""
     from decimal import Decimal, localcontext
 
-    from fretting.profiles import _x_minus_sin
+    from fretting.physics.profiles import _x_minus_sin
 
     def reference(x):
         with localcontext() as context:

@@ -10,8 +10,8 @@ from distributed import LocalCluster
 
 import fretting as fr
 from fretting import cli
-from fretting.history_file import HistoryFileError
-from fretting.sweep import REGIMES, VARIABLES, read_sweep, save_map, summarize
+from fretting.loading.history_file import HistoryFileError
+from fretting.studies.sweeps import REGIMES, VARIABLES, read_sweep, save_map, summarize
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -7,7 +7,7 @@ move the stick zone toward negative x.
 import numpy as np
 from scipy import optimize, special
 
-from fretting.contact import Contact
+from fretting.physics.contact import Contact
 
 __all__ = [
     "cattaneo_mindlin_traction",

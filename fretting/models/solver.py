@@ -111,7 +111,7 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
         ``ds = 0`` exactly at the nodes that stick. The new slip of the slipping nodes is solved
         for from the loads and the slip of the stuck nodes alone, never as old slip plus an
         increment, so a state that repeats a cycle later repeats bit for bit (the periodic
-        shortcut of `fretting.simulate` relies on it).
+        shortcut of `fretting.engine.simulation` relies on it).
     """
     slip = np.zeros_like(g_stuck) if slip is None else slip
     new = slip

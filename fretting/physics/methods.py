@@ -7,7 +7,7 @@ routes of Table A reach the same state:
 1. corrective traction on the sliding solution (Ciavarella-Jaeger, section 2, eqs 3-5);
 2. corrective traction on the adhered solution (section 4, eqs 24-25, kernel B.1);
 3. corrective dislocations on the sliding solution (section 5, eqs 26-28, kernel B.2);
-4. corrective dislocations on the adhered solution: the engine, `fretting.simulate`.
+4. corrective dislocations on the adhered solution: the engine, `fretting.engine.simulation`.
 
 Conventions of formulation.md: the slip ``s`` is what ``q`` drives, ``Q > 0`` gives ``s > 0``, and
 the slip gradient (dislocation density) of a traction is
@@ -27,14 +27,14 @@ from matplotlib.figure import Figure
 from numpy.polynomial import chebyshev, legendre
 from scipy import fft, linalg, optimize
 
-from fretting import closed_forms
+from fretting.physics import closed_forms
 from fretting._validate import finite
-from fretting.contact import Contact
-from fretting.history import History
-from fretting.profiles import Hertz
-from fretting.simulate import DEFAULT_NODES, simulate
-from fretting.solver import chebyshev_angles
-from fretting.variables import VARIABLES
+from fretting.physics.contact import Contact
+from fretting.loading.history import History
+from fretting.physics.profiles import Hertz
+from fretting.engine.simulation import DEFAULT_NODES, simulate
+from fretting.models.solver import chebyshev_angles
+from fretting.results.variables import VARIABLES
 
 __all__ = ["METHODS", "partial_slip", "comparison_figure"]
 
@@ -352,7 +352,7 @@ def _method_3(contact, Q, *, nodes=DEFAULT_NODES, modes=MODES):
 
 
 def _method_4(contact, Q, *, nodes=DEFAULT_NODES, steps=STEPS):
-    """Corrective dislocations on the adhered solution: `fretting.simulate` (eqs 9-12), last step."""
+    """Corrective dislocations on the adhered solution: `fretting.engine.simulation` (eqs 9-12), last step."""
     last = simulate(contact, History.piecewise_linear([0.0, Q], None, steps), nodes=nodes).isel(step=-1)
     t = (last.x.values - contact.centre) / contact.a
     c = float(last.stick_end[0] - last.stick_start[0]) / 2
@@ -415,7 +415,7 @@ def _check_symmetric(contact):
 
 
 def _dataset(contact, Q, method, solution):
-    """Dataset with the units and long names of `fretting.variables.VARIABLES`."""
+    """Dataset with the units and long names of `fretting.results.variables.VARIABLES`."""
 
     def variable(name, values):
         _, units, long_name = VARIABLES[name]

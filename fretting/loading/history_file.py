@@ -14,10 +14,10 @@ from pathlib import Path
 
 import numpy as np
 
-from fretting.contact import Contact, plane_strain_modulus
+from fretting.physics.contact import Contact, plane_strain_modulus
 from fretting.errors import HistoryError
-from fretting.history import RAMP_STEPS, History
-from fretting.profiles import FlatPunch, Gap, Hertz, RoundedFlat
+from fretting.loading.history import RAMP_STEPS, History
+from fretting.physics.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 
 __all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_data", "read_history_source"]
 

@@ -24,7 +24,7 @@ class Profile(abc.ABC):
 
     #: The gap, and so the pressure, is even about the centre of the contact. A symmetric profile
     #: whose contact grows with the load gives ``load_slope(a, E_star)``, ``dP/da`` [N/m^2], from
-    #: which `fretting.masing` builds the gap outside a contact (`Hertz`, `RoundedFlat`; the sharp
+    #: which `fretting.models.exact` builds the gap outside a contact (`Hertz`, `RoundedFlat`; the sharp
     #: `FlatPunch`, whose contact does not grow, needs none).
     SYMMETRIC = False
     #: Positions [m] where the gap's curvature jumps: the pressure's derivative is singular there.

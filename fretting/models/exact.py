@@ -5,7 +5,7 @@ formed, on a symmetric profile, the traction is ``q = f (p(x; P) - p(x; P_c))`` 
 ``|Q| = f (P - P_c)`` (Ciavarella 1998, Jaeger 1998; section 2 of the seed): the stick zone is
 the contact ``[-c, c]`` of the corrective load ``P_c``, and the slip is ``f`` times that
 contact's gap, ``s = f g_c(x)`` (literature-notes.md, rounded flat; for Hertz it is eq 19
-integrated, `fretting.closed_forms.cattaneo_mindlin_slip`). Masing's rule gives any history of
+integrated, `fretting.physics.closed_forms.cattaneo_mindlin_slip`). Masing's rule gives any history of
 ``Q`` from it (Mindlin & Deresiewicz 1953 for Hertz; literature-notes.md, in-phase cycling):
 from the last turning point ``Q_k`` the change is twice the monotonic solution of half the
 change, ``P_c = P - |Q - Q_k| / (2f)``, until ``|Q - Q_k|`` reaches the range of the branch
@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fretting.solver import chebyshev_angles
+from fretting.models.solver import chebyshev_angles
 
 __all__ = ["MODEL", "MasingScene", "Step", "applies", "gap", "nodes_theta"]
 

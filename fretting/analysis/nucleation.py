@@ -1,6 +1,6 @@
 """Crack-nucleation quantities of a result: dissipated energy density, surface stress, Ruiz and Fouvry.
 
-Pure functions of a result of `fretting.simulate`. Each returns DataArrays or Datasets whose
+Pure functions of a result of `fretting.engine.simulation`. Each returns DataArrays or Datasets whose
 variables carry ``units``, ``long_name`` and ``definition`` (the formula and its source).
 
 Conventions (those of formulation.md): the shear traction ``q`` acts on **body 1** (its
@@ -98,7 +98,7 @@ def complete_cycles(result):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate` with load cycles.
+        A result of `fretting.engine.simulation` with load cycles.
 
     Returns
     -------
@@ -127,7 +127,7 @@ def dissipation_density(result):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate` with load cycles.
+        A result of `fretting.engine.simulation` with load cycles.
 
     Returns
     -------
@@ -344,7 +344,7 @@ def surface_stress(result, body=1, bulk=0.0):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate`.
+        A result of `fretting.engine.simulation`.
     body : {1, 2}
         1: the body on which the traction is ``q`` (resultant ``Q``); 2: the other one (``-q``).
     bulk : float or array_like
@@ -418,7 +418,7 @@ def ruiz(result, body=1, bulk=0.0):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate` with load cycles.
+        A result of `fretting.engine.simulation` with load cycles.
     body : {1, 2}
     bulk : float or array_like
         As for `surface_stress`.
@@ -473,7 +473,7 @@ def cycles_to_nucleation(result, w_critical, steady_rtol=STEADY_RTOL):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate` with load cycles.
+        A result of `fretting.engine.simulation` with load cycles.
     w_critical : float
         Critical dissipated energy density [J/m^2], > 0.
     steady_rtol : float

@@ -3,7 +3,7 @@
 import numpy as np
 
 from fretting._validate import positive
-from fretting.profiles import Profile
+from fretting.physics.profiles import Profile
 
 __all__ = ["Contact", "plane_strain_modulus"]
 

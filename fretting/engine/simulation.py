@@ -1,5 +1,5 @@
 """The incremental state machine: follow a load history with method 4 of the seed paper, or,
-under Q alone on a symmetric profile, with the exact model of `fretting.masing`."""
+under Q alone on a symmetric profile, with the exact model of `fretting.models.exact`."""
 
 import itertools
 from dataclasses import dataclass, replace
@@ -8,9 +8,9 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from fretting._validate import positive
-from fretting.contact import Contact
+from fretting.physics.contact import Contact
 from fretting.errors import GrossSlipError, HistoryError, SolverError
-from fretting.galerkin import (
+from fretting.models.galerkin import (
     DEFAULT_RTOL,
     GalerkinScene,
     element_targets,
@@ -18,11 +18,11 @@ from fretting.galerkin import (
     initial_theta,
     refine,
 )
-from fretting.history import History
-from fretting.masing import MODEL as MASING_MODEL
-from fretting.masing import MasingScene, applies, nodes_theta
-from fretting.solver import Grid, solve_increment
-from fretting.variables import build_dataset
+from fretting.loading.history import History
+from fretting.models.exact import MODEL as MASING_MODEL
+from fretting.models.exact import MasingScene, applies, nodes_theta
+from fretting.models.solver import Grid, solve_increment
+from fretting.results.variables import build_dataset
 
 __all__ = [
     "DEFAULT_NODES",
@@ -155,7 +155,7 @@ class State:
         Galerkin mesh or nodes of the exact model [rad] on which the fields live, ascending
         (None: Gauss-Chebyshev collocation).
     turning : tuple of float, optional
-        Turning points [N/m] that the exact model of ``Q`` alone (`fretting.masing`) still
+        Turning points [N/m] that the exact model of ``Q`` alone (`fretting.models.exact`) still
         remembers, oldest first (None: a state of method 4).
     """
 
@@ -291,7 +291,7 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
         Relative accuracy of the energy asked of the P1 Galerkin model: the mesh is refined where
         the stick and slip zones of the history need it (`adapted_mesh`). When none of `nodes`,
         `rtol`, `mesh`, `state` is given, `default_model` chooses: the exact model of ``Q``
-        alone (`fretting.masing`) where the history has no ``sigma`` and the profile is
+        alone (`fretting.models.exact`) where the history has no ``sigma`` and the profile is
         symmetric; else `DEFAULT_RTOL`, or the grid of `DEFAULT_NODES` where that mesh would
         exceed `MAX_DEFAULT_MESH` nodes.
     mesh : array_like, optional
@@ -308,7 +308,7 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
     Returns
     -------
     xarray.Dataset
-        Variables of `fretting.variables.VARIABLES`.
+        Variables of `fretting.results.variables.VARIABLES`.
 
     Raises
     ------
@@ -341,7 +341,7 @@ def simulate(contact, history, *, nodes=None, rtol=None, mesh=None, state=None, 
 def default_model(contact, history):
     """Keywords of `simulate` for its default model.
 
-    ``{}`` where the exact model of ``Q`` alone applies (`fretting.masing.applies`: it needs
+    ``{}`` where the exact model of ``Q`` alone applies (`fretting.models.exact.applies`: it needs
     none); else ``{"mesh": theta}``, the Galerkin mesh adapted to `DEFAULT_RTOL`, unless that
     mesh would need more than `MAX_DEFAULT_MESH` nodes; then ``{"nodes": DEFAULT_NODES}``, the grid.
     """
@@ -401,7 +401,7 @@ def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
 
     Runs the history's turning points (`History.turning_points`, from the contact just formed),
     each curved stretch between them cut where its direction has turned by `MAX_TURN`, on a
-    mesh graded toward the edges, refines every element that `fretting.galerkin.element_targets`
+    mesh graded toward the edges, refines every element that `fretting.models.galerkin.element_targets`
     finds too coarse at any of them, and runs them again until no element is; each run copies
     repeating cycles as `simulate` does. The other steps are not run: along a proportional
     stretch each node slips one way only, so its dissipation is ``f p |s_end - s_start|`` and
@@ -661,7 +661,7 @@ class _Run:
         self.fields["delta_sigma"][k] = 0.0 if exact else scene.delta_sigma(state.slip)  # even slip: zero
 
     def data(self, state):
-        """The arrays of the result (names from `fretting.variables.VARIABLES`) of a run that ended in `state`."""
+        """The arrays of the result (names from `fretting.results.variables.VARIABLES`) of a run that ended in `state`."""
         scene, history, steps = self.scene, self.history, self.steps
         data = self.fields | _zone_ends(scene, self.zones)
         if history.cycle is not None:

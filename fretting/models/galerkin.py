@@ -32,16 +32,16 @@ Loads. The fully stuck traction of eqs (9) and (20) does the work
 ``delta_Q = dQ . s`` and ``delta_sigma = dsig . s`` exactly. The friction term
 ``int f p |ds| dx`` is lumped to ``sum_k L_k |ds_k|``, ``L_k = int f p phi_k dx`` (exact while
 ``ds`` keeps its sign on each element). An increment is then the problem that
-`fretting.solver.solve_increment` solves,
+`fretting.models.solver.solve_increment` solves,
 ``min 1/2 ds^T K ds - g_trial^T ds + sum_k L_k |ds_k|`` with ``g_trial = F(Q', sigma') - K s``,
 and its ``g_k = int q phi_k dx`` are hat moments of the traction. `GalerkinScene.traction`
 turns them into nodal values keeping Coulomb's law exactly at the nodes.
 
 Mesh. `element_targets` reads the stick and slip zones of an increment and asks for element
 sizes; `refine` bisects (old nodes stay nodes, so a P1 slip field carries over exactly) and
-grades neighbours to a size ratio of at most 2. A driver (`fretting.simulate.adapted_mesh`)
+grades neighbours to a size ratio of at most 2. A driver (`fretting.engine.simulation.adapted_mesh`)
 runs the turning points of its history (curved stretches between them cut where the path has
-turned by `fretting.simulate.MAX_TURN`), reduces the targets of every increment with
+turned by `fretting.engine.simulation.MAX_TURN`), reduces the targets of every increment with
 ``np.minimum``, refines, and runs again until `refine` returns the same mesh, starting from
 `initial_theta` (pass `GalerkinScene.breakpoints` on: the profile's, where the pressure has a
 singular derivative). ``rtol`` is the relative accuracy asked of the energy dissipated in each
@@ -55,7 +55,7 @@ Measured at the default 1e-4 (``python benchmarks/galerkin_convergence.py --rtol
 --no-chebyshev``): energy per cycle of a Hertz contact under ``+-Q*`` within 3.0e-5 for Q*/fP
 in [0.05, 0.95] and 1.2e-5 down to 1e-6, stick ends within 2.2e-4 a, tractions within 3.5e-4
 f p0 and slips within 3.2e-4 of their maximum, on 268 to 765 nodes (765 at Q/fP = 0.999999,
-just under `fretting.simulate.MAX_DEFAULT_MESH`).
+just under `fretting.engine.simulation.MAX_DEFAULT_MESH`).
 """
 
 from typing import NamedTuple
@@ -64,7 +64,7 @@ import numpy as np
 from numpy.polynomial import polynomial
 from scipy import special
 
-from fretting.profiles import Gap
+from fretting.physics.profiles import Gap
 
 __all__ = [
     "DEFAULT_RTOL",
@@ -135,7 +135,7 @@ ZONE_ERROR = 1e-4
 #: cycle errs by 3.2e-4 with rtol = 1e-3 and 3.7e-5 with 1e-4 (9, the bare fit, let 4 exceed 1e-4).
 BOUNDARY_ERROR = 40.0
 #: The element holding a boundary spans at most ``BOUNDARY_SPAN rtol a`` in x: the boundary
-#: extrapolated from the slip (`fretting.simulate.stick_zones`) then errs by ~ 0.15 of that.
+#: extrapolated from the slip (`fretting.engine.simulation.stick_zones`) then errs by ~ 0.15 of that.
 BOUNDARY_SPAN = 50.0
 #: Elements at a pressure breakpoint span this fraction of ``BOUNDARY_SPAN rtol a``: the
 #: traction's ``d ln d`` there errs by 1.2e-3 f p0 at the node nearest the end of a rounded
@@ -609,7 +609,7 @@ def _recovery(theta, moments):
 class GalerkinScene:
     """A contact discretised by P1 Galerkin on the mesh `theta`: the fixed arrays of every increment.
 
-    Same interface as the Chebyshev scene of `fretting.simulate`; every per-node array is in
+    Same interface as the Chebyshev scene of `fretting.engine.simulation`; every per-node array is in
     ascending ``x``, i.e. descending ``theta``.
 
     Parameters
@@ -636,7 +636,7 @@ class GalerkinScene:
         ``sum_k L_k`` [N/m]: ``f P`` up to the quadrature of `limit`, since the hats sum to 1
         (measured: within 7e-16 of it on Hertz, rounded flats and the sharp flat punch; the
         asymmetric `Gap` of tests/test_hard_cases.py 1.7e-8 short on `initial_theta`, 1.7e-15
-        on 1000 equal elements). `fretting.simulate` takes gross slip from the smaller of this
+        on 1000 equal elements). `fretting.engine.simulation` takes gross slip from the smaller of this
         and ``f P``.
     area : ndarray, shape (N,)
         ``int phi_k dx`` [m].
@@ -782,7 +782,7 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
     ds : ndarray, shape (M + 1,) or (steps, M + 1)
         Slip increment [m] from a `GalerkinScene` on `theta`, in the scene's order (ascending
         ``x``, i.e. descending ``theta``), exactly zero where a node stuck (as
-        `fretting.solver.solve_increment` leaves it). Rows are reduced with ``np.minimum``.
+        `fretting.models.solver.solve_increment` leaves it). Rows are reduced with ``np.minimum``.
     rtol : float
         Relative accuracy asked of the energy dissipated in each increment.
     breakpoints : array_like of float

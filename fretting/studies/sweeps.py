@@ -4,7 +4,7 @@ A sweep runs a base history file once for every combination of the values of a g
 keys and gathers a few numbers of each run (`VARIABLES`) into one dataset, one dimension per key.
 Keys are dotted paths into the history file, with blocks counted from 1 as in its errors:
 ``contact.f``, ``contact.P``, ``loading[1].Q_amplitude``, ``loading[2].blocks[1].Q``. Each case
-is read through the checks of `fretting.read_history` and run by `fretting.simulate` with its
+is read through the checks of `fretting.read_history` and run by `fretting.engine.simulation` with its
 defaults, on the workers of a dask.distributed cluster: a `distributed.LocalCluster` of one
 single-threaded worker process per core, or the scheduler at a given address.
 
@@ -38,11 +38,11 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 from matplotlib.ticker import LogLocator
 
-from fretting import nucleation
+from fretting.analysis import nucleation
 from fretting.errors import GrossSlipError
-from fretting.history_file import HistoryFileError, read_history_data, read_history_source
-from fretting.io import ENGINE, save
-from fretting.simulate import simulate
+from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
+from fretting.results.io import ENGINE, save
+from fretting.engine.simulation import simulate
 
 __all__ = [
     "REGIMES",
@@ -93,13 +93,13 @@ VARIABLES = {
         "J/m2",
         "peak dissipated energy density of the last load cycle",
         "max over x of w(x) of the last cycle, w the energy dissipated per unit area in it "
-        "(fretting.nucleation.peak_dissipation_density; NaN: no load cycles, or gross slip)",
+        "(fretting.analysis.nucleation.peak_dissipation_density; NaN: no load cycles, or gross slip)",
     ),
     "slip_amplitude_max": (
         "m",
         "peak slip amplitude of the last load cycle",
         "max over x of delta(x) of the last cycle, half the range of the slip over it "
-        "(fretting.nucleation.slip_amplitude; NaN: no load cycles, or gross slip)",
+        "(fretting.analysis.nucleation.slip_amplitude; NaN: no load cycles, or gross slip)",
     ),
     "gross_slip_step": ("1", "step that reached gross slip", "first step whose loads leave no stick zone (-1: none)"),
     "a": ("m", "contact half-width", "a of the case's contact"),
@@ -374,7 +374,7 @@ def run_case(base, case, origin):
 
 
 def summarize(result):
-    """The variables of `VARIABLES` of a result of `fretting.simulate`, as a Dataset of scalars."""
+    """The variables of `VARIABLES` of a result of `fretting.engine.simulation`, as a Dataset of scalars."""
     total = float(result.total_dissipation)
     energies = {"total_dissipation": total} | dict.fromkeys(LAST_CYCLE, math.nan)
     if "cycle_number" in result.dims and result.sizes["cycle_number"]:

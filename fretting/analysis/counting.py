@@ -153,7 +153,7 @@ def counted_energy(result, load="Q"):
     Parameters
     ----------
     result : xarray.Dataset
-        A result of `fretting.simulate` recorded at every step.
+        A result of `fretting.engine.simulation` recorded at every step.
     load : {"Q", "sigma"}
         The load whose reversals are counted.
 

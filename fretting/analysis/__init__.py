@@ -1,0 +1,1 @@
+"""What a result gives a user: energy, nucleation quantities and cycle counting."""

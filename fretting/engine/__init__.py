@@ -1,0 +1,1 @@
+"""The incremental state machine: state, the choice of model, stepping, recording and running."""

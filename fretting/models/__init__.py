@@ -1,0 +1,1 @@
+"""Discretisations of the tangential problem behind one contract (`fretting.models.base`)."""

@@ -1,0 +1,1 @@
+"""The contact: profiles, the normal problem and the closed forms of the tangential problem."""

@@ -1,0 +1,1 @@
+"""The result dataset: its variables and its files."""

@@ -1,0 +1,1 @@
+"""Studies of many contacts: sweeps over a parameter grid."""
