@@ -44,9 +44,9 @@ from test_galerkin import (  # noqa: E402
 )
 
 import fretting as fr  # noqa: E402
-from fretting.physics import closed_forms as cf  # noqa: E402
-from fretting.models import galerkin as gk  # noqa: E402
 from fretting.engine.simulation import _Scene  # noqa: E402
+from fretting.models import galerkin as gk  # noqa: E402
+from fretting.physics import closed_forms as cf  # noqa: E402
 
 CYCLE_STEPS = 4
 CYCLE_PSI = (0.95, 0.8, 0.5, 0.3, 0.2, 0.1, 0.05, 0.01, 0.001, 1e-6)

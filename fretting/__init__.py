@@ -1,21 +1,21 @@
 """fretting: partial-slip half-plane contacts under arbitrary shear and bulk-tension histories."""
 
-from fretting.physics.contact import Contact, plane_strain_modulus
+from fretting import models
+from fretting.analysis.methods import partial_slip
+from fretting.engine.adaptation import adapted_mesh
+from fretting.engine.choice import MAX_DEFAULT_MESH, ModelFallbackWarning, choose_model
+from fretting.engine.recorder import final_state
+from fretting.engine.simulation import simulate
+from fretting.engine.state import State
+from fretting.engine.stepper import Stepper
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, SolverError
 from fretting.loading.history import History
 from fretting.loading.history_file import HistoryFileError, read_history
-from fretting.results.io import ResultError, join_results, load, save
-from fretting.physics.methods import partial_slip
+from fretting.models.collocation import DEFAULT_NODES
+from fretting.models.galerkin import DEFAULT_RTOL
+from fretting.physics.contact import Contact, plane_strain_modulus
 from fretting.physics.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
-from fretting.engine.simulation import (
-    DEFAULT_NODES,
-    DEFAULT_RTOL,
-    MAX_DEFAULT_MESH,
-    State,
-    adapted_mesh,
-    final_state,
-    simulate,
-)
+from fretting.results.io import ResultError, join_results, load, save
 from fretting.studies.sweeps import sweep
 
 __all__ = [
@@ -31,15 +31,19 @@ __all__ = [
     "History",
     "HistoryError",
     "HistoryFileError",
+    "ModelFallbackWarning",
     "Profile",
     "ResultError",
     "RoundedFlat",
     "SolverError",
     "State",
+    "Stepper",
     "adapted_mesh",
+    "choose_model",
     "final_state",
     "join_results",
     "load",
+    "models",
     "partial_slip",
     "plane_strain_modulus",
     "read_history",

@@ -47,8 +47,8 @@ import xarray as xr
 from scipy import integrate
 
 import fretting as fr
+from fretting.models.method4 import stick_zones
 from fretting.physics import closed_forms as cf
-from fretting.engine.simulation import stick_zones
 
 __all__ = [
     "BAND",

@@ -7,7 +7,6 @@ failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the t
 import argparse
 import json
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -17,42 +16,21 @@ from fretting import __version__
 from fretting._validate import positive
 from fretting.bench import add_arguments as add_bench_arguments
 from fretting.bench import run as run_bench
+from fretting.engine.choice import MAX_DEFAULT_MESH
+from fretting.engine.recorder import RECORD_ALL_STEPS, RECORDED_ENDS
+from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError
 from fretting.loading.history_file import read_history_source
-from fretting.results.io import Joiner, ResultError, load, save, source_attributes
-from fretting.models.exact import MODEL as MASING_MODEL
-from fretting.engine.simulation import (
-    DEFAULT_NODES,
-    DEFAULT_RTOL,
-    MAX_DEFAULT_MESH,
-    RECORD_ALL_STEPS,
-    RECORDED_ENDS,
-    adapted_mesh,
-    default_model,
-    final_state,
-    recorded_steps,
-    simulate,
-)
+from fretting.models import Grid, Mesh
+from fretting.models.collocation import DEFAULT_NODES
+from fretting.models.galerkin import DEFAULT_RTOL
+from fretting.results.io import ResultError, load
 from fretting.studies.sweeps import add_arguments as add_sweep_arguments
 from fretting.studies.sweeps import run as run_sweep
 
 __all__ = ["main"]
 
 EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
-
-#: Steps of the first chunk run at a time: how often the progress bar moves and a checkpoint
-#: can be written. A chunk that takes less than CHUNK_SECONDS doubles the next one's steps, so
-#: that runs whose cycles repeat (copied, not solved) are not cut into many short runs, each of
-#: which solves its first cycles anew.
-CHUNK_STEPS = 200
-CHUNK_SECONDS = 1.0
-#: Most steps of one chunk: 4096 cycles of 64 steps, whose per-cycle fields (12.6 MB at 384
-#: nodes) are held twice while the chunk is joined. Each chunk solves its first cycles anew.
-MAX_CHUNK_STEPS = 2**18
-
-#: Seconds between checkpoints by default: at most a minute of work lost in a crash. Each
-#: checkpoint rewrites the partial result whole.
-CHECKPOINT_SECONDS = 60.0
 
 #: Resolution of `fretting plot`: 6.4 x 4.4 inch figures at 100 dpi keep results/ of eight
 #: examples near 5 MB (7.9 MB at 150 dpi).
@@ -183,142 +161,35 @@ def _positive(text):
         raise argparse.ArgumentTypeError(f"found {text!r}, expected a number > 0") from None
 
 
-def _settings(args):
-    """The model a run asks for: ``{"nodes": N}`` (grid), ``{"rtol": r}`` (adapted mesh) or ``{}`` (the default)."""
+def _model(args):
+    """The model spec the arguments ask for (None: the default)."""
     if args.nodes is not None:
-        return {"nodes": args.nodes}
-    return {} if args.rtol is None else {"rtol": args.rtol}
-
-
-#: The settings of a run of the exact model of Q alone (`fretting.models.exact`): its dataset's `model`.
-EXACT_SETTINGS = {"model": MASING_MODEL}
-#: What the default model may be (`fretting.engine.simulation.default_model`).
-DEFAULT_SETTINGS = (EXACT_SETTINGS, {"rtol": DEFAULT_RTOL}, {"nodes": DEFAULT_NODES})
-
-
-def _model(contact, history, asked):
-    """The settings a run from the start records, and the keywords of `simulate` for its first chunk.
-
-    An adapted mesh is adapted to the whole history, not to the chunk.
-    """
-    if "nodes" in asked:
-        return asked, asked
-    if "rtol" in asked:
-        return asked, {"mesh": adapted_mesh(contact, history, asked["rtol"])}
-    model = default_model(contact, history)
-    if not model:
-        return EXACT_SETTINGS, model
-    return ({"nodes": DEFAULT_NODES} if "nodes" in model else {"rtol": DEFAULT_RTOL}), model
+        return Grid(args.nodes)
+    return None if args.rtol is None else Mesh(rtol=args.rtol)
 
 
 def _run(args):
-    source = read_history_source(args.file)
-    output = Path(args.output) if args.output else Path("results") / f"{source.path.stem}.h5"
-    checkpoint = output.with_name(f"{output.name}.checkpoint")
-    if checkpoint.exists() and not args.resume:
-        raise ResultError(
-            f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
+    output = Path(args.output) if args.output else Path("results") / f"{Path(args.file).stem}.h5"
+    record = None if args.record == "default" else args.record
+    with tqdm(unit="step", delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
+
+        def progress(done, total):
+            bar.total, bar.n = total, done
+            bar.refresh()
+
+        run = run_file(
+            args.file,
+            output,
+            _model(args),
+            record=record,
+            resume=args.resume,
+            checkpoint_interval=args.checkpoint_interval,
+            progress=progress,
         )
-    history, asked = source.history, _settings(args)
-    joiner = Joiner()
-    start, state, model = 0, None, None
-    if args.resume and checkpoint.exists():
-        done = _resumable(checkpoint, source, asked)
-        settings = _found(done)
-        joiner.add(done)
-        start, state = done.attrs["steps"] - 1, final_state(done)
-        del done  # the joiner holds its cycles
-    else:
-        settings, model = _model(source.contact, history, asked)
-    attributes = source_attributes(source) | settings  # a run on an adapted mesh is a run of `settings["rtol"]`
-    record = recorded_steps(None if args.record == "default" else args.record, len(history))
-    written = time.monotonic()
-    with tqdm(
-        total=len(history) - 1,
-        initial=start,
-        unit="step",
-        delay=PROGRESS_DELAY,
-        disable=not sys.stderr.isatty(),
-        file=sys.stderr,
-    ) as progress:
-        try:
-            for part in _chunks(source.contact, history, model, record, start, state):
-                joiner.add(part)
-                progress.update(part.attrs["steps"] - 1)
-                if time.monotonic() - written >= args.checkpoint_interval:
-                    save(joiner.result().assign_attrs(attributes), checkpoint)
-                    written = time.monotonic()
-        except KeyboardInterrupt:
-            if len(joiner):
-                save(joiner.result().assign_attrs(attributes), checkpoint)
-                raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
-            raise
-        except GrossSlipError:
-            checkpoint.unlink(missing_ok=True)  # resuming would only reach it again
-            raise
-    del source, history  # the loads of every step (154 MB for 10^5 cycles of 64): the result holds what it records
-    result = joiner.result().assign_attrs(attributes)
-    save(result, output)
-    checkpoint.unlink(missing_ok=True)
+    for note in run.notes:
+        print(f"fretting: note: {note}", file=sys.stderr)
+    result = run.result
     print(f"{output}: {result.attrs['steps'] - 1} steps, {_cycles(result)} cycles, {_dissipated(result)}")
-
-
-def _chunks(contact, history, model, record, start, state):
-    """Results of successive chunks of `history` from step `start` in `state` (None: the contact just formed).
-
-    The first chunk of a run from the start runs with the keywords `model` of `simulate` (see
-    `_model`), the others from the state before. Each chunk records the steps of `record`
-    (numbers in the whole history) that it reaches. Only the state of the previous chunk is
-    kept, not its result.
-    """
-    steps = CHUNK_STEPS
-    while state is None or start < len(history) - 1:
-        stop = min(start + steps, len(history) - 1)
-        began = time.monotonic()
-        first = start + 1 if state is not None else 0  # a later chunk's step 0 is the last one's end
-        mine = record[(record >= first) & (record <= stop)] - start
-        try:
-            chunk = model if state is None else {"state": state}
-            part = simulate(contact, history[start : stop + 1], record=mine, **chunk)
-        except GrossSlipError as error:
-            raise GrossSlipError(start + error.step, error.Q, error.sigma, error.limit) from None
-        state = final_state(part)
-        yield part
-        del part
-        start = stop
-        fast = time.monotonic() - began < CHUNK_SECONDS
-        steps = min(2 * steps, MAX_CHUNK_STEPS) if fast else max(steps // 2, CHUNK_STEPS)
-
-
-def _described(settings):
-    """``name = value`` of the one setting in `settings`."""
-    ((name, value),) = settings.items()
-    return f"{name} = {value}"
-
-
-def _found(done):
-    """The settings a (partial) result was run with."""
-    if done.attrs.get("model") == MASING_MODEL:
-        return EXACT_SETTINGS
-    return {"rtol": done.attrs.get("rtol")} if "theta" in done else {"nodes": done.attrs.get("nodes")}
-
-
-def _resumable(checkpoint, source, asked):
-    """The partial result in `checkpoint`, checked to belong to this history file and the settings `asked`."""
-    done = load(checkpoint)
-    if done.attrs.get("history_sha256") != source.sha256:
-        raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
-    found = _found(done)
-    if found not in ([asked] if asked else DEFAULT_SETTINGS):
-        expected = _described(asked) if asked else "the default model"
-        raise ResultError(f"{checkpoint}: found a run with {_described(found)}, expected {expected}")
-    history, steps = source.history, done.step.values
-    same = done.attrs["steps"] <= len(history) and all(
-        np.array_equal(done[name].values, getattr(history, name)[steps]) for name in ("Q", "sigma")
-    )
-    if not same:
-        raise ResultError(f"{checkpoint}: found loads that {source.path} no longer gives (NumPy's random draws?)")
-    return done
 
 
 def _validate(args):
@@ -343,7 +214,8 @@ def _info(args):
         "contact": f"{attrs['profile']}, E_star = {attrs['E_star']:.4g} Pa, f = {attrs['f']:.4g}, "
         f"P = {attrs['P']:.4g} N/m",
         "solution": f"a = {attrs['a']:.4g} m, centre = {attrs['centre']:.4g} m, p0 = {attrs['p0']:.4g} Pa",
-        "model": f"{attrs['model']}, {attrs['nodes']} nodes",
+        "model": f"{attrs['model']} ({attrs.get('model_description', '')}), {attrs['nodes']} nodes"
+        + (f"; fell back: {attrs['model_fallback']}" if "model_fallback" in attrs else ""),
         "steps": f"{result.attrs['steps'] - 1} steps ({result.sizes['step']} recorded), "
         f"{result.sizes['vertex']} vertices, {_cycles(result)} cycles",
         "loads": _peaks(result.Q.values, result.sigma.values, attrs["f"], attrs["P"], attrs["p0"]),

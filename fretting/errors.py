@@ -12,8 +12,8 @@ class GrossSlipError(FrettingError, RuntimeError):
 
     Attributes
     ----------
-    step : int
-        The step whose load reaches gross slip.
+    step : int or None
+        The step whose load reaches gross slip (None: a single increment, `Stepper.step`).
     Q, sigma : float
         The loads of that step [N/m], [Pa].
     limit : float
@@ -22,8 +22,9 @@ class GrossSlipError(FrettingError, RuntimeError):
 
     def __init__(self, step, Q, sigma, limit):
         self.step, self.Q, self.sigma, self.limit = step, Q, sigma, limit
+        where = "in this increment" if step is None else f"at step {step}"
         super().__init__(
-            f"gross slip at step {step}: Q = {Q:.6g}, sigma = {sigma:.6g} leave no stick zone "
+            f"gross slip {where}: Q = {Q:.6g}, sigma = {sigma:.6g} leave no stick zone "
             f"(|Q| must stay below f P = {limit:.6g})"
         )
 

@@ -13,7 +13,7 @@ import tempfile
 from pathlib import Path
 
 from fretting import cli
-from fretting.physics.methods import comparison_figure
+from fretting.analysis.methods import comparison_figure
 from fretting.studies.sweeps import read_sweep, run_sweep, save_map
 
 ROOT = Path(__file__).resolve().parents[1]

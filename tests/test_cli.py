@@ -15,6 +15,7 @@ from conftest import HERTZ_TOML as CONTACT
 
 import fretting as fr
 from fretting import cli, plots
+from fretting.engine import runner
 from fretting.loading.history_file import read_history
 from fretting.results.io import load
 
@@ -140,7 +141,7 @@ def test_gross_slip_exit_3_leaves_the_old_result(workdir, capsys):
 
 
 def test_gross_slip_in_a_later_chunk_names_the_whole_history_step(workdir, capsys, monkeypatch):
-    monkeypatch.setattr(cli, "CHUNK_STEPS", 4)
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 4)
     write(workdir / "slide.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3, -80e3]\nsteps_per_segment = 10\n')
     assert run("run", "slide.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 3
     assert "gross slip at step 20: Q = -80000" in capsys.readouterr().err
@@ -170,19 +171,11 @@ def test_bad_result_file(workdir, capsys):
 def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeypatch, model):
     """Ctrl-C in the third chunk: a checkpoint of two chunks; --resume then equals an uninterrupted run
     (on the grid, on the mesh adapted once to the whole history, and with the default model)."""
-    monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
-    monkeypatch.setattr(cli, "CHUNK_SECONDS", 0.0)  # chunks of 20 steps each
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 20)
+    monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)  # chunks of 20 steps each
     write(workdir / "shear.toml", CONTACT + SHEAR)
     assert run("run", "shear.toml", "-o", "whole.h5", *model) == 0
-    calls = []
-
-    def interrupted(*arguments, **options):
-        calls.append(1)
-        if len(calls) == 3:
-            raise KeyboardInterrupt
-        return fr.simulate(*arguments, **options)
-
-    monkeypatch.setattr(cli, "simulate", interrupted)
+    monkeypatch.setattr(runner, "Stepper", _interrupt_after(2))
     assert run("run", "shear.toml", "-o", "part.h5", *model, "--checkpoint-interval", "1e6") == 130
     err = capsys.readouterr().err
     assert err == "fretting: error: interrupted: progress kept in part.h5.checkpoint; continue with --resume\n"
@@ -196,17 +189,17 @@ def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeyp
 
 
 def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
-    monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 20)
     history = write(workdir / "shear.toml", CONTACT + SHEAR)
-    monkeypatch.setattr(cli, "simulate", _interrupt_after(2))
+    monkeypatch.setattr(runner, "Stepper", _interrupt_after(2))
     assert run("run", "shear.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 130
-    monkeypatch.setattr(cli, "simulate", fr.simulate)
+    monkeypatch.setattr(runner, "Stepper", fr.Stepper)
     assert run("run", "shear.toml", "--nodes", "40", "--resume") == 2
-    assert "found a run with nodes = 32, expected nodes = 40" in capsys.readouterr().err
+    assert "found a run with model = grid, nodes = 32, expected model = grid, nodes = 40" in capsys.readouterr().err
     assert run("run", "shear.toml", "--rtol", "1e-4", "--resume") == 2
-    assert "found a run with nodes = 32, expected rtol = 0.0001" in capsys.readouterr().err
+    assert "found a run with model = grid, nodes = 32, expected model = mesh, rtol = 0.0001" in capsys.readouterr().err
     assert run("run", "shear.toml", "--resume") == 2  # the default runs rtol 1e-4 or 384 nodes
-    assert "found a run with nodes = 32, expected the default model" in capsys.readouterr().err
+    assert "found a run with model = grid, nodes = 32, expected the default model" in capsys.readouterr().err
     write(history, history.read_text() + "# edited\n")
     assert run("run", "shear.toml", "--nodes", NODES, "--resume") == 2
     assert "found a run of another version of shear.toml" in capsys.readouterr().err
@@ -215,10 +208,10 @@ def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
 def test_long_runs_record_their_ends_and_every_cycle_and_resume(workdir, capsys, monkeypatch):
     """Past the recording threshold only the first and last steps keep their fields; energy and
     slip range per cycle cover every cycle; an interrupted run resumes to the same result."""
-    engine = importlib.import_module("fretting.engine.simulation")
+    engine = importlib.import_module("fretting.engine.recorder")
     monkeypatch.setattr(engine, "RECORD_ALL_STEPS", 100)
     monkeypatch.setattr(engine, "RECORDED_ENDS", 30)
-    monkeypatch.setattr(cli, "CHUNK_STEPS", 20)
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 20)
     text = CONTACT + SHEAR.replace("count = 3", "count = 40")
     write(workdir / "long.toml", text)
     assert run("run", "long.toml", "-o", "whole.h5", "--nodes", NODES) == 0
@@ -232,25 +225,27 @@ def test_long_runs_record_their_ends_and_every_cycle_and_resume(workdir, capsys,
     assert whole.sizes["cycle_number"] == 40 and np.all(whole.cycle_dissipation.values > 0)
     assert whole.w.dims == ("cycle_number", "x")
 
-    monkeypatch.setattr(cli, "simulate", _interrupt_after(3))
+    monkeypatch.setattr(runner, "Stepper", _interrupt_after(3))
     assert run("run", "long.toml", "-o", "resumed.h5", "--nodes", NODES, "--checkpoint-interval", "0") == 130
-    monkeypatch.setattr(cli, "simulate", fr.simulate)
+    monkeypatch.setattr(runner, "Stepper", fr.Stepper)
     assert run("run", "long.toml", "-o", "resumed.h5", "--nodes", NODES, "--resume") == 0
     xr.testing.assert_identical(data_of(load(workdir / "resumed.h5")), data_of(whole))
     assert run("run", "long.toml", "-o", "all.h5", "--nodes", NODES, "--record", "all") == 0
     assert load(workdir / "all.h5").sizes["step"] == steps
 
 
-def _interrupt_after(calls):
+def _interrupt_after(chunks):
+    """A Stepper class whose runs raise KeyboardInterrupt once, after `chunks` of them (a chunk each)."""
     made = []
 
-    def simulate(*arguments, **options):
-        if len(made) == calls:
-            raise KeyboardInterrupt
-        made.append(1)
-        return fr.simulate(*arguments, **options)
+    class Interrupted(fr.Stepper):
+        def run(self, *arguments, **options):
+            made.append(1)
+            if len(made) == chunks + 1:
+                raise KeyboardInterrupt
+            return super().run(*arguments, **options)
 
-    return simulate
+    return Interrupted
 
 
 def test_resume_after_a_killed_process_equals_an_uninterrupted_run(workdir):

@@ -9,6 +9,7 @@ import xarray as xr
 from threadpoolctl import threadpool_info, threadpool_limits
 
 import fretting as fr
+from fretting.engine.threads import BLAS_THREADS
 
 RANDOM_VERTICES = 12
 
@@ -274,7 +275,7 @@ def test_the_engine_runs_blas_on_one_thread_and_gives_the_threads_back(hertz, mo
     ms per step on the bench's random scene, benchmarks/blas_threads.py): every increment,
     adaptation passes included, runs with BLAS_THREADS per library; the caller's setting is back
     after the run."""
-    engine = sys.modules["fretting.engine.simulation"]
+    engine = sys.modules["fretting.models.method4"]
     solve, seen = engine.solve_increment, []
 
     def spying(*args):
@@ -288,4 +289,4 @@ def test_the_engine_runs_blas_on_one_thread_and_gives_the_threads_back(hertz, mo
         fr.simulate(hertz, fr.History.sinusoidal(*loads, cycles=2, steps_per_cycle=8), **model)
         after = blas_threads()
     assert set(before.values()) == {2} and after == before
-    assert seen and all(set(threads.values()) == {engine.BLAS_THREADS} for threads in seen)
+    assert seen and all(set(threads.values()) == {BLAS_THREADS} for threads in seen)

@@ -18,10 +18,22 @@ from scipy import integrate, special
 
 import fretting as fr
 from fretting import bench
-from fretting.physics import closed_forms as cf
+from fretting.models import Grid, Outcome
 from fretting.models import galerkin as gk
-from fretting.engine.simulation import _Scene, stick_zones
+from fretting.models.method4 import stick_zones
 from fretting.models.solver import solve_increment
+from fretting.physics import closed_forms as cf
+
+
+def scene_of(contact, theta, previous=None):
+    """The Galerkin model of `contact` on the mesh `theta`."""
+    return gk.Mesh(theta=theta).build(contact, previous)
+
+
+def slipped(slip):
+    """An outcome that left the slip `slip` [m] (rows of a 2-D `slip`), for the model's delta_Q and delta_sigma."""
+    return Outcome(None, None, slip, 0.0)
+
 
 BOUNDARY_BAND = 0.02  # [a]: the traction has a square-root kink at a stick/slip boundary
 #: Below this Q*/fP the energy per cycle is summed as its power series (the closed form cancels).
@@ -77,7 +89,7 @@ def adapt(contact, Q, sigma=None, rtol=gk.DEFAULT_RTOL, theta=None, passes=30):
     """Refine until the mesh stays: the scene, its increments and the number of passes."""
     theta = gk.initial_theta() if theta is None else theta
     for count in range(1, passes + 1):
-        scene = gk.GalerkinScene(contact, theta)
+        scene = scene_of(contact, theta)
         ds, g = run(scene, Q, sigma)
         refined = gk.refine(theta, gk.element_targets(theta, ds, rtol, scene.breakpoints))
         if refined is theta:
@@ -229,8 +241,8 @@ def test_stiffness_reusing_the_mesh_before_is_bit_for_bit_fresh(hertz, seed):
     """Along a refinement chain each scene reuses most pairs of the one before and equals the scene assembled afresh."""
     previous = None
     for theta in refinement_chain(seed):
-        scene = gk.GalerkinScene(hertz, theta, previous=previous)
-        np.testing.assert_array_equal(scene.G, gk.GalerkinScene(hertz, theta).G)
+        scene = scene_of(hertz, theta, previous=previous)
+        np.testing.assert_array_equal(scene.G, scene_of(hertz, theta).G)
         if previous is not None:
             recurring = gk._recurring_elements(theta[:-1], theta[1:], previous.theta) >= 0
             assert 0.5 < recurring.mean() < 1
@@ -242,22 +254,22 @@ def test_stiffness_reusing_the_mesh_before_is_bit_for_bit_fresh(hertz, seed):
 def test_stiffness_reusing_a_mesh_without_common_elements(hertz):
     """Every other node of the mesh (the last element spans 2 or 3): no element has both ends in common."""
     theta = refinement_chain(seed=1)[-1]
-    previous = gk.GalerkinScene(hertz, np.append(theta[:-2:2], np.pi))
+    previous = scene_of(hertz, np.append(theta[:-2:2], np.pi))
     assert np.all(gk._recurring_elements(theta[:-1], theta[1:], previous.theta) < 0)
-    reused = gk.GalerkinScene(hertz, theta, previous=previous)
-    np.testing.assert_array_equal(reused.G, gk.GalerkinScene(hertz, theta).G)
+    reused = scene_of(hertz, theta, previous=previous)
+    np.testing.assert_array_equal(reused.G, scene_of(hertz, theta).G)
 
 
 def test_stiffness_reusing_the_same_mesh(hertz):
     theta = refinement_chain(seed=2)[-1]
-    scene = gk.GalerkinScene(hertz, theta)
-    np.testing.assert_array_equal(gk.GalerkinScene(hertz, theta, previous=scene).G, scene.G)
+    scene = scene_of(hertz, theta)
+    np.testing.assert_array_equal(scene_of(hertz, theta, previous=scene).G, scene.G)
     np.testing.assert_array_equal(gk.stiffness(theta, hertz.E_star, previous=scene), scene.G[::-1, ::-1])
 
 
 def test_stiffness_energy_of_smooth_slip(hertz):
     """``s^T K s -> (pi E_star / 4) sum n s_n^2`` for ``s = a cos(n theta)`` (h^2), like the Chebyshev energy."""
-    scene = gk.GalerkinScene(hertz, gk.uniform_theta(256))
+    scene = scene_of(hertz, gk.uniform_theta(256))
     K = scene.G
     np.testing.assert_allclose(K, K.T, rtol=0, atol=1e-14 * np.abs(K).max())
     np.testing.assert_allclose(K.sum(axis=1), 0, atol=1e-13 * np.abs(K).max())
@@ -266,7 +278,7 @@ def test_stiffness_energy_of_smooth_slip(hertz):
     for n in (1, 2, 5):
         s = hertz.a * np.cos(n * theta)
         np.testing.assert_allclose(s @ K @ s, np.pi * hertz.E_star / 4 * n * hertz.a**2, rtol=1e-3)
-    chebyshev = _Scene(hertz, 128)
+    chebyshev = Grid(128).build(hertz)
     slip = lambda t: hertz.a * (0.05 * t + 0.3 * t**2 + 0.1 * t**3 - 0.2 * t**4)  # noqa: E731
     energy = chebyshev.w * slip(chebyshev.grid.t) @ chebyshev.G @ slip(chebyshev.grid.t)
     np.testing.assert_allclose(slip(scene.t) @ K @ slip(scene.t), energy, rtol=2e-4)
@@ -285,7 +297,7 @@ def test_loads_and_limits(hertz, name):
     """``sum L = f P`` to 1e-10 on coarse and graded meshes, for every profile."""
     contact = fr.Contact(PROFILES[name](), hertz.E_star, hertz.f, hertz.P)
     for theta in (gk.uniform_theta(8), gk.initial_theta()):
-        scene = gk.GalerkinScene(contact, theta)
+        scene = scene_of(contact, theta)
         np.testing.assert_allclose(scene.friction_force, contact.f * contact.P, rtol=1e-10)
         np.testing.assert_allclose(scene.area.sum(), 2 * contact.a, rtol=1e-14)
         assert np.all(np.diff(scene.x) > 0) and np.all(scene.area > 0) and np.all(scene.limit > 0)
@@ -294,7 +306,7 @@ def test_loads_and_limits(hertz, name):
 def test_displacements_exact_for_P1(hertz):
     """``delta_Q``, ``delta_sigma`` and the loads integrate a P1 slip exactly (reciprocity)."""
     theta = gk.initial_theta()
-    scene = gk.GalerkinScene(hertz, theta)
+    scene = scene_of(hertz, theta)
     slip = np.random.default_rng(0).normal(size=theta.size) * hertz.a  # ascending x
     points, weights = np.polynomial.legendre.leggauss(8)  # per element: exact to rounding here
     lo, h = theta[:-1, None], np.diff(theta)[:, None]
@@ -303,26 +315,30 @@ def test_displacements_exact_for_P1(hertz):
     delta_Q = np.sum(s_at * measure) / np.pi
     delta_sigma = np.sum(s_at * hertz.a * np.cos(at) / 4 * measure)
     scale = np.sum(np.abs(s_at) * measure)  # the size of the terms that cancel
-    np.testing.assert_allclose(scene.delta_Q(slip), delta_Q, rtol=0, atol=1e-14 * scale)
-    np.testing.assert_allclose(scene.delta_sigma(slip), delta_sigma, rtol=0, atol=1e-14 * hertz.a * scale)
+    np.testing.assert_allclose(scene.delta_Q(slipped(slip)), delta_Q, rtol=0, atol=1e-14 * scale)
+    np.testing.assert_allclose(scene.delta_sigma(slipped(slip)), delta_sigma, rtol=0, atol=1e-14 * hertz.a * scale)
     Q, sigma = 0.3 * hertz.f * hertz.P, 0.7 * hertz.f * hertz.p0
     work = Q * delta_Q + sigma * delta_sigma
     np.testing.assert_allclose(scene.g_stuck(Q, sigma) @ slip, work, rtol=0, atol=1e-14 * Q * scale)
     rows = np.vstack([slip, 2 * slip, slip])
-    assert scene.delta_sigma(rows)[0] == scene.delta_sigma(rows[:1])[0] == scene.delta_sigma(slip)
-    assert scene.delta_Q(rows)[2] == scene.delta_Q(slip)
+    assert (
+        scene.delta_sigma(slipped(rows))[0]
+        == scene.delta_sigma(slipped(rows[:1]))[0]
+        == scene.delta_sigma(slipped(slip))
+    )
+    assert scene.delta_Q(slipped(rows))[2] == scene.delta_Q(slipped(slip))
 
 
 def test_traction_keeps_coulomb_and_recovers_third_order(hertz):
     """``g = L`` gives ``f p`` (to rounding); a smooth utilisation comes back to O(h^3), also graded."""
-    scene = gk.GalerkinScene(hertz, gk.initial_theta(32))
-    np.testing.assert_allclose(scene.traction(scene.limit), hertz.f * hertz.pressure(scene.x), rtol=1e-13)
+    scene = scene_of(hertz, gk.initial_theta(32))
+    np.testing.assert_allclose(scene.nodal_traction(scene.limit), hertz.f * hertz.pressure(scene.x), rtol=1e-13)
     ds = np.where(scene.x > 0, 1.0, 0.0)
-    sliding = scene.traction(0.5 * scene.limit, ds)
+    sliding = scene.nodal_traction(0.5 * scene.limit, ds)
     np.testing.assert_array_equal(sliding[scene.x > 0], hertz.f * hertz.pressure(scene.x)[scene.x > 0])
     errors = []
     for M in (32, 64):
-        scene = gk.GalerkinScene(hertz, gk.initial_theta(M))
+        scene = scene_of(hertz, gk.initial_theta(M))
         u = lambda th: 0.8 * np.cos(2 * th)  # noqa: E731 - a utilisation |u| < 1
         points, weights = np.polynomial.legendre.leggauss(8)
         theta = scene.theta
@@ -332,7 +348,7 @@ def test_traction_keeps_coulomb_and_recovers_third_order(hertz):
         g = np.zeros(theta.size)
         g[:-1] += np.sum(w * (1 - rise), axis=1)
         g[1:] += np.sum(w * rise, axis=1)
-        q = scene.traction(g[::-1])
+        q = scene.nodal_traction(g[::-1])
         errors.append(np.abs(q - u(theta[::-1]) * hertz.f * hertz.pressure(scene.x)).max() / (hertz.f * hertz.p0))
     assert errors[1] < 1e-4 and errors[0] / errors[1] > 6
 
@@ -362,7 +378,7 @@ def test_cattaneo_mindlin(hertz, psi):
     slip, x, a = ds.sum(axis=0), scene.x, hertz.a
     b = cf.stick_half_width(hertz, Q)
     np.testing.assert_allclose(ends(scene, slip), [[-b, b]], rtol=0, atol=1e-3 * a)
-    q = scene.traction(g[-1], ds[-1])
+    q = scene.nodal_traction(g[-1], ds[-1])
     q_exact = cf.cattaneo_mindlin_traction(hertz, Q, x)
     band = away(x, [-b, b], a)
     assert np.abs(q - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
@@ -381,7 +397,7 @@ def test_mindlin_deresiewicz_unloading(hertz):
     np.testing.assert_allclose(ends(scene, ds[4:].sum(axis=0)), [[-c, c]], rtol=0, atol=1e-3 * a)
     q_exact = cf.mindlin_deresiewicz_traction(hertz, Q_star, Q_end, scene.x)
     band = away(scene.x, [-c, c, -b, b], a)
-    assert np.abs(scene.traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
+    assert np.abs(scene.nodal_traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
     slip_exact = cf.mindlin_deresiewicz_slip(hertz, Q_star, Q_end, scene.x)
     assert np.abs(ds.sum(axis=0) - slip_exact).max() < 1e-3 * np.abs(slip_exact).max()
 
@@ -395,7 +411,7 @@ def test_nowell_hills_shear_with_tension(hertz):
     np.testing.assert_allclose(ends(scene, ds.sum(axis=0)), [[e - b, e + b]], rtol=0, atol=1e-3 * hertz.a)
     q_exact = cf.nowell_hills_traction(hertz, Q[-1], sigma[-1], scene.x)
     band = away(scene.x, [e - b, e + b], hertz.a)
-    assert np.abs(scene.traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
+    assert np.abs(scene.nodal_traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * hertz.f * hertz.p0
 
 
 @pytest.mark.parametrize("psi", [0.2, 0.8])
@@ -407,7 +423,7 @@ def test_rounded_flat(hertz, psi):
     c = corrective.a
     np.testing.assert_allclose(ends(scene, ds.sum(axis=0)), [[-c, c]], rtol=0, atol=1e-3 * contact.a)
     band = away(scene.x, [-c, c], contact.a)
-    assert np.abs(scene.traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * contact.f * contact.p0
+    assert np.abs(scene.nodal_traction(g[-1], ds[-1]) - q_exact)[band].max() < 1e-3 * contact.f * contact.p0
 
 
 @pytest.mark.parametrize("tau", [0.3, 2.5, 8.6])
@@ -424,9 +440,9 @@ def test_coulomb_at_every_node(hertz):
     fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
     Q = np.array([0.0, 0.6, -0.3, 0.5]) * fP
     sigma = np.array([0.0, 0.5, -1.0, 0.2]) * fp0
-    scene = gk.GalerkinScene(hertz, gk.initial_theta())
+    scene = scene_of(hertz, gk.initial_theta())
     ds, g = run(scene, Q, sigma)
-    q, fp = scene.traction(g, ds), hertz.f * hertz.pressure(scene.x)
+    q, fp = scene.nodal_traction(g, ds), hertz.f * hertz.pressure(scene.x)
     assert np.all(np.abs(q) <= fp)
     np.testing.assert_array_equal(q[ds != 0], (fp * np.sign(ds))[ds != 0])
 
@@ -434,7 +450,7 @@ def test_coulomb_at_every_node(hertz):
 def test_sharp_flat_punch_never_slips(hertz):
     contact = fr.Contact(fr.FlatPunch(1e-3), hertz.E_star, hertz.f, hertz.P)
     Q = np.array([0.0, 0.5, 0.9, 0.999, 0.999999, -0.999999, 0.3]) * contact.f * contact.P
-    scene = gk.GalerkinScene(contact, gk.initial_theta())
+    scene = scene_of(contact, gk.initial_theta())
     ds, _ = run(scene, Q)
     assert np.all(ds == 0)
 
@@ -462,10 +478,10 @@ def test_refined_mesh_carries_a_P1_slip_exactly(hertz):
     refined = gk.refine(theta, targets)
     carried = np.interp(refined, theta, slip)
     np.testing.assert_array_equal(carried[np.searchsorted(refined, theta)], slip)
-    coarse, fine = gk.GalerkinScene(hertz, theta), gk.GalerkinScene(hertz, refined)
+    coarse, fine = scene_of(hertz, theta), scene_of(hertz, refined)
     # the same P1 field: same energy, same delta_Q
     np.testing.assert_allclose(carried[::-1] @ fine.G @ carried[::-1], slip[::-1] @ coarse.G @ slip[::-1], rtol=1e-12)
-    np.testing.assert_allclose(fine.delta_Q(carried[::-1]), coarse.delta_Q(slip[::-1]), rtol=1e-12)
+    np.testing.assert_allclose(fine.delta_Q(slipped(carried[::-1])), coarse.delta_Q(slipped(slip[::-1])), rtol=1e-12)
 
 
 def test_targets_of_several_increments_are_their_minimum():
@@ -479,7 +495,7 @@ def test_targets_of_several_increments_are_their_minimum():
 
 def test_invalid_meshes_and_targets(hertz):
     with pytest.raises(ValueError, match="from 0 to pi"):
-        gk.GalerkinScene(hertz, [0.0, 2.0, 1.0, np.pi])
+        scene_of(hertz, [0.0, 2.0, 1.0, np.pi])
     with pytest.raises(ValueError, match="one per node"):
         gk.element_targets(gk.uniform_theta(4), np.zeros(3))
     with pytest.raises(ValueError, match="positive sizes"):
@@ -586,16 +602,19 @@ def test_many_steps_per_cycle_at_the_default_rtol(hertz, psi):
 
 def test_default_runs_the_grid_where_the_mesh_would_be_too_large():
     """Out-of-phase Q = 0.47 fP, sigma = 1.19 f p0 (103 degrees) on a rounded flat: at rtol 1e-4
-    the mesh would take 1235 nodes (4 s for 3 cycles, measured); the default stops adapting once
-    a refinement passes MAX_DEFAULT_MESH and runs the grid, the same run as nodes=DEFAULT_NODES."""
+    the mesh would take more than MAX_DEFAULT_MESH nodes; the default stops adapting as soon as
+    that is certain and runs the grid, the same run as nodes=DEFAULT_NODES, saying so in a warning
+    and in the dataset."""
     contact = fr.Contact(fr.RoundedFlat(1e-3, 0.02), 115e9, 0.3, 3e4)
     history = fr.History.sinusoidal(
         0.474 * contact.f * contact.P, 1.187 * contact.f * contact.p0, 103.6, cycles=3, steps_per_cycle=32
     )
     assert fr.adapted_mesh(contact, history, max_nodes=fr.MAX_DEFAULT_MESH) is None
-    result = fr.simulate(contact, history)
+    with pytest.warns(fr.ModelFallbackWarning, match="falls back to 384 Gauss-Chebyshev nodes"):
+        result = fr.simulate(contact, history)
     grid = fr.simulate(contact, history, nodes=fr.DEFAULT_NODES)
     assert "rtol" not in result.attrs and "theta" not in result
+    assert "over the default's bound of 768" in result.attrs.pop("model_fallback")
     xr.testing.assert_identical(result, grid)
 
 
@@ -626,7 +645,7 @@ def test_the_increment_does_not_depend_on_the_solver_s_start(hertz, seed):
     directions of the pass before): from random directions the increment of a reversed,
     non-proportional load sticks at the same nodes and slips the same to 1e-12 of its largest."""
     rng = np.random.default_rng(seed)
-    scene = gk.GalerkinScene(hertz, gk.refine(gk.initial_theta(), np.full(gk.initial_theta().size - 1, 0.02)))
+    scene = scene_of(hertz, gk.refine(gk.initial_theta(), np.full(gk.initial_theta().size - 1, 0.02)))
     fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
     loaded = solve_increment(scene.G, scene.g_stuck(0.7 * fP, 0.5 * fp0), scene.limit)
     g_stuck, slip = scene.g_stuck(-0.2 * fP, 0.9 * fp0), loaded.slip
@@ -644,5 +663,5 @@ def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkey
     contact = bench.hertz_contact()
     history = bench.baseline_history(contact, 2)
     warm = fr.adapted_mesh(contact, history)
-    monkeypatch.setattr(sys.modules["fretting.engine.simulation"], "_interpolated_directions", lambda *args: None)
+    monkeypatch.setattr(sys.modules["fretting.engine.adaptation"], "_interpolated_directions", lambda *args: None)
     np.testing.assert_array_equal(warm, fr.adapted_mesh(contact, history))

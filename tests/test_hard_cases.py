@@ -22,14 +22,26 @@ from scipy import integrate, interpolate, optimize, special
 
 import fretting as fr
 from fretting import cli
-from fretting.physics import closed_forms as cf
+from fretting.engine import runner
 from fretting.models.galerkin import initial_theta
-from fretting.engine.simulation import _Scene
+from fretting.physics import closed_forms as cf
 
 RESOLVED = 1e-2  # of the feature's own size
 PROJECT = 1e-3  # of a (ends), of f p0 (traction), of the largest slip
 BOUNDARY_BAND = 0.02  # [a] excluded around stick/slip boundaries for traction checks (square-root kink)
 ROUNDING = 1e-10  # of f p0: rounding allowance of the friction conditions
+
+
+def simulate_as_a_user(contact, history, **options):
+    """`fr.simulate` where the default may fall back to the grid: if it does, it says so once in a
+    `ModelFallbackWarning` and in the dataset's ``model_fallback``, and never otherwise."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", fr.ModelFallbackWarning)
+        result = fr.simulate(contact, history, **options)
+    said = [warning for warning in caught if issubclass(warning.category, fr.ModelFallbackWarning)]
+    assert len(said) == ("model_fallback" in result.attrs)
+    assert all(result.attrs["model_fallback"] in str(warning.message) for warning in said)
+    return result
 
 
 # ----------------------------------------------------------------------------------------------
@@ -224,7 +236,7 @@ def test_grid_friction_force_is_f_P(hertz, profile, shortfall):
     the rounded flat, whose pressure has a singular derivative at the flat's ends (measured). The
     grid's discrete pressure is scaled to carry P on all three, its friction force is f P."""
     contact = {"hertz": lambda: hertz, "rounded_flat": rounded_flat, "flat_punch": flat_punch}[profile]()
-    scene = _Scene(contact, fr.DEFAULT_NODES)
+    scene = fr.models.Grid().build(contact)
     quadrature = scene.w * contact.pressure_weighted(scene.t).sum()
     assert 1 - quadrature / contact.P == pytest.approx(shortfall, rel=1e-3, abs=1e-15)
     assert scene.friction_force == pytest.approx(contact.f * contact.P, rel=1e-15, abs=0)
@@ -761,7 +773,7 @@ def test_failed_cli_run_leaves_an_earlier_result_intact(tmp_path, monkeypatch, c
     slip after several chunks and checkpoints: exit 3, the step named, the result untouched
     byte for byte, no checkpoint or temporary file left."""
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(cli, "CHUNK_STEPS", 200, raising=False)
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 200)
     toml = HERTZ_TOML + (
         '\n[[loading]]\nkind = "linear"\nQ = [30e3]\nsteps_per_segment = 16\n'
         '\n[[loading]]\nkind = "repeat"\ncount = 3\n'
@@ -794,7 +806,7 @@ def test_tension_reversed_in_one_step_keeps_a_stick_zone_narrower_than_an_elemen
     fP, fp0 = contact.f * contact.P, contact.f * contact.p0
     history = fr.History.piecewise_linear(np.array([0, 0.5, 0]) * fP, np.array([0, -2.2055744280043355, 2]) * fp0, 1)
     for model in ({}, {"nodes": 64}, {"mesh": initial_theta()}):
-        result = fr.simulate(contact, history, **model)
+        result = simulate_as_a_user(contact, history, **model)
         assert_friction_conditions(result, contact)
         assert np.all(result.dissipation.values >= 0)
         assert result.stick.values[-1].any()

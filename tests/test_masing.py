@@ -12,8 +12,8 @@ from test_galerkin import hertz_cycle_energy
 from test_hard_cases import assert_friction_conditions, hertz_slip_displacement, rounded_flat
 
 import fretting as fr
-from fretting.physics import closed_forms as cf
 from fretting.models import exact as masing
+from fretting.physics import closed_forms as cf
 
 #: Nested loops: 0.8 fP, back to -0.5, up to 0.6, down to -0.2, then through both closing points
 #: to 0.9 and to -0.9 fP.
@@ -23,7 +23,7 @@ NESTED = [0.0, 0.8, -0.5, 0.6, -0.2, 0.9, -0.9]
 def exact(contact, history, **keywords):
     """`fr.simulate` at its default, checked to be the exact model."""
     result = fr.simulate(contact, history, **keywords)
-    assert result.attrs["model"] == masing.MODEL
+    assert result.attrs["model"] == masing.Exact.name
     return result
 
 
@@ -103,7 +103,7 @@ def test_quadrature_has_converged(monkeypatch, psi):
     theta = masing.nodes_theta(contact, history, fr.DEFAULT_NODES)
 
     def branch():
-        return masing.MasingScene(contact, theta)._solved(P_c)
+        return masing.Exact(theta=theta).build(contact)._solved(P_c)
 
     coarse = branch()
     monkeypatch.setattr(masing, "_U", np.polynomial.legendre.leggauss(256)[0])
@@ -174,7 +174,7 @@ def test_continued_run_equals_the_whole_run(hertz, tmp_path):
     cut = int(history.vertex_step[4])
     fr.save(exact(hertz, history[: cut + 1]), tmp_path / "head.h5")
     state = fr.final_state(fr.load(tmp_path / "head.h5"))
-    assert state.turning == (0.8 * hertz.f * hertz.P, -0.5 * hertz.f * hertz.P, 0.6 * hertz.f * hertz.P)
+    assert state.memory == (0.8 * hertz.f * hertz.P, -0.5 * hertz.f * hertz.P, 0.6 * hertz.f * hertz.P)
     tail = fr.simulate(hertz, history[cut:], state=state)
     np.testing.assert_array_equal(tail.slip.values, whole.slip.values[cut:])
     assert tail.total_dissipation.values == whole.total_dissipation.values

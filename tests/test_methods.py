@@ -12,8 +12,8 @@ import pytest
 from scipy import integrate, optimize
 
 import fretting as fr
+from fretting.analysis.methods import METHODS, comparison_figure, partial_slip
 from fretting.physics import closed_forms as cf
-from fretting.physics.methods import METHODS, comparison_figure, partial_slip
 
 BOUNDARY_BAND = 0.02  # [a], see the module docstring
 RATIOS = [0.2, 0.5, 0.8]  # Q / (f P)

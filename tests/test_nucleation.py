@@ -9,8 +9,8 @@ import pytest
 from scipy import integrate
 
 import fretting as fr
-from fretting.physics import closed_forms as cf
 from fretting.analysis import nucleation as nu
+from fretting.physics import closed_forms as cf
 
 NODES = 128
 

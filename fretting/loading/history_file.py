@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from fretting.physics.contact import Contact, plane_strain_modulus
 from fretting.errors import HistoryError
 from fretting.loading.history import RAMP_STEPS, History
+from fretting.physics.contact import Contact, plane_strain_modulus
 from fretting.physics.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 
 __all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_data", "read_history_source"]

@@ -1,1 +1,15 @@
-"""Discretisations of the tangential problem behind one contract (`fretting.models.base`)."""
+"""Discretisations of the tangential problem behind one contract (`fretting.models.base`).
+
+The specs a user picks a model with:
+
+- `Exact`: the exact model of ``Q`` alone on a symmetric profile (Ciavarella-Jaeger with Masing's rule);
+- `Mesh`: method 4 by P1 Galerkin on a mesh in ``theta``, given or adapted to a relative accuracy;
+- `Grid`: method 4 by Gauss-Chebyshev collocation on a fixed number of nodes.
+"""
+
+from fretting.models.base import Model, ModelSpec, Outcome
+from fretting.models.collocation import Grid
+from fretting.models.exact import Exact
+from fretting.models.galerkin import Mesh
+
+__all__ = ["Exact", "Grid", "Mesh", "Model", "ModelSpec", "Outcome"]

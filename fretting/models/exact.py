@@ -26,14 +26,15 @@ differences of ``P``, keeps the relative precision in slip zones as thin as ``1e
 """
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
+from fretting.models.base import Model, ModelSpec, Outcome
+from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.solver import chebyshev_angles
 
-__all__ = ["MODEL", "MasingScene", "Step", "applies", "gap", "nodes_theta"]
-
-MODEL = "Ciavarella-Jaeger with Masing's rule: exact for Q alone on a symmetric profile, at fixed nodes"
+__all__ = ["Exact", "ExactModel", "gap", "nodes_theta"]
 
 #: Gauss-Legendre points of each quadrature (the gap along ``c'``, the energy and ``delta_Q``
 #: along ``X``): on Hertz the slip is within 1e-12 of the closed form's largest value, and on the
@@ -58,9 +59,54 @@ STICK_NODES = 16
 CACHED_BRANCHES = 4096
 
 
-def applies(contact, history):
-    """True where the exact model holds: `history` has no ``sigma`` and the profile is symmetric."""
-    return contact.profile.SYMMETRIC and not np.any(history.sigma)
+@dataclass(frozen=True, eq=False)
+class Exact(ModelSpec):
+    """The exact model of ``Q`` alone on a symmetric profile, on `nodes_theta` nodes (`theta` once resolved).
+
+    Parameters
+    ----------
+    nodes : int
+        Gauss-Chebyshev angles of the node set (`nodes_theta`).
+    theta : array_like, optional
+        The node angles [rad], ascending (resolved).
+    """
+
+    nodes: int = DEFAULT_NODES
+    theta: np.ndarray | None = None
+
+    name: ClassVar[str] = "exact"
+    description: ClassVar[str] = (
+        "the exact model of Q alone: Ciavarella-Jaeger with Masing's rule on a symmetric profile, at fixed nodes"
+    )
+
+    def __post_init__(self):
+        if self.theta is not None:
+            object.__setattr__(self, "theta", np.array(self.theta, dtype=float))
+
+    @property
+    def resolved(self):
+        return self.theta is not None
+
+    def resolved_for(self, contact, history):
+        """This spec with the nodes of `history` (None: no history known, no stick-zone nodes)."""
+        return self if self.resolved else Exact(self.nodes, nodes_theta(contact, history, self.nodes))
+
+    def build(self, contact):
+        return ExactModel(contact, self)
+
+    def attributes(self):
+        return {"model": self.name, "grid_nodes": int(self.nodes)}
+
+    def holds_for(self, contact, history):
+        if not contact.profile.SYMMETRIC:
+            return f"{contact.profile!r} is not symmetric"
+        if history is not None and np.any(history.sigma):
+            return "the history has a bulk tension sigma"
+        return None
+
+    @classmethod
+    def from_record(cls, attrs, theta):
+        return cls(int(attrs.get("grid_nodes", DEFAULT_NODES)), theta)
 
 
 def nodes_theta(contact, history, N):
@@ -70,11 +116,14 @@ def nodes_theta(contact, history, N):
     `EDGE_NODES_PER_OCTAVE` toward each edge, and `STICK_NODES` Gauss-Chebyshev points of the
     smallest stick zone ``[-c, c]`` where fewer lie in it: that of the largest ``|Q| < f P`` of
     the history (a branch from a turning point changes the load by at most twice that, and
-    its corrective load, ``P - |Q - Q_k| / (2f)``, is no smaller).
+    its corrective load, ``P - |Q - Q_k| / (2f)``, is no smaller). Without a history (None), no
+    stick-zone points are added.
     """
     grid = chebyshev_angles(N)
     edge = grid[0] * 2.0 ** (-np.arange(1, EDGE_OCTAVES * EDGE_NODES_PER_OCTAVE + 1) / EDGE_NODES_PER_OCTAVE)
     theta = np.concatenate([edge[::-1], grid, np.pi - edge])
+    if history is None:
+        return theta
     fP = contact.f * contact.P
     loads = np.abs(history.Q)
     largest = loads[loads < fP].max(initial=0.0)
@@ -100,60 +149,58 @@ class _Branch:
     delta_Q: float
 
 
-@dataclass(frozen=True, eq=False)
-class Step:
-    """One increment of the exact model: the traction after it, its slip, the state's memory.
+class ExactModel(Model):
+    """The exact model of a contact on the nodes of a resolved `Exact` spec.
 
-    Attributes: ``q`` [Pa], ``ds`` and ``slip`` [m] at the nodes; ``dissipation`` ``int f p |ds| dx``
-    [J/m], exact; ``turning`` the open turning points [N/m]; ``zones`` the stick interval of the
-    increment in ``t = x / a`` (the whole contact where ``Q`` did not change); ``delta_Q`` [m].
+    Its memory (`Outcome.memory`, `State.memory`) is the tuple of open turning points [N/m],
+    oldest first.
     """
 
-    q: np.ndarray
-    ds: np.ndarray
-    slip: np.ndarray
-    dissipation: float
-    turning: tuple
-    zones: list
-    delta_Q: float
+    memory_variable = "state_turning"
 
-
-class MasingScene:
-    """The exact model of a contact on the nodes `theta`: the interface of the method-4 scenes.
-
-    Parameters
-    ----------
-    contact : Contact
-        On a symmetric profile (`applies`).
-    theta : ndarray
-        Node angles [rad], ascending (`nodes_theta`); the nodes ``x`` ascend.
-    """
-
-    def __init__(self, contact, theta):
+    def __init__(self, contact, spec):
         if not contact.profile.SYMMETRIC:
             raise ValueError(f"{contact.profile!r}: the exact model of Q alone needs a symmetric profile")
+        self.spec = spec
         self.contact = contact
-        self.theta = theta
-        self.x = contact.centre + contact.a * np.cos(theta[::-1])
+        self.theta = spec.theta
+        self.x = contact.centre + contact.a * np.cos(self.theta[::-1])
+        self.t = (self.x - contact.centre) / contact.a
         self.friction_force = contact.f * contact.P
         self._p = contact.pressure(self.x)
         self._branches = {}  # P_c -> _Branch
         self._memories = {}  # turning points -> (slip, q, delta_Q) summed over their branches
 
-    def traction(self, q, ds=None):
+    def traction(self, outcome):
         """The traction [Pa]: the model gives it at the nodes directly."""
-        return q
+        return outcome.g
+
+    def stick_zones(self, outcome, state):
+        return outcome.zones
+
+    def delta_Q(self, outcome):
+        return outcome.delta_Q
+
+    def delta_sigma(self, outcome):
+        """Zero: the slip of ``Q`` alone on a symmetric profile is even in ``x``."""
+        return 0.0
 
     def dissipation_density(self, ds):
         """``f p |ds|`` [J/m^2] at the nodes."""
         return self.contact.f * self._p * np.abs(ds)
 
-    def increment(self, state, Q):
-        """`Step` from `state` (its ``Q``, slip and open turning points) to the shear force `Q` [N/m]."""
-        turning = list(state.turning)
+    def at_rest(self, state):
+        return self.increment(state, state.Q, state.sigma)
+
+    def increment(self, state, Q, sigma=0.0, guess=None):
+        """`Outcome` from `state` (its ``Q``, slip and open turning points) to the shear force `Q` [N/m].
+
+        ``sigma`` is zero for this model (`Exact.holds_for`); `guess` is not needed.
+        """
+        turning = list(state.memory)
         if Q == state.Q:
             slip, q, delta_Q, _ = self._at(turning, Q)
-            return Step(q, np.zeros(slip.size), slip, 0.0, state.turning, [(-1.0, 1.0)], delta_Q)
+            return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
         direction = np.sign(Q - state.Q)
         origin = _origin(turning)[0]
         if state.Q != origin and np.sign(state.Q - origin) != direction:  # a reversal: Q_k is a turning point
@@ -170,7 +217,7 @@ class MasingScene:
             position, turning = end, turning[:-2]
         slip, q, delta_Q, c = self._at(turning, Q)
         zones = [(-c / self.contact.a, c / self.contact.a)]
-        return Step(q, slip - state.slip, slip, self.contact.f**2 * energy, tuple(turning), zones, delta_Q)
+        return Outcome(q, slip - state.slip, slip, self.contact.f**2 * energy, tuple(turning), zones, delta_Q)
 
     def _at(self, turning, Q):
         """Slip [m], traction [Pa] at the nodes, ``delta_Q`` [m] and the stick half-width [m] at `Q`

@@ -22,7 +22,7 @@ are then right to about 1e-14 for elements of similar size and to ``~ 1e-16`` ti
 of the sizes otherwise: at most 4e-10 on the meshes that `element_targets` settles on, with
 elements down to 3e-6 rad. Each mean is computed from its own two elements alone, in operations
 that do not depend on the other elements, so that the scene of a refined mesh copies the means
-of the pairs of elements it shares with the scene before (`GalerkinScene`'s ``previous``) and
+of the pairs of elements it shares with the scene before (`GalerkinModel`'s ``previous``) and
 its stiffness equals, bit for bit, one assembled afresh (as a run resumed from a saved state
 assembles it).
 
@@ -34,7 +34,7 @@ Loads. The fully stuck traction of eqs (9) and (20) does the work
 ``ds`` keeps its sign on each element). An increment is then the problem that
 `fretting.models.solver.solve_increment` solves,
 ``min 1/2 ds^T K ds - g_trial^T ds + sum_k L_k |ds_k|`` with ``g_trial = F(Q', sigma') - K s``,
-and its ``g_k = int q phi_k dx`` are hat moments of the traction. `GalerkinScene.traction`
+and its ``g_k = int q phi_k dx`` are hat moments of the traction. `GalerkinModel.traction`
 turns them into nodal values keeping Coulomb's law exactly at the nodes.
 
 Mesh. `element_targets` reads the stick and slip zones of an increment and asks for element
@@ -43,7 +43,7 @@ grades neighbours to a size ratio of at most 2. A driver (`fretting.engine.simul
 runs the turning points of its history (curved stretches between them cut where the path has
 turned by `fretting.engine.simulation.MAX_TURN`), reduces the targets of every increment with
 ``np.minimum``, refines, and runs again until `refine` returns the same mesh, starting from
-`initial_theta` (pass `GalerkinScene.breakpoints` on: the profile's, where the pressure has a
+`initial_theta` (pass `GalerkinModel.breakpoints` on: the profile's, where the pressure has a
 singular derivative). ``rtol`` is the relative accuracy asked of the energy dissipated in each
 increment; the stick/slip boundaries of the increments asked about are then located to about
 ``10 rtol a``. An increment from one turning point (or cut) to the next slips where the
@@ -58,22 +58,26 @@ f p0 and slips within 3.2e-4 of their maximum, on 268 to 765 nodes (765 at Q/fP 
 just under `fretting.engine.simulation.MAX_DEFAULT_MESH`).
 """
 
-from typing import NamedTuple
+from dataclasses import dataclass
+from typing import ClassVar, NamedTuple
 
 import numpy as np
 from numpy.polynomial import polynomial
 from scipy import special
 
+from fretting._validate import positive
+from fretting.models.base import ModelSpec
+from fretting.models.method4 import Method4Model, extrapolated_end
 from fretting.physics.profiles import Gap
 
 __all__ = [
     "DEFAULT_RTOL",
-    "GalerkinScene",
+    "GalerkinModel",
+    "Mesh",
     "boundary_fraction",
     "clausen1",
     "clausen3_complement",
     "element_targets",
-    "extrapolated_end",
     "initial_theta",
     "refine",
     "stiffness",
@@ -426,7 +430,7 @@ def _kernel_means(lo, hi, previous=None):
     In a border of zeros, shape ``(M + 2, M + 2)``, that `_stiffness` differences as it is.
     Symmetric: the series (`_series_pairs`) runs over blocks of about `BLOCK_PAIRS` pairs, rows
     ``e`` by columns ``f`` from the block's first row on, and is mirrored; the near pairs then
-    get `_corner_means` (`_near_pairs`). With `previous` (any `GalerkinScene`: the means are
+    get `_corner_means` (`_near_pairs`). With `previous` (any `GalerkinModel`: the means are
     geometry alone), the pairs of elements that recur in its mesh (`_recurring_elements`) copy
     its means and the series runs over the rows of the new elements by every column, unless half
     the elements or more are new (every pair, mirrored, is then the cheaper). Each mean is computed
@@ -470,7 +474,7 @@ def stiffness(theta, E_star, previous=None):
 
     ``K = (E_star / (2 pi)) C^T (means(theta - phi) - means(theta + phi)) C`` with ``C`` the
     element difference of nodal values: symmetric, positive semi-definite, ``K 1 = 0``.
-    `previous`, any `GalerkinScene` (worth it when its mesh shares most elements with `theta`,
+    `previous`, any `GalerkinModel` (worth it when its mesh shares most elements with `theta`,
     as a coarser one that `refine` bisected does), lends the means of the pairs of elements with
     the same two ends: the result is the same, bit for bit, as without it (`_kernel_means`).
     """
@@ -606,20 +610,61 @@ def _recovery(theta, moments):
 # --- the scene ---------------------------------------------------------------------------------
 
 
-class GalerkinScene:
-    """A contact discretised by P1 Galerkin on the mesh `theta`: the fixed arrays of every increment.
+@dataclass(frozen=True, eq=False)
+class Mesh(ModelSpec):
+    """Method 4 by P1 Galerkin on a mesh in ``theta``: the mesh `theta` as given, or one adapted to
+    the history so that the energy of each increment is right to `rtol` (resolved by
+    `fretting.engine.choice.resolve`).
 
-    Same interface as the Chebyshev scene of `fretting.engine.simulation`; every per-node array is in
-    ascending ``x``, i.e. descending ``theta``.
+    Parameters
+    ----------
+    rtol : float, optional
+        Relative accuracy asked of the energy (`DEFAULT_RTOL` when neither is given).
+    theta : array_like, optional
+        Mesh nodes [rad], strictly increasing from 0 to pi.
+    """
+
+    rtol: float | None = None
+    theta: np.ndarray | None = None
+
+    name: ClassVar[str] = "mesh"
+    description: ClassVar[str] = "method 4: dislocation correction to the fully adhered solution, P1 Galerkin in theta"
+
+    def __post_init__(self):
+        if self.theta is not None:
+            object.__setattr__(self, "theta", _validated_mesh(self.theta))
+        elif self.rtol is None:
+            object.__setattr__(self, "rtol", DEFAULT_RTOL)
+        if self.rtol is not None:
+            object.__setattr__(self, "rtol", positive("rtol", self.rtol))
+
+    @property
+    def resolved(self):
+        return self.theta is not None
+
+    def build(self, contact, previous=None):
+        return GalerkinModel(contact, self, previous)
+
+    def attributes(self):
+        return {"model": self.name} | ({} if self.rtol is None else {"rtol": self.rtol})
+
+    @classmethod
+    def from_record(cls, attrs, theta):
+        return cls(attrs.get("rtol"), theta)
+
+
+class GalerkinModel(Method4Model):
+    """A contact discretised by P1 Galerkin on the mesh of a resolved `Mesh`; every per-node array
+    in ascending ``x``, i.e. descending ``theta``.
 
     Parameters
     ----------
     contact : Contact
-    theta : array_like, shape (M + 1,)
-        Mesh nodes [rad], strictly increasing from 0 to pi.
-    previous : GalerkinScene, optional
-        A scene whose mesh shares elements with `theta` (one that `refine` bisected): its means
-        over the pairs of shared elements are reused, and the scene is the same, bit for bit, as
+    spec : Mesh
+        Resolved: its ``theta`` [rad], strictly increasing from 0 to pi, shape (M + 1,).
+    previous : GalerkinModel, optional
+        A model whose mesh shares elements with `theta` (one that `refine` bisected): its means
+        over the pairs of shared elements are reused, and the model is the same, bit for bit, as
         without it (`stiffness`).
 
     Attributes
@@ -633,11 +678,8 @@ class GalerkinScene:
     limit : ndarray, shape (N,)
         ``L_k = int f p phi_k dx`` [N/m].
     friction_force : float
-        ``sum_k L_k`` [N/m]: ``f P`` up to the quadrature of `limit`, since the hats sum to 1
-        (measured: within 7e-16 of it on Hertz, rounded flats and the sharp flat punch; the
-        asymmetric `Gap` of tests/test_hard_cases.py 1.7e-8 short on `initial_theta`, 1.7e-15
-        on 1000 equal elements). `fretting.engine.simulation` takes gross slip from the smaller of this
-        and ``f P``.
+        ``sum_k L_k`` [N/m]: ``f P`` up to the quadrature of `limit`, since the hats sum to 1.
+        The engine takes gross slip from the smaller of this and ``f P``.
     area : ndarray, shape (N,)
         ``int phi_k dx`` [m].
     breakpoints : ndarray
@@ -645,8 +687,9 @@ class GalerkinScene:
         inside the contact), for `element_targets`.
     """
 
-    def __init__(self, contact, theta, previous=None):
-        theta = _validated_mesh(theta)
+    def __init__(self, contact, spec, previous=None):
+        theta = spec.theta
+        self.spec = spec
         self.contact = contact
         self.theta = theta
         a = contact.a
@@ -654,7 +697,7 @@ class GalerkinScene:
         self.t = np.cos(theta[order])
         self.t[0], self.t[-1] = -1.0, 1.0
         self.x = contact.centre + a * self.t
-        self._kernel_means = _kernel_means(theta[:-1], theta[1:], previous)  # for the scene of a refined mesh
+        self._kernel_means = _kernel_means(theta[:-1], theta[1:], previous)  # for the model of a refined mesh
         self.G = _stiffness(self._kernel_means[order, order], contact.E_star)
         cos_integral, sin_integral = _hat_trig_integrals(theta)
         self._dQ = (_assemble(np.diff(theta) / 2, np.diff(theta) / 2) / np.pi)[order]
@@ -677,7 +720,11 @@ class GalerkinScene:
         """``F_k = int q_st phi_k dx`` [N/m] of the fully stuck traction, eqs (9) and (20)."""
         return Q * self._dQ + sigma * self._dsig
 
-    def traction(self, g, ds=None):
+    def traction(self, outcome):
+        """Shear traction [Pa] at the nodes after `outcome` (`nodal_traction` of its ``g``, ``ds``)."""
+        return self.nodal_traction(outcome.g, outcome.ds)
+
+    def nodal_traction(self, g, ds=None):
         """Shear traction [Pa] at the nodes, from its hat moments `g` [N/m] (rows of a 2-D `g`).
 
         ``g_k / L_k`` is the mean of the utilisation ``u = q / (f p)`` under ``f p phi_k dx``;
@@ -696,17 +743,17 @@ class GalerkinScene:
             utilisation = np.where(ds != 0, np.sign(ds), utilisation)
         return utilisation * self._fp
 
-    def delta_Q(self, slip):
-        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of each row of `slip`, exact for P1 (formulation.md section 5).
+    def delta_Q(self, outcome):
+        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of the slip after `outcome`, exact for P1.
 
         A row-wise sum, not a matrix product, so that a row's value does not depend on how many
         rows there are.
         """
-        return np.sum(slip * self._dQ, axis=-1)
+        return np.sum(outcome.slip * self._dQ, axis=-1)
 
-    def delta_sigma(self, slip):
-        """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2] of each row of `slip`, exact for P1 (formulation.md section 5)."""
-        return np.sum(slip * self._dsig, axis=-1)
+    def delta_sigma(self, outcome):
+        """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2] of the slip after `outcome`, exact for P1."""
+        return np.sum(outcome.slip * self._dsig, axis=-1)
 
     def dissipation(self, ds):
         """``sum_k L_k |ds_k|`` [J/m], the lumped ``int f p |ds| dx``."""
@@ -718,12 +765,20 @@ class GalerkinScene:
 
 
 def _validated_mesh(theta):
+    """`theta` [rad] as a float array, checked to be a mesh: finite, strictly increasing from 0 to pi."""
     theta = np.array(theta, dtype=float)
     if theta.ndim != 1 or theta.size < 3:
         raise ValueError(f"theta must be a 1-D mesh of at least 3 nodes, found shape {theta.shape}")
-    if theta[0] != 0.0 or theta[-1] != np.pi or np.any(np.diff(theta) <= 0):
-        raise ValueError("theta must increase strictly from 0 to pi")
+    if theta[0] != 0.0 or theta[-1] != np.pi or not np.all(np.diff(theta) > 0):  # NaN fails the comparison
+        raise ValueError(f"theta must increase strictly from 0 to pi, found {_shown(theta)}")
     return theta
+
+
+def _shown(theta):
+    """The first nodes of `theta` that break its order, for an error message."""
+    bad = np.flatnonzero(~(np.diff(theta) > 0))
+    k = int(bad[0]) if bad.size else 0
+    return f"theta[{k}:{k + 2}] = {theta[k : k + 2].tolist()}" if bad.size else f"ends {theta[0]!r}, {theta[-1]!r}"
 
 
 # --- meshes --------------------------------------------------------------------------------
@@ -780,13 +835,13 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
     theta : ndarray, shape (M + 1,)
         The mesh [rad], ascending from 0 to pi.
     ds : ndarray, shape (M + 1,) or (steps, M + 1)
-        Slip increment [m] from a `GalerkinScene` on `theta`, in the scene's order (ascending
+        Slip increment [m] from a `GalerkinModel` on `theta`, in the scene's order (ascending
         ``x``, i.e. descending ``theta``), exactly zero where a node stuck (as
         `fretting.models.solver.solve_increment` leaves it). Rows are reduced with ``np.minimum``.
     rtol : float
         Relative accuracy asked of the energy dissipated in each increment.
     breakpoints : array_like of float
-        Angles [rad] where the pressure has a singular derivative (`GalerkinScene.breakpoints`:
+        Angles [rad] where the pressure has a singular derivative (`GalerkinModel.breakpoints`:
         the ends of a rounded flat, those a `Gap` is given), so that a stick zone ending near one
         is located to a fraction of its distance from it.
 
@@ -874,22 +929,6 @@ def _boundary_position(theta, d, k):
     slipping, step = (k + 1, 1) if d[k] == 0 else (k, -1)
     estimate = extrapolated_end(theta, d, slipping, slipping + step)
     return (lo + hi) / 2 if estimate is None else float(np.clip(estimate, lo, hi))
-
-
-def extrapolated_end(position, d, slipping, beyond):
-    """Where the slip increment `d` of a slip zone reaches zero, or None if it cannot be told.
-
-    Near a stick/slip boundary ``d`` grows like ``dist^(3/2)`` (eq 19; Masing for reversed
-    zones), so ``|d|^(2/3)`` is extrapolated linearly from the slipping node `slipping` and its
-    neighbour `beyond` further into the zone (`position`: the nodes' coordinates). None when
-    `beyond` is off the grid, slips the other way or has the smaller ``|d|``.
-    """
-    if not 0 <= beyond < d.size or np.sign(d[beyond]) != np.sign(d[slipping]):
-        return None
-    v1, v2 = abs(d[slipping]) ** (2 / 3), abs(d[beyond]) ** (2 / 3)
-    if v2 <= v1:
-        return None
-    return position[slipping] - v1 * (position[beyond] - position[slipping]) / (v2 - v1)
 
 
 def refine(theta, targets):

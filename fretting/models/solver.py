@@ -43,7 +43,7 @@ from scipy import linalg
 
 from fretting.errors import SolverError
 
-__all__ = ["Grid", "Increment", "chebyshev_angles", "solve_increment"]
+__all__ = ["ChebyshevGrid", "Increment", "chebyshev_angles", "solve_increment"]
 
 #: Rounding allowance on the friction limit, relative to the largest term of the traction: the
 #: Cholesky solves leave nodes at the limit over it by up to 2e-13 of that term (measured on
@@ -52,14 +52,13 @@ ROUNDING = 1e-11
 
 
 @dataclass(frozen=True, eq=False)
-class Grid:
-    """Gauss-Chebyshev nodes and the dimensionless slip-to-traction matrix of `N` nodes."""
+class ChebyshevGrid:
+    """Gauss-Chebyshev nodes and the dimensionless slip-to-traction matrix of `N` nodes (validated by
+    `fretting.models.Grid`)."""
 
     N: int
 
     def __post_init__(self):
-        if not isinstance(self.N, (int, np.integer)) or self.N < 4:
-            raise ValueError(f"nodes must be an integer >= 4, found {self.N!r}")
         theta = chebyshev_angles(self.N)[::-1]  # ascending t
         T = np.cos(np.multiply.outer(theta, np.arange(self.N)))
         object.__setattr__(self, "t", np.cos(theta))

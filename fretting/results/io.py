@@ -139,6 +139,11 @@ class Joiner:
         """Number of parts added."""
         return len(self._pieces)
 
+    @property
+    def steps(self):
+        """Steps of the joined result so far (its ``steps`` attribute)."""
+        return self._end + 1
+
     def add(self, part):
         """Join `part`, which continues the parts added before (see `join_results`)."""
         per_cycle = [name for name, variable in part.variables.items() if "cycle_number" in variable.dims]

@@ -39,10 +39,10 @@ from matplotlib.patches import Patch
 from matplotlib.ticker import LogLocator
 
 from fretting.analysis import nucleation
+from fretting.engine.simulation import simulate
 from fretting.errors import GrossSlipError
 from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
 from fretting.results.io import ENGINE, save
-from fretting.engine.simulation import simulate
 
 __all__ = [
     "REGIMES",

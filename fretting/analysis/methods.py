@@ -27,13 +27,14 @@ from matplotlib.figure import Figure
 from numpy.polynomial import chebyshev, legendre
 from scipy import fft, linalg, optimize
 
-from fretting.physics import closed_forms
 from fretting._validate import finite
-from fretting.physics.contact import Contact
+from fretting.engine.simulation import simulate
 from fretting.loading.history import History
-from fretting.physics.profiles import Hertz
-from fretting.engine.simulation import DEFAULT_NODES, simulate
+from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.solver import chebyshev_angles
+from fretting.physics import closed_forms
+from fretting.physics.contact import Contact
+from fretting.physics.profiles import Hertz
 from fretting.results.variables import VARIABLES
 
 __all__ = ["METHODS", "partial_slip", "comparison_figure"]

@@ -1,0 +1,112 @@
+"""The Galerkin mesh adapted to a history: `adapted_mesh`.
+
+Runs the history's turning points (`History.turning_points`, from the contact just formed), each
+curved stretch between them cut where its direction has turned by `MAX_TURN`, on a mesh graded
+toward the edges; refines every element that `fretting.models.galerkin.element_targets` finds too
+coarse at any of them, and runs them again until no element is. The other steps are not run:
+along a proportional stretch each node slips one way only, so its dissipation is
+``f p |s_end - s_start|`` and depends on the states at the turning points alone, and the
+boundaries of the steps between lie in the slip zones of the increment from one turning point
+to the next, which `element_targets` fills with elements small enough to locate them. Along a
+curved stretch the loads of the steps between lie off the straight increment and their slip
+zones reach where it sticks; cut into pieces that turn by less than `MAX_TURN`, the stretch is
+nearly proportional again. Under ``Q`` alone or ``sigma`` alone on a symmetric profile the mesh is
+kept symmetric, as the solution is. A history that reaches gross slip is adapted to the steps
+before it.
+
+Each pass starts the active set at a turning point from the slip directions the pass before found
+there (`_interpolated_directions`), which the answer does not depend on and which saves most of
+the releases of the passes after the first (benchmarks/adaptation_passes.py).
+"""
+
+import numpy as np
+
+from fretting._validate import positive
+from fretting.engine.follow import follow
+from fretting.engine.state import State
+from fretting.engine.threads import one_blas_thread
+from fretting.errors import SolverError
+from fretting.models.galerkin import DEFAULT_RTOL, Mesh, element_targets, initial_theta, refine
+
+__all__ = ["MAX_TURN", "REFINEMENTS", "MeshTooLarge", "adapted_mesh", "adapted_model"]
+
+#: Refinements of the mesh before `adapted_mesh` gives up: each at least halves an element, and 60
+#: halvings take pi below 1e-17.
+REFINEMENTS = 60
+
+#: Turn [rad] of the load path's direction after which a curved stretch between turning points is
+#: cut, the direction taken in the plane of ``Q / (pi a)`` and ``sigma / 4`` [Pa], the mean and the
+#: slope of the fully stuck traction ``sqrt(1 - t^2) q_st = Q / (pi a) + sigma t / 4`` of eqs (9)
+#: and (20). A quarter of a 90-degree out-of-phase cycle is then run as two increments (energy per
+#: cycle against the turn: results/speed_vs_error.md).
+MAX_TURN = np.pi / 4
+
+
+class MeshTooLarge(Exception):
+    """The adapted mesh would exceed its bound of nodes: raised as soon as that is certain."""
+
+    def __init__(self, nodes, step):
+        super().__init__(f"the adapted mesh would need {nodes} nodes or more (at step {step} of the turning points)")
+        self.nodes, self.step = nodes, step
+
+
+def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
+    """Galerkin mesh ``theta`` [rad] that resolves the stick and slip zones of `history` to `rtol`
+    (`adapted_model`); None as soon as it is certain to need more than `max_nodes` nodes."""
+    try:
+        with one_blas_thread():
+            return adapted_model(contact, history, positive("rtol", rtol), max_nodes).theta
+    except MeshTooLarge:
+        return None
+
+
+def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
+    """The `GalerkinModel` (built once, for the run to use) whose mesh ``theta`` [rad] resolves the
+    stick and slip zones of `history` to `rtol`,
+    and its built model (`GalerkinModel`, assembled once, for the run to use).
+
+    Raises `MeshTooLarge` as soon as a refinement is certain to give more than `max_nodes` nodes:
+    the targets only shrink within a pass, so the mesh they ask for only grows.
+    """
+    sliding = np.flatnonzero(np.abs(history.Q) >= contact.f * contact.P)
+    if sliding.size:  # the run will stop there: adapt to the steps before
+        history = history[: max(sliding[0], 1)]
+    turning = history.turning_points(MAX_TURN, (np.pi * contact.a, 4.0))
+    mirrored = contact.profile.SYMMETRIC and not (history.Q.any() and history.sigma.any())
+    theta = initial_theta()
+    directions = {}  # step: the slip directions the last pass found there, and its nodes' x
+    model = None
+    for _ in range(REFINEMENTS):
+        model = Mesh(rtol, theta).build(contact, previous=model)
+        targets, known, directions = np.full(theta.size - 1, np.inf), directions, {}
+
+        def observe(step, ds, model=model, targets=targets, found=directions):
+            np.minimum(targets, element_targets(model.theta, ds, rtol, model.breakpoints), out=targets)
+            found[step] = np.sign(ds).astype(np.int8), model.x
+            if max_nodes is not None and (size := refine(model.theta, targets).size) > max_nodes:
+                raise MeshTooLarge(size, step)
+
+        def guess(step, known=known, x=model.x):
+            return _interpolated_directions(*known[step], x) if step in known else None
+
+        follow(model, turning, State.virgin(model), observe=observe, guess=guess)
+        refined = refine(theta, np.minimum(targets, targets[::-1]) if mirrored else targets)
+        if mirrored:  # Q alone or sigma alone: the zones are even or odd in x, and so is the mesh, exactly
+            lower = refined[refined <= np.pi / 2]
+            refined = np.concatenate([lower, np.pi - lower[::-1][int(lower[-1] == np.pi / 2) :]])
+        if np.array_equal(refined, theta):
+            return model
+        if max_nodes is not None and refined.size > max_nodes:
+            raise MeshTooLarge(refined.size, len(turning) - 1)
+        theta = refined
+    raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
+
+
+def _interpolated_directions(directions, x, at):
+    """Slip directions (+1, -1, 0) at the points `at` [m] from those at the nodes `x` [m] of a coarser mesh.
+
+    A start for the solver only (the ``guess`` of `Model.increment`): a node between two of `x`
+    that differ in direction takes the direction of the linear interpolation, zero between
+    opposite ones.
+    """
+    return np.sign(np.interp(at, x, directions)).astype(np.int8)

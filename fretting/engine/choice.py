@@ -1,0 +1,130 @@
+"""Which model runs: the one place that chooses the default, resolves a spec and reads a recorded one.
+
+The default for a contact and a history (`choose_model`):
+
+1. the exact model of ``Q`` alone (`Exact`) where it holds: no ``sigma`` in the history and a
+   symmetric profile (`Exact.holds_for`); where the answer is known in closed form it is not
+   solved for;
+2. else method 4 on the Galerkin mesh adapted to the history (`Mesh()`, `DEFAULT_RTOL`);
+3. where that mesh would need more than `MAX_DEFAULT_MESH` nodes, method 4 on the grid of
+   `DEFAULT_NODES` Gauss-Chebyshev points, with the reason recorded in the spec
+   (`Grid.fallback`, the dataset's ``model_fallback``) and a `ModelFallbackWarning`.
+"""
+
+import warnings
+
+from fretting.engine.adaptation import MeshTooLarge, adapted_model
+from fretting.errors import HistoryError
+from fretting.models.base import ModelSpec
+from fretting.models.collocation import DEFAULT_NODES, Grid
+from fretting.models.exact import Exact
+from fretting.models.galerkin import DEFAULT_RTOL, Mesh
+
+__all__ = [
+    "MAX_DEFAULT_MESH",
+    "SPECS",
+    "ModelFallbackWarning",
+    "check",
+    "choose_model",
+    "could_be_default",
+    "recorded_spec",
+    "resolve",
+    "spec_from",
+]
+
+#: Every kind of model, by the name the dataset records: a new model adds its spec here.
+SPECS = {spec.name: spec for spec in (Exact, Mesh, Grid)}
+
+#: Nodes beyond which the default gives up the adapted mesh for the grid of `DEFAULT_NODES`: a
+#: mesh's passes cost ``N^3`` per turning point, and the non-periodic turning points of out-of-phase
+#: cycles can drive it past 1000 nodes (benchmarks/default_out_of_phase.py).
+MAX_DEFAULT_MESH = 2 * DEFAULT_NODES
+
+
+class ModelFallbackWarning(UserWarning):
+    """The default model fell back to a coarser one; the message says why."""
+
+
+def choose_model(contact, history):
+    """The default model for `contact` and `history`, resolved (module docstring).
+
+    Returns
+    -------
+    ModelSpec
+        `Exact`, `Mesh` or `Grid`, with its nodes fixed.
+    """
+    exact = Exact()
+    if exact.holds_for(contact, history) is None:
+        return exact.resolved_for(contact, history)
+    try:
+        return adapted_model(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH).spec
+    except MeshTooLarge as error:
+        reason = f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
+    warnings.warn(
+        f"the default model falls back to {DEFAULT_NODES} Gauss-Chebyshev nodes: {reason}",
+        ModelFallbackWarning,
+        stacklevel=2,
+    )
+    return Grid(DEFAULT_NODES, fallback=reason)
+
+
+def check(spec, contact, history):
+    """Raise HistoryError if the model of `spec` cannot run `history` on `contact` (`ModelSpec.holds_for`)."""
+    reason = spec.holds_for(contact, history)
+    if reason is not None:
+        raise HistoryError(f"{spec.description} cannot run this history: {reason}")
+
+
+def could_be_default(spec):
+    """True if `choose_model` can give the resolved `spec` (one read from a result, say)."""
+    if isinstance(spec, Grid):
+        return spec.fallback is not None and spec.nodes == DEFAULT_NODES
+    return isinstance(spec, Exact) or (isinstance(spec, Mesh) and spec.rtol == DEFAULT_RTOL)
+
+
+def resolve(spec, contact, history):
+    """`spec` with its nodes fixed for `history` (a resolved spec as it is); None: the default.
+
+    Raises ValueError where the model cannot run the history (`ModelSpec.holds_for`).
+    """
+    if spec is None:
+        return choose_model(contact, history)
+    check(spec, contact, history)
+    if spec.resolved:
+        return spec
+    if isinstance(spec, Mesh):
+        return adapted_model(contact, history, spec.rtol).spec
+    return spec.resolved_for(contact, history)
+
+
+def spec_from(model=None, nodes=None, rtol=None, mesh=None):
+    """The spec that `simulate`'s keywords ask for: `model` itself, or the shorthand `nodes` (`Grid`),
+    `rtol` (`Mesh`, adapted) or `mesh` (`Mesh`, as given); None when none is given (the default)."""
+    asked = [
+        name
+        for name, value in (("model", model), ("nodes", nodes), ("rtol", rtol), ("mesh", mesh))
+        if value is not None
+    ]
+    if len(asked) > 1:
+        raise ValueError(
+            f"give one of model, nodes (Gauss-Chebyshev), rtol or mesh (Galerkin), found {' and '.join(asked)}"
+        )
+    if model is not None and not isinstance(model, ModelSpec):
+        raise ValueError(f"model must be a fretting.models spec (Exact(), Grid(), Mesh()), found {model!r}")
+    if nodes is not None:
+        return Grid(nodes)
+    if rtol is not None:
+        return Mesh(rtol=rtol)
+    if mesh is not None:
+        return Mesh(theta=mesh)
+    return model
+
+
+def recorded_spec(result):
+    """The resolved spec a result was run with, from its ``model`` attribute and nodes."""
+    attrs = result.attrs
+    name = attrs.get("model")
+    if name not in SPECS:
+        raise ValueError(f"the result records the model {name!r}, expected one of {', '.join(SPECS)}")
+    theta = result.theta.values[::-1].copy() if "theta" in result else None  # ascending in theta
+    return SPECS[name].from_record(attrs, theta)

@@ -1,0 +1,143 @@
+"""Following a history: one increment (`advance`) and a pass over a history (`follow`) with its
+load cycles tallied and repeating cycles copied.
+
+A cycle whose loads repeat those of the cycle just completed, from a state that repeats the
+state before that cycle bit for bit, would repeat its increments bit for bit (the increment
+depends on the loads and the state only); such cycles are copied instead of solved, and the
+recorder is told so (`Recorder.copied`).
+"""
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from fretting.engine.state import State, Tally
+from fretting.errors import GrossSlipError, SolverError
+
+__all__ = ["advance", "follow"]
+
+
+def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False):
+    """(outcome, state after) of the increment of `model` from `state` to `Q` [N/m], `sigma` [Pa].
+
+    `at_rest`: no increment, the state as it stands (the starting state of a history). `step`
+    names the step in a `GrossSlipError`. An increment that reports negative dissipation is a
+    solver failure (`SolverError`), never a result.
+    """
+    contact = model.contact
+    sliding = min(model.friction_force, contact.f * contact.P)  # no stick zone from here on
+    if abs(Q) >= sliding:
+        raise GrossSlipError(step, Q, sigma, sliding)
+    if at_rest:
+        return model.at_rest(state), state
+    outcome = model.increment(state, Q, sigma, guess)
+    if not outcome.dissipation >= 0:
+        raise SolverError(f"the increment to Q = {Q!r}, sigma = {sigma!r} dissipated {outcome.dissipation!r} J/m")
+    w = model.dissipation_density(outcome.ds) if state.tally.number else None
+    return outcome, state.advance(outcome, Q, sigma, w)
+
+
+def follow(model, history, state, recorder=None, observe=None, guess=None):
+    """Run `history` on `model` from `state` (whose loads are the history's first); return the last state.
+
+    `recorder` is told of every step and cycle; ``observe(step, ds)`` sees the slip increment of
+    every step solved; ``guess(step)`` gives the slip directions to start the solver from, or None.
+    """
+    return _Run(model, history, recorder, observe, guess).follow(state)
+
+
+@dataclass(frozen=True, eq=False)
+class _Cycle:
+    """A complete cycle: its first step, the state before it and each increment's (outcome, state after)."""
+
+    first: int
+    before: State
+    steps: list
+
+
+class _Run:
+    """One pass over a history: increments, cycles, copies, and what the recorder is told."""
+
+    def __init__(self, model, history, recorder, observe, guess):
+        self.model, self.history, self.recorder = model, history, recorder
+        self.observe, self.guess = observe, guess
+        self.cycle = history.cycle if history.cycle is not None else np.zeros(len(history), dtype=np.int64)
+
+    def follow(self, state):
+        """Run from `state`; return the state at the end."""
+        previous = None  # the last cycle solved whole in this run: the one a repeating cycle copies
+        before, steps = None, []  # state before the cycle in progress (if it began here), its increments
+        repeated = False  # the cycle in progress is a copy
+        step = 0
+        while step < len(self.history):
+            number = int(self.cycle[step])
+            if number != state.tally.number:  # the increment to `step` begins a new stretch
+                if state.tally.number:
+                    self._cycle(state.tally.number, state.tally, repeated)
+                    if before is not None and not repeated:
+                        previous = _Cycle(step - len(steps), before, steps)
+                state = replace(state, tally=Tally.begin(number, state.slip))
+                before, steps, repeated = state, [], False
+                copies = self._repeats(previous, state, step) if number else 0
+                if copies:
+                    state = self._copy(previous, step, copies)
+                    step += copies * len(previous.steps)
+                    repeated = True
+                    continue
+            guess = None if self.guess is None else self.guess(step)
+            Q, sigma = self.history.Q[step], self.history.sigma[step]
+            at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma)
+            outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest)
+            if self.observe is not None and not at_rest:
+                self.observe(step, outcome.ds)
+            steps.append((outcome, state))
+            if self.recorder is not None:
+                self.recorder.step(step, outcome, state)
+            step += 1
+        if state.tally.number:
+            self._cycle(state.tally.number, state.tally, repeated)
+        return state
+
+    def _cycle(self, number, tally, repeated):
+        if self.recorder is not None:
+            self.recorder.cycle(number, tally, repeated)
+
+    def _repeats(self, previous, state, step):
+        """Number of whole cycles from `step` that repeat the complete cycle `previous` bit for bit.
+
+        They must follow `previous` directly, start from its starting state, have its loads
+        and its number of steps, and the last of them must end where a new stretch begins.
+        """
+        if previous is None or not state.repeats(previous.before):
+            return 0
+        length = len(previous.steps)
+        if previous.first + length != step:
+            return 0
+        n, cycle = len(self.history), self.cycle
+        later, earlier = slice(step, n), slice(step - length, n - length)
+        same = (
+            (self.history.Q[later] == self.history.Q[earlier])
+            & (self.history.sigma[later] == self.history.sigma[earlier])
+            & (cycle[later] == cycle[earlier] + 1)
+        )
+        copies = (same.size if same.all() else int(np.argmin(same))) // length
+        stop = step + copies * length
+        if copies and stop < n and cycle[stop] == cycle[stop - 1]:
+            copies -= 1  # the last one goes on beyond the steps of `previous`
+        return copies
+
+    def _copy(self, previous, step, copies):
+        """Copy the cycle `previous` over `copies` cycles from `step`; the state after the last copy.
+
+        The last copy is left to be closed as the cycle in progress.
+        """
+        last = previous.steps[-1][1]
+        first = int(self.cycle[step])
+        for number in range(first, first + copies - 1):
+            self._cycle(number, last.tally, True)  # one tally object: the recorder stores its rows once
+        if self.recorder is not None:
+            self.recorder.copied(step, copies, previous.steps)
+        per_step = np.array([outcome.dissipation for outcome, _ in previous.steps])
+        # summed step by step, in order, as solving the cycles would: np.cumsum adds sequentially
+        dissipated = np.cumsum(np.concatenate([[last.dissipated], np.tile(per_step, copies)]))[-1]
+        return replace(last, tally=replace(last.tally, number=first + copies - 1), dissipated=float(dissipated))

@@ -1,0 +1,198 @@
+"""The recorder: which steps of a run are stored, the per-cycle rows, and the dataset they make.
+
+The stepper tells the recorder of every step and cycle (`Recorder.step`, `Recorder.copied`,
+`Recorder.cycle`); the recorder keeps the fields of the steps it was asked to record and one row
+per load cycle, and turns them into the variables of `fretting.results.variables.VARIABLES`
+(`Recorder.dataset`). `final_state` reads the state back from such a dataset.
+"""
+
+import itertools
+
+import numpy as np
+
+from fretting.engine.choice import recorded_spec
+from fretting.engine.state import State, Tally
+from fretting.results.variables import build_dataset
+
+__all__ = ["RECORDED_ENDS", "RECORD_ALL_STEPS", "Recorder", "final_state", "recorded_steps"]
+
+#: Default recording: every step of histories up to this many steps; of longer ones the first
+#: and the last RECORDED_ENDS steps (64 cycles of 64 steps), so that the fields stored stay
+#: bounded (about 6.5 kB per step at 384 nodes).
+RECORD_ALL_STEPS = 20_000
+RECORDED_ENDS = 4096
+
+
+def recorded_steps(record, n):
+    """Step numbers to record of an `n`-step history: `record` (increasing steps, or "all"), or
+    by default every step of histories up to `RECORD_ALL_STEPS` steps, else the first and the
+    last `RECORDED_ENDS` steps."""
+    if record is None:
+        if n <= RECORD_ALL_STEPS:
+            return np.arange(n)
+        return np.concatenate([np.arange(RECORDED_ENDS), np.arange(n - RECORDED_ENDS, n)])
+    if isinstance(record, str) and record == "all":
+        return np.arange(n)
+    steps = np.asarray(record)
+    if steps.ndim != 1 or not (steps.size == 0 or np.issubdtype(steps.dtype, np.integer)):
+        raise ValueError(f'record must be a list of step numbers or "all", found {record!r}')
+    if np.any(np.diff(steps) <= 0) or np.any(steps < 0) or np.any(steps >= n):
+        raise ValueError(f"record must list increasing steps between 0 and {n - 1}")
+    return steps.astype(np.int64)
+
+
+class Recorder:
+    """The fields of the recorded `steps` of a run of `model` over `history`, and a row per cycle.
+
+    Parameters
+    ----------
+    model : Model
+    history : History
+    steps : ndarray of int
+        Steps to record, increasing (`recorded_steps`).
+    """
+
+    def __init__(self, model, history, steps):
+        self.model, self.history, self.steps = model, history, steps
+        self.row = np.full(len(history), -1)
+        self.row[steps] = np.arange(steps.size)
+        N = model.x.size
+        self.fields = {
+            "q": np.empty((steps.size, N)),
+            "slip": np.empty((steps.size, N)),
+            "stick": np.empty((steps.size, N), dtype=bool),
+            "dissipation": np.empty(steps.size),
+            "delta_Q": np.empty(steps.size),
+            "delta_sigma": np.empty(steps.size),
+        }
+        self.zones = [()] * steps.size
+        self.cycles = []  # (number, tally, copied) of every cycle the run touches
+
+    def step(self, step, outcome, state):
+        """The increment to `step` gave `outcome` and left `state`: store its fields if `step` is recorded."""
+        k = self.row[step]
+        if k < 0:
+            return
+        model = self.model
+        self.fields["q"][k] = model.traction(outcome)
+        self.fields["slip"][k] = state.slip
+        self.fields["stick"][k] = outcome.ds == 0
+        self.fields["dissipation"][k] = outcome.dissipation
+        self.fields["delta_Q"][k] = model.delta_Q(outcome)
+        self.fields["delta_sigma"][k] = model.delta_sigma(outcome)
+        self.zones[k] = model.stick_zones(outcome, state)
+
+    def copied(self, step, copies, steps):
+        """The `copies` cycles from `step` repeat the increments `steps` ((outcome, state) of one cycle)."""
+        length = len(steps)
+        rows = self.row[step : step + copies * length]
+        for offset in np.flatnonzero(rows >= 0):
+            self.step(step + offset, *steps[offset % length])
+
+    def cycle(self, number, tally, copied):
+        """Cycle `number` ended with `tally` (the same object for consecutive copies); `copied`: not solved."""
+        self.cycles.append((number, tally, copied))
+
+    def data(self, state):
+        """The arrays of the result (names from `VARIABLES`) of a run that ended in `state`."""
+        model, history, steps = self.model, self.history, self.steps
+        data = self.fields | _zone_ends(model.contact, self.zones)
+        if history.cycle is not None:
+            data["cycle"] = history.cycle[steps]
+            data |= _cycle_rows(self.cycles, model.x.size)
+        tally = state.tally
+        return (
+            data
+            | {
+                "Q": history.Q[steps],
+                "sigma": history.sigma[steps],
+                "p": model.contact.pressure(model.x),
+                "x": model.x,
+                "step": steps,
+                "vertex_step": history.vertex_step,
+                "state_Q": state.Q,
+                "state_sigma": state.sigma,
+                "state_slip": state.slip,
+                "state_episode_start": state.episode_start,
+                "state_cycle": tally.number,
+                "state_cycle_dissipation": tally.dissipation,
+                "state_w": tally.w,
+                "state_slip_min": tally.slip_min,
+                "state_slip_max": tally.slip_max,
+                "total_dissipation": state.dissipated,
+            }
+            | ({} if model.theta is None else {"theta": model.theta[::-1]})
+            | ({} if model.memory_variable is None else {model.memory_variable: np.array(state.memory, dtype=float)})
+        )
+
+    def dataset(self, state):
+        """The result dataset of a run that ended in `state`: `data` with the contact's and the model's attributes."""
+        contact, spec = self.model.contact, self.model.spec
+        attributes = {
+            "a": contact.a,
+            "p0": contact.p0,
+            "E_star": contact.E_star,
+            "f": contact.f,
+            "P": contact.P,
+            "centre": contact.centre,
+            "profile": repr(contact.profile),
+            "nodes": self.model.x.size,
+            "model_description": spec.description,
+            "steps": len(self.history),
+        }
+        return build_dataset(self.data(state), attributes | spec.attributes())
+
+
+def final_state(result):
+    """State at the last step of a result of `fretting.simulate`, to continue the history from."""
+    tally = Tally(
+        int(result.state_cycle),
+        float(result.state_cycle_dissipation),
+        result.state_w.values.copy(),
+        result.state_slip_min.values.copy(),
+        result.state_slip_max.values.copy(),
+    )
+    return State(
+        float(result.state_Q),
+        float(result.state_sigma),
+        result.state_slip.values.copy(),
+        result.state_episode_start.values.copy(),
+        tally,
+        recorded_spec(result),
+        float(result.total_dissipation),
+        tuple(result.state_turning.values.tolist()) if "state_turning" in result else (),
+    )
+
+
+def _cycle_rows(cycles, N):
+    """Per-cycle variables from the ``(number, tally, copied)`` of every cycle of a run.
+
+    Copied cycles share their tally, so each distinct tally is turned into rows once.
+    """
+    numbers = np.array([number for number, _, _ in cycles], dtype=np.int64)
+    repeated = np.array([copy for _, _, copy in cycles], dtype=bool)
+    tallies = [tally for _, tally, _ in cycles]
+    new = np.ones(len(tallies), dtype=bool)
+    new[1:] = [later is not earlier for earlier, later in itertools.pairwise(tallies)]
+    distinct = [tally for tally, first in zip(tallies, new, strict=True) if first]
+    copies = np.diff(np.append(np.flatnonzero(new), len(tallies)))
+
+    def rows(values, dtype, width):
+        return np.repeat(np.array(values, dtype=dtype).reshape(len(distinct), width), copies, axis=0)
+
+    return {
+        "cycle_number": numbers,
+        "cycle_dissipation": rows([t.dissipation for t in distinct], float, 1)[:, 0],
+        "cycle_copied": repeated,
+        "w": rows([t.w for t in distinct], np.float32, N),
+        "slip_amplitude": rows([t.slip_amplitude for t in distinct], np.float32, N),
+    }
+
+
+def _zone_ends(contact, zones):
+    """`stick_start` and `stick_end` [m] from per-step lists of normalised stick intervals."""
+    ends = np.full((len(zones), max((len(z) for z in zones), default=0), 2), np.nan)
+    for k, z in enumerate(zones):
+        ends[k, : len(z)] = z
+    ends = contact.centre + contact.a * ends
+    return {"stick_start": ends[..., 0], "stick_end": ends[..., 1]}

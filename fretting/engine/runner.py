@@ -1,0 +1,196 @@
+"""The runner: a history file run to a result file in chunks, with checkpoints and resume.
+
+`run_file` steps one `Stepper` through the history chunk by chunk, so the model's set-up (the
+stiffness, the exact model's branches) is built once per run. Each chunk's result is joined as it
+comes (`fretting.results.io.Joiner`); the joined result is written as a checkpoint every
+`CHECKPOINT_SECONDS` and on an interruption, and a run resumed from its checkpoint goes on from the
+checkpoint's final state, to the same result bit for bit.
+"""
+
+import time
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from fretting.engine.choice import ModelFallbackWarning, could_be_default, recorded_spec
+from fretting.engine.recorder import Recorder, final_state, recorded_steps
+from fretting.engine.stepper import Stepper
+from fretting.errors import GrossSlipError
+from fretting.loading.history_file import read_history_source
+from fretting.results.io import Joiner, ResultError, load, save, source_attributes
+
+__all__ = ["CHECKPOINT_SECONDS", "Run", "run_file"]
+
+#: Steps of the first chunk run at a time: how often progress is reported and a checkpoint can be
+#: written. A chunk that takes less than CHUNK_SECONDS doubles the next one's steps, so that runs
+#: whose cycles repeat (copied, not solved) are not cut into many short runs, each of which
+#: solves its first cycles anew.
+CHUNK_STEPS = 200
+CHUNK_SECONDS = 1.0
+#: Most steps of one chunk: 4096 cycles of 64 steps, whose per-cycle fields are held twice while
+#: the chunk is joined. Each chunk solves its first cycles anew.
+MAX_CHUNK_STEPS = 2**18
+
+#: Seconds between checkpoints by default: at most a minute of work lost in a crash. Each
+#: checkpoint rewrites the partial result whole.
+CHECKPOINT_SECONDS = 60.0
+
+
+@dataclass(frozen=True)
+class Run:
+    """What `run_file` did: the result written, where, and what the user should be told.
+
+    Attributes
+    ----------
+    result : xarray.Dataset
+    output : Path
+    notes : list of str
+        One line each: a model that fell back, a resume that found no checkpoint.
+    """
+
+    result: object
+    output: Path
+    notes: list
+
+
+def checkpoint_path(output):
+    """The checkpoint file of the result file `output`."""
+    output = Path(output)
+    return output.with_name(f"{output.name}.checkpoint")
+
+
+def run_file(
+    history_path,
+    output,
+    model=None,
+    *,
+    record=None,
+    resume=False,
+    checkpoint_interval=CHECKPOINT_SECONDS,
+    progress=None,
+):
+    """Run a history file and write its result to `output`, checkpointed and resumable.
+
+    Parameters
+    ----------
+    history_path : str or Path
+        History file (TOML, `fretting.read_history`).
+    output : str or Path
+        Result file (netCDF-4/HDF5), written atomically at the end; its checkpoint is
+        ``OUTPUT.checkpoint`` beside it.
+    model : ModelSpec, optional
+        The model (`fretting.models`); default `fretting.choose_model`'s.
+    record : array_like of int or "all", optional
+        Steps whose fields are stored (`fretting.engine.recorder.recorded_steps`).
+    resume : bool
+        Continue from the checkpoint of an interrupted run of the same history file and model.
+    checkpoint_interval : float
+        Seconds between checkpoints (0: after every chunk).
+    progress : callable, optional
+        ``progress(done, total)``: steps done so far and in all, after each chunk.
+
+    Returns
+    -------
+    Run
+    """
+    source = read_history_source(history_path)
+    output = Path(output)
+    checkpoint = checkpoint_path(output)
+    if checkpoint.exists() and not resume:
+        raise ResultError(
+            f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
+        )
+    history, notes, joiner = source.history, [], Joiner()
+    start, state = 0, None
+    if resume and checkpoint.exists():
+        done = _resumable(checkpoint, source, model)
+        joiner.add(done)
+        start, state = done.attrs["steps"] - 1, final_state(done)
+        del done  # the joiner holds its cycles
+    elif resume:
+        notes.append(f"{checkpoint}: no checkpoint to resume from: the run starts at step 0")
+    stepper = Stepper(source.contact, model if state is None else None, state)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ModelFallbackWarning)
+        stepper.resolve(history)
+    notes += [str(warning.message) for warning in caught if issubclass(warning.category, ModelFallbackWarning)]
+    attributes = source_attributes(source)
+    record = recorded_steps(record, len(history))
+    written = time.monotonic()
+    try:
+        for part in _chunks(stepper, history, record, start):
+            joiner.add(part)
+            if progress is not None:
+                progress(joiner.steps - 1, len(history) - 1)
+            if time.monotonic() - written >= checkpoint_interval:
+                save(joiner.result().assign_attrs(attributes), checkpoint)
+                written = time.monotonic()
+    except KeyboardInterrupt:
+        if len(joiner):
+            save(joiner.result().assign_attrs(attributes), checkpoint)
+            raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
+        raise
+    except GrossSlipError:
+        checkpoint.unlink(missing_ok=True)  # resuming would only reach it again
+        raise
+    del source, history  # the loads of every step: the result holds what it records
+    result = joiner.result().assign_attrs(attributes)
+    save(result, output)
+    checkpoint.unlink(missing_ok=True)
+    return Run(result, output, notes)
+
+
+def _chunks(stepper, history, record, start):
+    """Results of successive chunks of `history` from step `start`, stepped by `stepper`.
+
+    Each chunk records the steps of `record` (numbers in the whole history) that it reaches; a
+    later chunk's step 0 is the last one's end. Only the stepper's state is kept between chunks.
+    """
+    steps, first = CHUNK_STEPS, start
+    while first == start == 0 or start < len(history) - 1:
+        stop = min(start + steps, len(history) - 1)
+        began = time.monotonic()
+        mine = record[(record >= first) & (record <= stop)] - start
+        chunk = history[start : stop + 1]
+        recorder = Recorder(stepper.model, chunk, mine)
+        try:
+            state = stepper.run(chunk, recorder)
+        except GrossSlipError as error:
+            raise GrossSlipError(start + error.step, error.Q, error.sigma, error.limit) from None
+        yield recorder.dataset(state)
+        start, first = stop, stop + 1
+        fast = time.monotonic() - began < CHUNK_SECONDS
+        steps = min(2 * steps, MAX_CHUNK_STEPS) if fast else max(steps // 2, CHUNK_STEPS)
+        if stop == len(history) - 1:
+            return
+
+
+def _resumable(checkpoint, source, model):
+    """The partial result in `checkpoint`, checked to belong to this history file and the `model` asked (None: any)."""
+    done = load(checkpoint)
+    if done.attrs.get("history_sha256") != source.sha256:
+        raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
+    found = recorded_spec(done)
+    if model is None and not could_be_default(found):
+        raise ResultError(
+            f"{checkpoint}: found a run with {_described(found.attributes())}, expected the default model"
+        )
+    if model is not None and not model.attributes().items() <= found.attributes().items():
+        raise ResultError(
+            f"{checkpoint}: found a run with {_described(found.attributes())}, "
+            f"expected {_described(model.attributes())}"
+        )
+    history, steps = source.history, done.step.values
+    same = done.attrs["steps"] <= len(history) and all(
+        np.array_equal(done[name].values, getattr(history, name)[steps]) for name in ("Q", "sigma")
+    )
+    if not same:
+        raise ResultError(f"{checkpoint}: found loads that {source.path} no longer gives (NumPy's random draws?)")
+    return done
+
+
+def _described(attributes):
+    """``model = name, parameter = value, ...`` of a spec's attributes."""
+    return ", ".join(f"{name} = {value}" for name, value in attributes.items())

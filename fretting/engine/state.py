@@ -1,0 +1,154 @@
+"""The state of the contact: the slip field, the model's memory, the tally of the cycle in progress.
+
+A run continued from a state equals, bit for bit, the run of the whole history: the state holds
+everything an increment depends on (`State.repeats` is the test of that), and the model it was
+computed with (`State.model`, a resolved `fretting.models.base.ModelSpec`).
+"""
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from fretting.errors import HistoryError
+
+__all__ = ["State", "Tally"]
+
+
+@dataclass(frozen=True, eq=False)
+class Tally:
+    """What the cycle in progress has done so far.
+
+    Attributes
+    ----------
+    number : int
+        Load cycle (0: the steps outside any cycle, which are not tallied).
+    dissipation : float
+        Energy dissipated [J/m].
+    w : ndarray, shape (N,)
+        Energy dissipated per unit area [J/m^2] at the nodes.
+    slip_min, slip_max : ndarray, shape (N,)
+        Extremes of the slip [m] over the cycle, its starting state included.
+    """
+
+    number: int
+    dissipation: float
+    w: np.ndarray
+    slip_min: np.ndarray
+    slip_max: np.ndarray
+
+    @classmethod
+    def begin(cls, number, slip):
+        """Nothing done yet in cycle `number`, which starts from `slip` [m]."""
+        return cls(number, 0.0, np.zeros(slip.size), slip, slip)
+
+    def add(self, dissipation, w, slip):
+        """The tally after an increment that dissipated `dissipation` [J/m], `w` [J/m^2] and left `slip` [m]."""
+        return Tally(
+            self.number,
+            self.dissipation + dissipation,
+            self.w + w,
+            np.minimum(self.slip_min, slip),
+            np.maximum(self.slip_max, slip),
+        )
+
+    @property
+    def slip_amplitude(self):
+        """Half the range of the slip over the cycle [m]."""
+        return (self.slip_max - self.slip_min) / 2
+
+
+@dataclass(frozen=True, eq=False)
+class State:
+    """Everything the contact remembers of its history, and the tally of the cycle in progress.
+
+    Attributes
+    ----------
+    Q : float
+        Shear force [N/m].
+    sigma : float
+        Bulk tension [Pa].
+    slip : ndarray, shape (N,)
+        Accumulated slip [m] at the nodes, ascending in x.
+    episode_start : ndarray, shape (N,)
+        Slip [m] at which each node's current episode of slip in one direction began (equal
+        to `slip` where the node sticks). The sub-grid stick-zone ends use it.
+    tally : Tally
+        Energy and slip range of the cycle in progress, so that a run continued from this
+        state reports that cycle whole.
+    model : ModelSpec
+        The resolved model the state was computed with (its nodes are those of `slip`).
+    dissipated : float
+        Energy dissipated since the contact was formed [J/m], summed step by step.
+    memory : tuple of float
+        What the model remembers beyond the slip (the open turning points [N/m] of the exact
+        model of ``Q`` alone, oldest first; empty for method 4).
+    """
+
+    Q: float
+    sigma: float
+    slip: np.ndarray
+    episode_start: np.ndarray
+    tally: Tally
+    model: object
+    dissipated: float = 0.0
+    memory: tuple = ()
+
+    @classmethod
+    def virgin(cls, model):
+        """The contact of `model` (a `fretting.models.base.Model`) just formed: no load and no slip."""
+        slip = np.zeros(model.x.size)
+        return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip), model.spec)
+
+    def advance(self, outcome, Q, sigma, w):
+        """The state after the increment `outcome` to the loads `Q`, `sigma`, which dissipated `w` [J/m^2]."""
+        slip, ds = outcome.slip, outcome.ds
+        episode = self.slip - self.episode_start
+        reversed_ = np.sign(ds) * np.sign(episode) < 0
+        episode_start = np.where(ds == 0, slip, np.where(reversed_, self.slip, self.episode_start))
+        tally = self.tally.add(outcome.dissipation, w, slip) if self.tally.number else self.tally
+        return replace(
+            self,
+            Q=Q,
+            sigma=sigma,
+            slip=slip,
+            episode_start=episode_start,
+            tally=tally,
+            dissipated=self.dissipated + outcome.dissipation,
+            memory=outcome.memory,
+        )
+
+    def repeats(self, other):
+        """True if this state is `other`'s memory bit for bit: the same loads, slip fields and model memory."""
+        return (
+            (self.Q, self.sigma, self.memory) == (other.Q, other.sigma, other.memory)
+            and np.array_equal(self.slip, other.slip)
+            and np.array_equal(self.episode_start, other.episode_start)
+        )
+
+    def check(self, contact, model):
+        """Raise HistoryError unless this state can be continued on `contact` with `model` (a `Model`)."""
+        N = model.x.size
+        fields = {"slip": self.slip, "episode_start": self.episode_start, "tally.w": self.tally.w}
+        fields |= {"tally.slip_min": self.tally.slip_min, "tally.slip_max": self.tally.slip_max}
+        for name, values in fields.items():
+            values = np.asarray(values)
+            if values.shape != (N,):
+                raise HistoryError(
+                    f"state.{name} has shape {values.shape}, expected ({N},): the nodes of {model.spec.name}"
+                )
+            if not np.all(np.isfinite(values)):
+                raise HistoryError(f"state.{name} is not finite at node {int(np.argmin(np.isfinite(values)))}")
+        numbers = {
+            "Q": self.Q,
+            "sigma": self.sigma,
+            "dissipated": self.dissipated,
+            "tally.dissipation": self.tally.dissipation,
+        }
+        numbers |= {f"memory[{k}]": value for k, value in enumerate(self.memory)}
+        for name, value in numbers.items():
+            if not np.isfinite(value):
+                raise HistoryError(f"state.{name} = {value!r}, expected a finite number")
+        if abs(self.Q) >= contact.f * contact.P:
+            raise HistoryError(
+                f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * contact.P!r})"
+            )

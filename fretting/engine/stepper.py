@@ -1,0 +1,142 @@
+"""The stepper: a model and a state, advanced one load increment at a time or over a history.
+
+`Stepper.step` solves one increment; `Stepper.run` follows a history (`fretting.engine.follow`).
+What is stored of the steps is the recorder's business (`fretting.engine.recorder.Recorder`),
+which `run` tells of every step and cycle.
+"""
+
+from dataclasses import replace
+
+import numpy as np
+
+from fretting.engine import choice
+from fretting.engine.follow import advance, follow
+from fretting.engine.state import State, Tally
+from fretting.engine.threads import one_blas_thread
+from fretting.errors import HistoryError
+from fretting.models.base import Model, ModelSpec
+from fretting.physics.contact import Contact
+
+__all__ = ["Stepper"]
+
+
+class Stepper:
+    """A contact's model and state, advanced by load increments.
+
+    Parameters
+    ----------
+    contact : Contact
+    model : ModelSpec or Model, optional
+        The model: a spec (`fretting.models.Exact`, `Grid`, `Mesh`), resolved at the first `run`
+        when it adapts its nodes to a history, or a model already built. Default: the state's
+        model, else the default for the first history run (`fretting.choose_model`).
+    state : State, optional
+        State to continue from (`fretting.final_state`); default the contact just formed.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> stepper = fr.Stepper(contact, fr.models.Grid(64))
+    >>> outcome = stepper.step(0.3 * contact.f * contact.P)
+    >>> bool(outcome.dissipation > 0)
+    True
+    """
+
+    def __init__(self, contact, model=None, state=None):
+        if not isinstance(contact, Contact):
+            raise ValueError(f"contact must be a fretting.Contact, found {contact!r}")
+        if model is not None and not isinstance(model, (ModelSpec, Model)):
+            raise ValueError(f"model must be a fretting.models spec (Exact(), Grid(), Mesh()), found {model!r}")
+        if state is not None and not isinstance(state, State):
+            raise ValueError(f"state must be a fretting.State, found {state!r}")
+        if state is not None and model is not None and _spec(model) != state.model:
+            raise ValueError(f"the state has its own model ({state.model.name}): give no other")
+        self.contact = contact
+        self._spec = _spec(model) if model is not None else (None if state is None else state.model)
+        self._model = model if isinstance(model, Model) else None
+        self._state = state
+        self._fresh = state is None  # the contact just formed: a history may start at any loads
+        if self._model is None and self._spec is not None and self._spec.resolved:
+            self._build(self._spec)
+        elif self._model is not None:
+            self._build_state()
+
+    @property
+    def model(self):
+        """The built `fretting.models.base.Model` (None until a history has chosen or resolved it)."""
+        return self._model
+
+    @property
+    def state(self):
+        """The current `State` (None until a model is built)."""
+        return self._state
+
+    def step(self, Q, sigma=0.0, cycle=0):
+        """Advance by one increment to the loads `Q` [N/m], `sigma` [Pa]; return its `Outcome`.
+
+        `cycle` is the load cycle the increment belongs to (0: none): its energy, ``w`` and slip
+        range are tallied in `State.tally` from the increment that begins it.
+        """
+        if self._model is None:
+            raise ValueError("the stepper has no model yet: give model= (e.g. fretting.models.Grid()) or run a history")
+        Q, sigma = float(Q), float(sigma)
+        if not (np.isfinite(Q) and np.isfinite(sigma)):
+            raise HistoryError(f"loads must be finite, found Q = {Q!r}, sigma = {sigma!r}")
+        with one_blas_thread():
+            if cycle != self._state.tally.number:
+                self._state = replace(self._state, tally=Tally.begin(cycle, self._state.slip))
+            outcome, self._state = advance(self._model, self._state, Q, sigma)
+        self._fresh = False
+        return outcome
+
+    def run(self, history, recorder=None, *, observe=None, guess=None):
+        """Follow `history` from the current state (whose loads are the history's first); return the last state.
+
+        Parameters
+        ----------
+        history : History
+            Step 0 is the current state; a non-zero first vertex is reached in one increment
+            from the contact just formed.
+        recorder : Recorder, optional
+            Told of every step (`Recorder.step`, `Recorder.copied`) and every cycle (`Recorder.cycle`).
+        observe : callable, optional
+            ``observe(step, ds)`` sees the slip increment of every step solved (mesh adaptation).
+        guess : callable, optional
+            ``guess(step)``: the slip directions to start the solver from at `step`, or None.
+        """
+        self.resolve(history)
+        if not self._fresh and (self._state.Q, self._state.sigma) != history.start:
+            Q, sigma = history.start
+            raise HistoryError(
+                f"history starts at Q = {Q!r}, sigma = {sigma!r}; "
+                f"the state is at Q = {float(self._state.Q)!r}, sigma = {float(self._state.sigma)!r}"
+            )
+        with one_blas_thread():
+            self._state = follow(self._model, history, self._state, recorder, observe, guess)
+        self._fresh = False
+        return self._state
+
+    def resolve(self, history):
+        """Fix the model for `history` without stepping: choose the default, or adapt the spec's
+        nodes to it (`fretting.engine.choice.resolve`); with a model built already, check that it
+        can run `history`."""
+        if self._model is None:
+            with one_blas_thread():
+                self._build(choice.resolve(self._spec, self.contact, history))
+        else:
+            choice.check(self._spec, self.contact, history)
+
+    def _build(self, spec):
+        self._spec, self._model = spec, spec.build(self.contact)
+        self._build_state()
+
+    def _build_state(self):
+        if self._state is None:
+            self._state = State.virgin(self._model)
+        else:
+            self._state.check(self.contact, self._model)
+
+
+def _spec(model):
+    return model.spec if isinstance(model, Model) else model

@@ -1,0 +1,171 @@
+"""The model contract: what a discretisation of the tangential problem gives the engine.
+
+A *model specification* (`ModelSpec`) is a value: which discretisation, with which parameters
+(`fretting.models.Grid`, `Mesh`, `Exact`). Bound to a contact it builds a *model* (`Model`), the
+fixed arrays every increment uses. The engine (`fretting.engine.stepper.Stepper`) holds a model
+and a `fretting.engine.state.State`, asks the model for one increment at a time and never asks
+which class it holds.
+
+Units: every per-node array is in ascending ``x`` [m]; slip [m], traction [Pa], energy [J/m]
+(per unit length of the contact along ``y``), energy density [J/m^2]; stick intervals in the
+normalised position ``t = (x - centre) / a`` [-].
+
+Adding a model: one module with a `ModelSpec` subclass and its `Model` subclass, and one line in
+`fretting.engine.choice` where models are chosen or resolved.
+"""
+
+import abc
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+__all__ = ["Model", "ModelSpec", "Outcome"]
+
+
+@dataclass(frozen=True, eq=False)
+class Outcome:
+    """What one increment did.
+
+    Attributes
+    ----------
+    g : ndarray, shape (N,)
+        The model's own measure of the shear traction after the increment; `Model.traction`
+        turns it into [Pa] (only for recorded steps, since it may cost a recovery).
+    ds : ndarray, shape (N,)
+        Slip increment [m]; exactly zero at the nodes that stuck.
+    slip : ndarray, shape (N,)
+        Slip after the increment [m].
+    dissipation : float
+        Energy dissipated by the increment, ``int f p |ds| dx`` [J/m], never negative.
+    memory : tuple
+        What the model remembers beyond the slip field (the open turning points of the exact
+        model of ``Q`` alone; empty for method 4).
+    zones : list of (float, float), optional
+        Stick intervals in ``t`` where the model knows them exactly (None: found from the slip).
+    delta_Q : float, optional
+        ``delta_Q`` [m] where the model gives it exactly (None: from the slip).
+    """
+
+    g: np.ndarray
+    ds: np.ndarray
+    slip: np.ndarray
+    dissipation: float
+    memory: tuple = ()
+    zones: list | None = None
+    delta_Q: float | None = None
+
+
+class ModelSpec(abc.ABC):
+    """A discretisation and its parameters: a value, recorded in the state and the dataset.
+
+    A spec is *resolved* when it fixes its nodes (`resolved`), so that `build` needs only the
+    contact; a spec that adapts its nodes to a history is resolved by
+    `fretting.engine.choice.resolve`.
+    """
+
+    #: Short name recorded as the dataset's ``model`` attribute.
+    name: ClassVar[str]
+    #: One line on what the model solves and how.
+    description: ClassVar[str]
+    #: Node angles [rad] of a resolved spec whose nodes are recorded as angles (None: not resolved,
+    #: or nodes that follow from the parameters).
+    theta = None
+
+    @classmethod
+    @abc.abstractmethod
+    def from_record(cls, attrs, theta):
+        """The resolved spec recorded by a dataset's attributes `attrs` (`attributes`) and node angles `theta`."""
+
+    @property
+    @abc.abstractmethod
+    def resolved(self):
+        """True when the nodes are fixed and `build` needs only the contact."""
+
+    @abc.abstractmethod
+    def build(self, contact):
+        """The `Model` of this resolved spec on `contact`."""
+
+    @abc.abstractmethod
+    def attributes(self):
+        """Dataset attributes of the spec: ``{"model": name, ...parameters}`` (numbers and strings)."""
+
+    def holds_for(self, contact, history):
+        """None if the model can run `history` on `contact`, else the reason why not (one line)."""
+        return None
+
+    def __eq__(self, other):
+        """The same kind of model with the same parameters and nodes."""
+        if type(self) is not type(other) or self.attributes() != other.attributes():
+            return False
+        return (self.theta is None) == (other.theta is None) and (
+            self.theta is None or np.array_equal(self.theta, other.theta)
+        )
+
+    def __hash__(self):
+        return hash(
+            (type(self), tuple(self.attributes().items()), None if self.theta is None else self.theta.tobytes())
+        )
+
+
+class Model(abc.ABC):
+    """A contact discretised: the fixed arrays of every increment, and the increment itself.
+
+    Attributes every model sets
+    ---------------------------
+    spec : ModelSpec
+        The resolved spec that built it.
+    contact : Contact
+    x : ndarray, shape (N,)
+        Node positions [m], ascending.
+    t : ndarray, shape (N,)
+        ``(x - centre) / a`` [-].
+    theta : ndarray or None
+        Node angles [rad], ascending, where the nodes are ``x = centre + a cos(theta)`` and
+        recorded as such (None for the Gauss-Chebyshev grid, whose nodes follow from `N`).
+    friction_force : float
+        The ``|Q|`` [N/m] at which the discrete contact has no stick zone left (``f P`` up to the
+        quadrature of the pressure).
+    """
+
+    #: Dataset variable that records `State.memory` (None: the model keeps no memory beyond the slip).
+    memory_variable: ClassVar[str | None] = None
+
+    spec: ModelSpec
+    contact: object
+    x: np.ndarray
+    t: np.ndarray
+    theta: np.ndarray | None
+    friction_force: float
+
+    @abc.abstractmethod
+    def at_rest(self, state):
+        """`Outcome` of no increment at all: the state as it stands under its own loads."""
+
+    @abc.abstractmethod
+    def increment(self, state, Q, sigma, guess=None):
+        """`Outcome` of the increment from `state` to the loads `Q` [N/m], `sigma` [Pa].
+
+        `guess`, if given, is the slip direction (+1, -1, 0) to try first at each node; a start
+        only, which the answer does not depend on. A model may ignore it.
+        """
+
+    @abc.abstractmethod
+    def traction(self, outcome):
+        """Shear traction [Pa] at the nodes after `outcome`."""
+
+    @abc.abstractmethod
+    def stick_zones(self, outcome, state):
+        """Stick intervals ``(start, end)`` in ``t`` of the increment `outcome`, which left `state`."""
+
+    @abc.abstractmethod
+    def delta_Q(self, outcome):
+        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of the slip after `outcome` (docs: theory, conventions)."""
+
+    @abc.abstractmethod
+    def delta_sigma(self, outcome):
+        """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2] of the slip after `outcome`."""
+
+    @abc.abstractmethod
+    def dissipation_density(self, ds):
+        """``f p |ds|`` [J/m^2] at the nodes, consistent with the increment's `dissipation`."""

@@ -1,0 +1,109 @@
+"""What the two discretisations of method 4 share: the increment by the active-set solver and
+the stick zones read off the slip.
+
+Method 4 of the seed paper corrects the fully stuck traction of eqs (9) and (20) by the
+traction of a distribution of glide dislocations, the slip ``s``; one increment minimises the
+convex functional of `fretting.models.solver` over the slip increment. A discretisation gives
+the slip-to-traction matrix ``G``, the fully stuck traction ``g_stuck(Q, sigma)`` and the friction
+limit ``limit`` in its own measure (`CollocationModel`: ``sqrt(1 - t^2)`` times the traction [Pa];
+`GalerkinModel`: hat moments [N/m]); everything else here is in the contract's units.
+"""
+
+import abc
+
+import numpy as np
+
+from fretting.models.base import Model, Outcome
+from fretting.models.solver import solve_increment
+
+__all__ = ["Method4Model", "stick_zones"]
+
+
+class Method4Model(Model):
+    """A discretisation of method 4: subclasses set ``G``, ``limit``, ``friction_force`` and the
+    nodes, and give `g_stuck`, `dissipation` and the contract's conversions."""
+
+    G: np.ndarray
+    limit: np.ndarray
+
+    @abc.abstractmethod
+    def g_stuck(self, Q, sigma):
+        """The fully stuck traction of eqs (9) and (20) under `Q` [N/m], `sigma` [Pa], in the model's measure."""
+
+    @abc.abstractmethod
+    def dissipation(self, ds):
+        """``int f p |ds| dx`` [J/m] of the slip increment `ds` [m]."""
+
+    def at_rest(self, state):
+        ds = np.zeros(state.slip.size)
+        return Outcome(self.g_stuck(state.Q, state.sigma) - self.G @ state.slip, ds, state.slip, 0.0)
+
+    def increment(self, state, Q, sigma, guess=None):
+        if guess is None:  # the directions of the increment before
+            guess = np.sign(state.slip - state.episode_start).astype(np.int8)
+        solved = solve_increment(self.G, self.g_stuck(Q, sigma), self.limit, state.slip, guess)
+        return Outcome(solved.g, solved.ds, solved.slip, self.dissipation(solved.ds))
+
+    def stick_zones(self, outcome, state):
+        return stick_zones(self.t, state.slip - state.episode_start)
+
+
+def stick_zones(t, ds):
+    """Stick intervals ``(start, end)`` in normalised position, from the episode slip `ds`.
+
+    `ds` is each node's slip since its current episode of slip in one direction began, zero
+    where the node stuck in the last increment. Near a stick/slip boundary it grows like
+    ``d^(3/2)`` with the distance ``d`` (eq 19; Masing for reversed zones), so ``|ds|^(2/3)`` is
+    extrapolated linearly from the two nearest slipping nodes (accuracy: the validation pages,
+    benchmarks/accuracy_vs_nodes.py). A run of stuck nodes that reaches the end of the grid ends
+    at the contact edge.
+
+    One interval per run of stuck nodes, in order: each lies between the slipping nodes around
+    its run and holds the run's middle, so ``start <= end`` and intervals do not overlap.
+    """
+    stuck = ds == 0
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], stuck.astype(np.int8), [0]])))
+    runs = edges.reshape(-1, 2)  # [first stuck node, one past the last]
+    return [_zone(t, ds, first, last - 1) for first, last in runs]
+
+
+def _zone(t, ds, first, last):
+    """Stick interval of the run of stuck nodes `first` .. `last`."""
+    middle = (t[first] + t[last]) / 2
+    return _boundary(t, ds, first, -1, middle), _boundary(t, ds, last, +1, middle)
+
+
+def _boundary(t, ds, inner, side, middle):
+    """Stick/slip boundary beyond the stuck node `inner` on `side` (-1 below, +1 above).
+
+    The discrete stick zone may overshoot the true one by part of a node spacing, so the
+    estimate may lie up to one spacing inside the last stuck node, but never past `middle`, the
+    middle of the run of stuck nodes, nor beyond the first slipping node. The bound at `middle`
+    keeps the two ends of a zone ordered where the d^(3/2) law fails at the node scale: a stick
+    zone narrower than a spacing between slip zones of opposite directions, whose episode slips
+    cross zero nearly linearly, so that each side's extrapolation overshoots past the other's.
+    """
+    outer = inner + side
+    if outer < 0 or outer >= t.size:
+        return float(side)
+    estimate = extrapolated_end(t, ds, outer, outer + side)
+    if estimate is None:
+        return float((t[inner] + t[outer]) / 2)
+    deepest = t[inner] - side * min(abs(t[outer] - t[inner]), abs(t[inner] - middle))
+    return float(np.clip(estimate, *sorted((deepest, t[outer]))))
+
+
+def extrapolated_end(position, d, slipping, beyond):
+    """Where the slip increment `d` of a slip zone reaches zero, or None if it cannot be told.
+
+    Near a stick/slip boundary ``d`` grows like ``dist^(3/2)`` (eq 19; Masing for reversed
+    zones), so ``|d|^(2/3)`` is extrapolated linearly from the slipping node `slipping` and its
+    neighbour `beyond` further into the zone (`position`: the nodes' coordinates). None when
+    `beyond` is off the grid, slips the other way or has the smaller ``|d|``.
+    """
+    if not 0 <= beyond < d.size or np.sign(d[beyond]) != np.sign(d[slipping]):
+        return None
+    v1, v2 = abs(d[slipping]) ** (2 / 3), abs(d[beyond]) ** (2 / 3)
+    if v2 <= v1:
+        return None
+    return position[slipping] - v1 * (position[beyond] - position[slipping]) / (v2 - v1)
