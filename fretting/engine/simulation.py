@@ -782,6 +782,7 @@ def _attributes(scene, rtol):
         "P": contact.P,
         "centre": contact.centre,
         "profile": repr(contact.profile),
+        "specimen": contact.specimen,
         "nodes": scene.x.size,
     }
     if isinstance(scene, MasingScene):
