@@ -59,7 +59,8 @@ class Contact:
     Attributes
     ----------
     a : float
-        Contact half-width [m], from `P` (closed form, or solved to 1e-10 relative).
+        Contact half-width [m], from `P`: closed form (`Hertz`), or solved to 1e-10 relative
+        (`RoundedFlat`); a `Gap` is as accurate as its Chebyshev expansion (see `Gap`).
     centre : float
         Middle of the contact interval [m]; zero for symmetric profiles.
     p0 : float
