@@ -118,6 +118,12 @@ def _parser():
     plot = commands.add_parser("plot", parents=[common], help="draw a result as PNG files")
     plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
     plot.add_argument("-o", "--output", metavar="DIR", help="directory of the figures (default: the result's)")
+    plot.add_argument(
+        "--body",
+        type=int,
+        choices=(1, 2),
+        help="body of the surface-stress figure: 1 (traction q) or 2 (-q) (default: the specimen, with its bulk stress)",
+    )
     plot.set_defaults(command=_plot)
 
     bench = commands.add_parser(
@@ -241,7 +247,8 @@ def _plot(args):
     directory.mkdir(parents=True, exist_ok=True)
     for name in plots.figures_for(result):
         figure = Figure(figsize=(6.4, 4.4), layout="constrained")
-        plots.FIGURES[name](result, ax=figure.subplots())
+        options = {"body": args.body} if name == "surface_stress" else {}
+        plots.FIGURES[name](result, ax=figure.subplots(), **options)
         path = directory / f"{Path(args.file).stem}_{name}.png"
         figure.savefig(path, dpi=FIGURE_DPI)
         print(path)

@@ -37,13 +37,17 @@ INNER = 0.95
 #: its steady state then share one figure.
 LOG_CYCLES = 100
 
+#: Axis label of ``delta_Q``: the slip part of the displacement conjugate to Q (formulation.md
+#: section 5); the elastic part, linear in Q and defined in plane strain only up to a datum, is left out.
+DELTA_Q_LABEL = "slip part of the displacement, $\\delta_Q$ [µm]"
+
 #: Cycles drawn by default in the figures that show one curve per cycle: enough to see a
 #: transient settle, few enough to tell apart.
 CURVES = 5
 
 
 def snapshot_steps(result):
-    """Steps worth a snapshot: those of the extreme values of Q and sigma, and the last one.
+    """Recorded steps worth a snapshot: those of the extreme values of Q and sigma, and the last one.
 
     Parameters
     ----------
@@ -53,11 +57,12 @@ def snapshot_steps(result):
     Returns
     -------
     ndarray of int
-        Increasing steps; step 0, the starting state, only when it is the only one.
+        Increasing step numbers (``result.step``, which are not the rows when only some steps are
+        recorded); the first recorded step, the starting state, only when it is the only one.
     """
     loads = [result.Q.values, result.sigma.values]
-    steps = np.unique([f(load) for load in loads for f in (np.argmax, np.argmin)] + [result.sizes["step"] - 1])
-    return steps[steps > 0] if steps.size > 1 else steps
+    rows = np.unique([f(load) for load in loads for f in (np.argmax, np.argmin)] + [result.sizes["step"] - 1])
+    return result.step.values[rows[rows > 0] if rows.size > 1 else rows]
 
 
 def traction(result, steps=None, ax=None):
@@ -68,7 +73,7 @@ def traction(result, steps=None, ax=None):
     result : xarray.Dataset
         A result of `fretting.engine.simulation`.
     steps : sequence of int, optional
-        Steps to draw; `snapshot_steps` when omitted.
+        Step numbers to draw (recorded ones); `snapshot_steps` when omitted.
     ax : matplotlib.axes.Axes, optional
 
     Returns
@@ -81,9 +86,9 @@ def traction(result, steps=None, ax=None):
     for sign in (1, -1):
         ax.plot(t, sign * limit, color="0.5", linestyle="--", linewidth=0.8, label="$\\pm f p$" if sign > 0 else None)
     fp0 = result.attrs["f"] * result.attrs["p0"]
-    for step in _steps(result, steps):
-        (line,) = ax.plot(t, result.q.values[step] / fp0, label=_label(result, step))
-        for start, end in zip(result.stick_start.values[step], result.stick_end.values[step], strict=True):
+    for row in _rows(result, steps):
+        (line,) = ax.plot(t, result.q.values[row] / fp0, label=_label(result, row))
+        for start, end in zip(result.stick_start.values[row], result.stick_end.values[row], strict=True):
             if np.isfinite(start):
                 ax.axvspan(*_position(result, np.array([start, end])), color=line.get_color(), alpha=0.12, linewidth=0)
     span = 1.1 * limit[np.abs(t) <= INNER].max()
@@ -97,8 +102,8 @@ def traction(result, steps=None, ax=None):
 def slip(result, steps=None, ax=None):
     """Accumulated slip [um] against ``x / a`` at `steps` (`snapshot_steps` when omitted); returns the axes."""
     ax = _axes(ax)
-    for step in _steps(result, steps):
-        ax.plot(_position(result), result.slip.values[step] * 1e6, label=_label(result, step))
+    for row in _rows(result, steps):
+        ax.plot(_position(result), result.slip.values[row] * 1e6, label=_label(result, row))
     ax.axhline(0, color="0.5", linewidth=0.8)
     ax.set(xlim=(-1, 1), xlabel="$x / a$", ylabel="slip [µm]", title="slip accumulated since the contact formed")
     ax.legend(fontsize="small")
@@ -109,7 +114,7 @@ def hysteresis(result, ax=None):
     """The loop of ``Q / (f P)`` against ``delta_Q`` [um], the slip part of the displacement conjugate to Q."""
     ax = _axes(ax)
     ax.plot(result.delta_Q.values * 1e6, result.Q.values / (result.attrs["f"] * result.attrs["P"]), linewidth=1)
-    ax.set(xlabel="$\\delta_Q$ [µm]", ylabel="$Q / (f P)$", title="hysteresis loop")
+    ax.set(xlabel=DELTA_Q_LABEL, ylabel="$Q / (f P)$", title="hysteresis loop of Q")
     return ax
 
 
@@ -147,19 +152,21 @@ def loops(result, cycles=None, ax=None):
     ax : matplotlib.axes.Axes, optional
     """
     fP = result.attrs["f"] * result.attrs["P"]
-    ax = _loops(result, cycles, ax, "delta_Q", 1e6, result.Q.values / fP)
-    ax.set(xlabel="$\\delta_Q$ [µm]", ylabel="$Q / (f P)$", title="hysteresis loops (area: energy per cycle)")
+    ax, both = _loops(result, cycles, ax, "delta_Q", 1e6, result.Q.values / fP)
+    area = "the part of the energy per cycle that Q does" if both else "energy per cycle"
+    ax.set(xlabel=DELTA_Q_LABEL, ylabel="$Q / (f P)$", title=f"hysteresis loops of Q (area: {area})")
     return ax
 
 
 def sigma_loops(result, cycles=None, ax=None):
     """Loops ``sigma / (f p0)`` against ``delta_sigma / a`` [um] of several cycles recorded whole (as `loops`)."""
     fp0 = result.attrs["f"] * result.attrs["p0"]
-    ax = _loops(result, cycles, ax, "delta_sigma", 1e6 / result.attrs["a"], result.sigma.values / fp0)
+    ax, both = _loops(result, cycles, ax, "delta_sigma", 1e6 / result.attrs["a"], result.sigma.values / fp0)
+    area = "the part of the energy per cycle that sigma does" if both else "energy per cycle"
     ax.set(
         xlabel="$\\delta_\\sigma / a$ [µm]",
         ylabel="$\\sigma / (f p_0)$",
-        title="bulk-tension loops (area / a: energy per cycle)",
+        title=f"bulk-tension loops (area times a: {area})",
     )
     return ax
 
@@ -215,23 +222,24 @@ def peak_density(result, ax=None):
     return ax
 
 
-def surface_stress(result, steps=None, ax=None, body=1, bulk=0.0):
+def surface_stress(result, steps=None, ax=None, body=None, bulk=None):
     """Surface direct stress ``sigma_xx / (f p0)`` of `body` against ``x / a`` at `steps`.
 
-    See `fretting.analysis.nucleation.surface_stress` for `body` and `bulk`; `steps` default to
-    `snapshot_steps`.
+    See `fretting.analysis.nucleation.surface_stress` for `body` and `bulk`: by default the
+    specimen, with its bulk stress. `steps` default to `snapshot_steps`.
     """
     ax = _axes(ax)
-    stress = nucleation.surface_stress(result, body, bulk).values / (result.attrs["f"] * result.attrs["p0"])
+    field = nucleation.surface_stress(result, body, bulk)
+    stress = field.values / (result.attrs["f"] * result.attrs["p0"])
     t = _position(result)
-    for step in _steps(result, steps):
-        ax.plot(t, stress[step], label=_label(result, step))
+    for row in _rows(result, steps):
+        ax.plot(t, stress[row], label=_label(result, row))
     ax.axhline(0, color="0.5", linewidth=0.8)
     ax.set(
         xlim=(-1, 1),
         xlabel="$x / a$",
         ylabel="$\\sigma_{xx} / (f p_0)$",
-        title=f"surface direct stress, body {body} (traction {'+q' if body == 1 else '-q'})",
+        title=f"surface direct stress, {field.role} (body {field.body}, traction {'+q' if field.body == 1 else '-q'})",
     )
     ax.legend(fontsize="small")
     return ax
@@ -256,18 +264,20 @@ FIGURES = {
 def figures_for(result):
     """Names of the `FIGURES` that `result` can draw, in the order of `FIGURES`.
 
-    Snapshots and the whole path's loop always; per-cycle figures when the history counts
-    cycles: the energy per cycle always, loops when a cycle was recorded whole (``sigma`` loops
-    when sigma varies in one), densities and slip amplitudes when they are known for a cycle.
+    Snapshots always, and the whole path's loop of Q unless Q is zero throughout; per-cycle
+    figures when the history counts cycles: the energy per cycle always, the loops of Q (of
+    sigma) when Q (sigma) varies in a cycle recorded whole, densities and slip amplitudes when
+    they are known for a cycle.
     """
-    names = {"traction", "slip", "surface_stress", "hysteresis"}
+    names = {"traction", "slip", "surface_stress"}
+    if np.any(result.Q.values != 0):
+        names.add("hysteresis")
     if "cycle_number" in result.dims and result.sizes["cycle_number"]:
         names.add("energy")
         whole = [rows for rows in nucleation.complete_cycles(result) if rows is not None]
-        if whole:
-            names.add("loops")
-            if any(np.ptp(result.sigma.values[rows]) > 0 for rows in whole):
-                names.add("sigma_loops")
+        for load, name in (("Q", "loops"), ("sigma", "sigma_loops")):
+            if any(np.ptp(result[load].values[rows]) > 0 for rows in whole):
+                names.add(name)
         if not np.isnan(nucleation.dissipation_density(result).values).all():
             names |= {"dissipation_density", "accumulated_density", "slip_amplitude", "peak_density"}
     return [name for name in FIGURES if name in names]
@@ -289,6 +299,11 @@ def _spread(numbers, count=CURVES):
 
 
 def _loops(result, cycles, ax, displacement, scale, load):
+    """Draw `load` against ``scale`` times the `displacement` over the chosen cycles.
+
+    Returns the axes and whether both Q and sigma vary in a drawn cycle: then a loop's area is
+    only its load's part of the energy dissipated.
+    """
     rows = dict(zip(_require_cycles(result).cycle_number.values, nucleation.complete_cycles(result), strict=True))
     whole = [number for number, row in rows.items() if row is not None]
     if not whole:
@@ -301,7 +316,8 @@ def _loops(result, cycles, ax, displacement, scale, load):
             raise ValueError(f"cycle {number} was not recorded whole; cycles recorded whole: {whole}")
         ax.plot(values[rows[int(number)]], load[rows[int(number)]], linewidth=1, label=f"cycle {number}")
     ax.legend(fontsize="small")
-    return ax
+    both = any(np.ptp(result.Q.values[rows[int(n)]]) > 0 and np.ptp(result.sigma.values[rows[int(n)]]) > 0 for n in chosen)
+    return ax, both
 
 
 def _per_cycle_curves(result, field, cycles, ax, scale, label="cycle {}"):
@@ -325,8 +341,14 @@ def _axes(ax):
     return ax
 
 
-def _steps(result, steps):
-    return snapshot_steps(result) if steps is None else np.asarray(steps)
+def _rows(result, steps):
+    """Rows of the recorded step numbers `steps` (`snapshot_steps` when None)."""
+    steps = snapshot_steps(result) if steps is None else np.asarray(steps, dtype=np.int64)
+    rows = np.searchsorted(result.step.values, steps)
+    missing = steps[(rows >= result.sizes["step"]) | (result.step.values[np.minimum(rows, result.sizes["step"] - 1)] != steps)]
+    if missing.size:
+        raise ValueError(f"steps {missing.tolist()} are not recorded in the result")
+    return rows
 
 
 def _position(result, x=None):
@@ -335,8 +357,9 @@ def _position(result, x=None):
     return (x - result.attrs["centre"]) / result.attrs["a"]
 
 
-def _label(result, step):
-    Q, sigma = float(result.Q[step]), float(result.sigma[step])
-    return f"step {step}: $Q/(fP)$ = {Q / (result.attrs['f'] * result.attrs['P']):.2f}, " + (
+def _label(result, row):
+    """Legend of the recorded `row`: its step number (not the row) and loads."""
+    Q, sigma = float(result.Q[row]), float(result.sigma[row])
+    return f"step {int(result.step[row])}: $Q/(fP)$ = {Q / (result.attrs['f'] * result.attrs['P']):.2f}, " + (
         f"$\\sigma/(f p_0)$ = {sigma / (result.attrs['f'] * result.attrs['p0']):.2f}"
     )

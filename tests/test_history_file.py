@@ -7,6 +7,7 @@ import pytest
 from conftest import HERTZ_TOML as CONTACT
 
 import fretting as fr
+from fretting.cli import main
 from fretting.loading.history import RAMP_STEPS
 from fretting.loading.history_file import HistoryFileError, read_history, read_history_source
 
@@ -102,7 +103,7 @@ def test_tabulated_gap_must_cover_the_contact(tmp_path):
     write(tmp_path, "x,h0\n" + "\n".join(f"{a:.17g},{a * a / 0.1:.17g}" for a in x), "gap.csv")
     text = CONTACT.replace('profile = "hertz"\nR = 0.05', 'profile = "gap"\ntable = "gap.csv"')
     error = error_of(tmp_path, text + SHEAR)
-    assert error.line == 3 and error.key == "contact.table" and "cover the contact" in str(error)
+    assert error.line == 3 and error.key == "contact.table" and "leaves the table's x in [-0.0001, 0.0001] m" in str(error)
 
 
 @pytest.mark.parametrize(
@@ -273,3 +274,54 @@ def test_not_utf8(tmp_path):
     path.write_bytes(b"# \xff\n" + CONTACT.encode())
     with pytest.raises(HistoryFileError, match="expected UTF-8"):
         read_history(path)
+
+
+def wear_scar(path):
+    """Issue 19's worn pad: Hertz R = 50 mm with a 3 um central hollow, 401 rows over +-1 mm, shifted to min 0."""
+    x = np.linspace(-1e-3, 1e-3, 401)
+    h0 = x**2 / 0.1 + 3e-6 * np.exp(-((x / 1.5e-4) ** 2))
+    path.write_text("x,h0\n" + "\n".join(f"{u:.17g},{v:.17g}" for u, v in zip(x, h0 - h0.min(), strict=True)))
+
+
+def test_a_gap_that_is_not_convex_where_it_touches_is_refused(tmp_path):
+    """E = 74 GPa, nu = 0.33, P for p0 = 157 MPa of the hollow-free pad: exit 2 from the command line."""
+    wear_scar(tmp_path / "gap.csv")
+    E_star = fr.plane_strain_modulus(74e9, 0.33)
+    a = 0.1 * 157e6 / E_star
+    contact = f'[contact]\nprofile = "gap"\ntable = "gap.csv"\nE = 74e9\nnu = 0.33\nf = 0.75\nP = {np.pi * a * 157e6 / 2!r}\n'
+    error = error_of(tmp_path, contact + SHEAR)
+    assert error.line == 3 and error.key == "contact.table"
+    assert "curvature is first negative at x = -9.5e-05 m, so the pressure is negative at x = -9.7" in str(error)
+    assert "\n" not in str(error)
+    assert main(["run", str(tmp_path / "history.toml"), "-o", str(tmp_path / "out.h5")]) == 2
+    assert not (tmp_path / "out.h5").exists()
+
+
+def test_a_concave_table_names_its_curvature(tmp_path):
+    x = np.linspace(-1e-3, 1e-3, 41)
+    write(tmp_path, "x,h0\n" + "\n".join(f"{u:.17g},{1e-5 - u * u / 0.1:.17g}" for u in x), "gap.csv")
+    error = error_of(tmp_path, CONTACT.replace('profile = "hertz"\nR = 0.05', 'profile = "gap"\ntable = "gap.csv"') + SHEAR)
+    assert error.key == "contact.table" and "the table's curvature is first negative at x = -0.001 m" in str(error)
+
+
+def test_csv_with_a_byte_order_mark(tmp_path):
+    """A spreadsheet's "CSV UTF-8" starts with U+FEFF: read as the same table."""
+    block = '\n[[loading]]\nkind = "csv"\nfile = "series.csv"\n'
+    (tmp_path / "series.csv").write_bytes("\ufeffQ,sigma\n1e3,2e6\n3e3,4e6\n".encode())
+    _, marked = read(tmp_path, CONTACT + block)
+    (tmp_path / "series.csv").write_bytes(b"Q,sigma\n1e3,2e6\n3e3,4e6\n")
+    _, plain = read(tmp_path, CONTACT + block)
+    np.testing.assert_array_equal(marked.Q, plain.Q)
+    np.testing.assert_array_equal(marked.sigma, plain.sigma)
+
+
+@pytest.mark.parametrize(("line", "specimen"), [("", 2), ("specimen = 1\n", 1), ("specimen = 2\n", 2)])
+def test_the_specimen_is_named_in_the_contact(tmp_path, line, specimen):
+    contact, _ = read(tmp_path, CONTACT + line + SHEAR)
+    assert contact.specimen == specimen
+
+
+@pytest.mark.parametrize("value", ["3", '"2"', "true"])
+def test_a_bad_specimen(tmp_path, value):
+    error = error_of(tmp_path, CONTACT + f"specimen = {value}\n" + SHEAR)
+    assert error.key == "contact.specimen" and error.line == 8 and "expected one of 1, 2" in str(error)

@@ -130,7 +130,7 @@ def test_surface_stress_of_cattaneo_mindlin(contact, psi):
     expected = cattaneo_mindlin_stress(contact, Q, x)
     far = np.abs(np.abs(x) - cf.stick_half_width(contact, Q)) > 0.05 * contact.a
     # measured 7.3e-4, 1.4e-3, 2.0e-3 f p0; closer to the stick/slip boundary sqrt(x^2 - b^2) is not resolved
-    body1 = nu.surface_stress(result).values[-1]
+    body1 = nu.surface_stress(result, body=1).values[-1]
     assert np.abs(body1 - expected)[far].max() < 3e-3 * fp0
     body2 = nu.surface_stress(result, body=2).values[-1]  # traction -q: the mirror image about -p
     np.testing.assert_allclose(body2 + body1, -2 * result.p.values, rtol=0, atol=1e-9 * fp0)
@@ -151,18 +151,18 @@ def test_surface_stress_on_the_mesh_and_the_exact_nodes(contact, model, sliding_
     result = fr.simulate(contact, fr.History.piecewise_linear([0.0, 0.5 * fP], None, 4), **model)
     x = result.x.values
     sliding = result.assign(q=(("step", "x"), np.broadcast_to(contact.f * result.p.values, result.q.shape)))
-    stress = nu.surface_stress(sliding).values[-1]
+    stress = nu.surface_stress(sliding, body=1).values[-1]
     assert np.abs(stress + result.p.values + 2 * fp0 * x / contact.a).max() < sliding_error * fp0
     far = np.abs(np.abs(x) - cf.stick_half_width(contact, 0.5 * fP)) > 0.05 * contact.a
     expected = cattaneo_mindlin_stress(contact, 0.5 * fP, x)
-    assert np.abs(nu.surface_stress(result).values[-1] - expected)[far].max() < partial_error * fp0
+    assert np.abs(nu.surface_stress(result, body=1).values[-1] - expected)[far].max() < partial_error * fp0
 
 
 def test_sliding_hertz_trailing_edge_tension_is_2_f_p0(contact):
     """McEwen (1949): q = f p gives sigma_xx = -p - 2 f p0 x / a, a tension 2 f p0 at x = -a."""
     result = monotonic(contact, 0.1 * contact.f * contact.P, steps=1)
     sliding = result.assign(q=(("step", "x"), np.broadcast_to(contact.f * result.p.values, result.q.shape)))
-    stress = nu.surface_stress(sliding).values[-1]
+    stress = nu.surface_stress(sliding, body=1).values[-1]
     x, fp0 = result.x.values, contact.f * contact.p0
     expected = -result.p.values - 2 * fp0 * x / contact.a
     assert np.abs(stress - expected).max() < 3e-4 * fp0  # measured 2.1e-4
@@ -182,7 +182,7 @@ def test_surface_stress_of_nowell_hills_and_the_bulk_convention(contact, psi, ta
     x, fp0, a = result.x.values, contact.f * contact.p0, contact.a
     b, e = cf.stick_half_width(contact, Q), cf.nowell_hills_offset(contact, sigma)
     from_q = fp0 * (_ellipse_transform(x, 0.0, a) - b / a * _ellipse_transform(x, e, b))
-    body1 = nu.surface_stress(result).values[-1]
+    body1 = nu.surface_stress(result, body=1).values[-1]
     body2 = nu.surface_stress(result, body=2).values[-1]
     far = np.abs(np.abs(x - e) - b) > 0.05 * a
     # measured 1.2e-3, 1.3e-3, 2.6e-3 f p0
@@ -190,8 +190,59 @@ def test_surface_stress_of_nowell_hills_and_the_bulk_convention(contact, psi, ta
     assert np.abs(body2 - (-result.p.values - from_q + sigma))[far].max() < 4e-3 * fp0
     stick = np.abs(x - e) < b - 0.05 * a
     assert np.abs(body1 - body2)[stick].max() < 2e-3 * fp0  # measured 1.3e-3; 2 |sigma| with the opposite convention
-    shifted = nu.surface_stress(result, bulk=-sigma).values[-1]  # body 1 carries -sigma, body 2 none
+    shifted = nu.surface_stress(result, body=1, bulk=-sigma).values[-1]  # body 1 carries -sigma, body 2 none
     np.testing.assert_allclose(shifted, body1 - sigma, rtol=0, atol=1e-9 * fp0)
+
+
+# The specimen
+
+
+def fretting_fatigue_case(specimen=2, sign=1.0):
+    """Issue 19's cylinder on flat: E = 74 GPa, nu = 0.33, R = 50 mm, p0 = 157 MPa, f = 0.75, Q/fP = 0.45 in
+    phase with a bulk stress of 92.7 MPa, three cycles; `sign` -1 swaps the bodies (Q and sigma negated)."""
+    E_star, R, p0, f = fr.plane_strain_modulus(74e9, 0.33), 0.05, 157e6, 0.75
+    a = 2 * R * p0 / E_star  # p0 = E_star a / (2R), eq (6)
+    contact = fr.Contact(fr.Hertz(R), E_star, f, np.pi * a * p0 / 2, specimen=specimen)
+    history = fr.History.sinusoidal(0.45 * f * contact.P, 92.7e6, cycles=3, steps_per_cycle=32)
+    history = fr.History(sign * history.Q, sign * history.sigma, history.vertex_step, history.cycle)
+    return contact, fr.simulate(contact, history)
+
+
+def test_the_specimen_carries_the_bulk_stress_by_default():
+    """Default peak sigma_xx of the specimen (body 2, traction -q, bulk sigma) at its trailing edge x = a:
+    Nowell & Hills' traction transformed (`_ellipse_transform`) plus the bulk stress, 267.6 MPa. The pad
+    (body 1, no bulk stress) peaks at 174.9 MPa; the issue found the default on the pad."""
+    contact, result = fretting_fatigue_case()
+    assert result.attrs["specimen"] == 2 and nu.specimen(result) == 2
+    a, fp0, sigma = contact.a, contact.f * contact.p0, 92.7e6
+    b, e = cf.stick_half_width(contact, 0.45 * contact.f * contact.P), cf.nowell_hills_offset(contact, sigma)
+    edge = np.array([a])
+    expected = sigma - fp0 * (_ellipse_transform(edge, 0.0, a) - b / a * _ellipse_transform(edge, e, b))[0]
+    peak = nu.per_cycle(result).sigma_xx_max.values
+    # measured 1.1e-4 f p0 from the closed form in every cycle
+    np.testing.assert_allclose(peak, expected, rtol=0, atol=2e-4 * fp0)
+    assert round(peak[-1] / 1e6, 1) == 267.6
+    stress = nu.surface_stress(result)
+    assert stress.attrs["role"] == "specimen" and result.x.values[int(stress.values.max(axis=0).argmax())] == a
+    pad = nu.per_cycle(result, body=1)
+    assert pad.attrs["role"] == "pad" and pad.sigma_xx_max.values[-1] < peak[-1] - 0.5 * sigma
+    assert nu.ruiz(result).F2.values[-1] > 1.8 * pad.F2.values[-1]  # 3.66e9 against 1.98e9 Pa J/m^2
+
+
+def test_a_specimen_that_is_body_1_is_the_mirror_image():
+    """Body 1 as the specimen in tension S has sigma = -S; with Q negated too, it is body 2 of the
+    default case mirrored through the interface: the same peak stress and Ruiz F2."""
+    _, default = fretting_fatigue_case()
+    _, mirrored = fretting_fatigue_case(specimen=1, sign=-1.0)
+    assert mirrored.attrs["specimen"] == 1
+    for name in ("sigma_xx_max", "F2"):
+        np.testing.assert_allclose(nu.per_cycle(mirrored)[name], nu.per_cycle(default)[name], rtol=1e-9)
+
+
+def test_results_without_a_specimen_attribute_take_body_2(contact):
+    result = sine(contact, 0.4, 0.5, cycles=1)
+    del result.attrs["specimen"]
+    np.testing.assert_array_equal(nu.surface_stress(result).values, nu.surface_stress(result, body=2, bulk=0.0).values)
 
 
 # Per-cycle quantities

@@ -9,6 +9,7 @@ from matplotlib.figure import Figure  # noqa: E402 - after choosing the backend
 
 import fretting as fr  # noqa: E402
 from fretting import plots  # noqa: E402
+from fretting.analysis import nucleation  # noqa: E402
 
 NODES = 32
 
@@ -46,7 +47,7 @@ def test_axis_labels_carry_units_or_normalisation(cycled):
     expected = {
         "traction": ("$x / a$", "$q / (f p_0)$"),
         "surface_stress": ("$x / a$", "$\\sigma_{xx} / (f p_0)$"),
-        "loops": ("$\\delta_Q$ [µm]", "$Q / (f P)$"),
+        "loops": ("slip part of the displacement, $\\delta_Q$ [µm]", "$Q / (f P)$"),
         "energy": ("cycle", "dissipation $E_d$ [mJ/m]"),
         "dissipation_density": ("$x / a$", "$w$ [J/m²]"),
         "slip_amplitude": ("$x / a$", "slip amplitude $\\delta$ [µm]"),
@@ -99,3 +100,40 @@ def test_partly_recorded_runs(contact):
     assert "loops" not in names and {"energy", "dissipation_density", "peak_density"} <= set(names)
     for name in names:
         plots.FIGURES[name](sparse, ax=axes())
+
+
+def test_loop_titles_say_which_part_of_the_energy_the_area_is(cycled, contact):
+    """With sigma varying too, the Q loop's area is only the work of Q; under Q alone it is the energy per cycle."""
+    assert "part of the energy per cycle that Q does" in plots.loops(cycled, ax=axes()).get_title()
+    assert "that sigma does" in plots.sigma_loops(cycled, ax=axes()).get_title()
+    alone = fr.simulate(contact, fr.History.sinusoidal(0.5 * contact.f * contact.P, cycles=2), nodes=NODES)
+    assert plots.loops(alone, ax=axes()).get_title() == "hysteresis loops of Q (area: energy per cycle)"
+
+
+def test_no_loops_of_Q_when_Q_is_zero(contact):
+    result = fr.simulate(contact, fr.History.sinusoidal(0.0, 0.5 * contact.f * contact.p0, cycles=2), nodes=NODES)
+    names = plots.figures_for(result)
+    assert "loops" not in names and "hysteresis" not in names and "sigma_loops" in names
+
+
+def test_legends_name_the_step_not_the_row(contact):
+    history = fr.History.sinusoidal(0.5 * contact.f * contact.P, 0.3 * contact.f * contact.p0, cycles=2)
+    result = fr.simulate(contact, history, nodes=NODES, record=np.arange(0, len(history), 7))
+    steps = plots.snapshot_steps(result)
+    assert set(steps) <= set(result.step.values) and steps[-1] == result.step.values[-1]
+    for draw in (plots.traction, plots.slip, plots.surface_stress):
+        labels = [line.get_label() for line in draw(result, ax=axes()).get_lines() if line.get_label().startswith("step")]
+        assert [int(label.split(":")[0].split()[1]) for label in labels] == list(steps)
+    with pytest.raises(ValueError, match=r"steps \[1\] are not recorded"):
+        plots.traction(result, steps=[1], ax=axes())
+
+
+def test_surface_stress_figure_shows_the_specimen_by_default(cycled):
+    """Body 2 with the bulk stress sigma, as `nucleation.surface_stress`; the pad when asked."""
+    fp0 = cycled.attrs["f"] * cycled.attrs["p0"]
+    ax = plots.surface_stress(cycled, steps=[20], ax=axes())
+    assert ax.get_title().startswith("surface direct stress, specimen (body 2")
+    drawn = ax.get_lines()[0].get_ydata()
+    expected = nucleation.surface_stress(cycled, body=2, bulk=0.0).sel(step=20).values / fp0
+    np.testing.assert_array_equal(drawn, expected)
+    assert "pad (body 1" in plots.surface_stress(cycled, body=1, ax=axes()).get_title()

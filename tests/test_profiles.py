@@ -1,5 +1,7 @@
 """Normal contact of each profile against its closed form or an independent solution."""
 
+import re
+
 import numpy as np
 import pytest
 from scipy import integrate
@@ -110,3 +112,48 @@ def test_x_minus_sin_keeps_its_relative_precision():
     x = np.concatenate([np.geomspace(1e-8, 0.5, 200, endpoint=False), np.linspace(0.5, 3.0, 200)])
     error = np.abs(_x_minus_sin(x) / np.array([reference(v) for v in x]) - 1)
     assert error[x < 0.5].max() < 1e-15 and error[x >= 0.5].max() < 5e-15
+
+
+@pytest.mark.parametrize(
+    ("E", "nu", "words"),
+    [
+        (np.nan, 0.3, "E must be finite"),
+        (-1.0, 0.3, "E must be > 0"),
+        (210e9, 1.0, "nu must be in (-1, 0.5]"),
+        (210e9, -1.0, "nu must be in (-1, 0.5]"),
+        (210e9, np.nan, "nu must be finite"),
+    ],
+)
+def test_plane_strain_modulus_refuses_what_no_material_has(E, nu, words):
+    with pytest.raises(ValueError, match=re.escape(words)):
+        fr.plane_strain_modulus(E, nu)
+
+
+def test_plane_strain_modulus_of_the_incompressible_limit():
+    assert fr.plane_strain_modulus(3e6, 0.5) == 3e6 / 1.5
+
+
+def test_a_tabulated_gap_says_its_table():
+    """repr of a table reads back to the same profile, every value to the last bit."""
+    x = np.linspace(-1e-3, 1e-3, 21) + 1e-7 / 3
+    profile = fr.Gap.from_table(x, x**2 / 0.1, breakpoints=[1e-4 / 3])
+    again = eval(repr(profile), {"Gap": fr.Gap})  # noqa: S307 - our own repr
+    np.testing.assert_array_equal(again.table[0], x)
+    np.testing.assert_array_equal(again.table[1], x**2 / 0.1)
+    assert again.breakpoints == profile.breakpoints and "object at" not in repr(profile)
+    result = fr.simulate(fr.Contact(profile, E_STAR, 0.5, 1e5), fr.History.piecewise_linear([0.0, 1e4], None, 1))
+    assert result.attrs["profile"] == repr(profile)
+
+
+def test_a_hollow_pad_is_refused_where_its_pressure_is_negative():
+    """Hertz R = 50 mm with a 3 um central hollow, as functions: the pressure is negative near x = 0."""
+    h0 = lambda x: x**2 / 0.1 + 3e-6 * np.exp(-((x / 1.5e-4) ** 2))  # noqa: E731
+    slope = lambda x: x / 0.05 - 6e-6 * x / 1.5e-4**2 * np.exp(-((x / 1.5e-4) ** 2))  # noqa: E731
+    with pytest.raises(ValueError, match=r"^the pressure is negative at x = -?\d.*e-05 m \(-.* Pa\) in the contact"):
+        fr.Contact(fr.Gap(h0, slope), fr.plane_strain_modulus(74e9, 0.33), 0.75, 9.3e4)
+
+
+@pytest.mark.parametrize("specimen", [0, 3, True, "2"])
+def test_contact_specimen_is_body_1_or_2(specimen):
+    with pytest.raises(ValueError, match="specimen must be 1"):
+        fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P, specimen=specimen)

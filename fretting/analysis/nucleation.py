@@ -11,6 +11,11 @@ bulk direct stress of body 2 minus that of body 1 (the fully stuck traction ``si
 sqrt(a^2 - x^2))`` stretches body 1's surface by ``sigma / 2`` and compresses body 2's by as
 much, which cancels the bulk strain mismatch ``sigma / (2 E_star)``).
 
+The specimen is the body whose surface stress and Ruiz parameters are wanted: the result's
+attribute ``specimen`` (`fretting.Contact`'s, 1 or 2), and body 2 for results written without
+it (`SPECIMEN`: a specimen in bulk tension ``sigma`` under an unstressed pad). By default the
+specimen carries the bulk stress and the pad none: body 2 ``sigma``, or body 1 ``-sigma``.
+
 Per-cycle quantities follow the load cycles of the history (`cycle_number`). The engine tallies
 ``w`` and ``slip_amplitude`` over every step, so they exist when only some steps are recorded;
 results written before it did are served by the recorded steps, for the cycles recorded whole.
@@ -33,6 +38,8 @@ References
 import numpy as np
 import xarray as xr
 
+from fretting.physics.contact import SPECIMEN
+
 __all__ = [
     "accumulated_dissipation_density",
     "complete_cycles",
@@ -44,6 +51,7 @@ __all__ = [
     "per_cycle",
     "ruiz",
     "slip_amplitude",
+    "specimen",
     "surface_stress",
 ]
 
@@ -318,15 +326,32 @@ def _hilbert_matrix(t):
     return H @ extend / np.pi
 
 
-def _bulk(result, body, bulk):
-    """Bulk direct stress [Pa] of `body` at each recorded step, from body 1's `bulk`."""
-    if body not in (1, 2):
+def specimen(result):
+    """The body [1 or 2] that is the specimen: the result's ``specimen`` attribute, else `SPECIMEN` (body 2)."""
+    return int(result.attrs.get("specimen", SPECIMEN))
+
+
+def _body(result, body):
+    """`body`, the specimen when None, checked; and what it is, ``"specimen"`` or ``"pad"``."""
+    body = specimen(result) if body is None else body
+    if isinstance(body, bool) or body not in (1, 2):
         raise ValueError(f"body must be 1 (traction q) or 2 (traction -q), found {body!r}")
+    return body, "specimen" if body == specimen(result) else "pad"
+
+
+def _bulk(result, body, bulk):
+    """Bulk direct stress [Pa] of `body` at each recorded step, from body 1's `bulk`.
+
+    `bulk` None: the specimen carries the bulk stress and the pad none, so body 1 carries
+    ``-sigma`` when it is the specimen, else nothing.
+    """
+    if bulk is None:
+        bulk = -result.sigma.values if specimen(result) == 1 else 0.0
     bulk1 = np.broadcast_to(np.asarray(bulk, dtype=float), result.sizes["step"])
     return bulk1 if body == 1 else bulk1 + result.sigma.values
 
 
-def surface_stress(result, body=1, bulk=0.0):
+def surface_stress(result, body=None, bulk=None):
     """Direct stress ``sigma_xx`` [Pa] along the surface of one body, at every recorded step.
 
     ``sigma_xx(x) = -(2/pi) PV int t_x(xi) / (x - xi) dxi - p(x) + sigma_b`` for a half-plane whose
@@ -345,19 +370,22 @@ def surface_stress(result, body=1, bulk=0.0):
     ----------
     result : xarray.Dataset
         A result of `fretting.engine.simulation`.
-    body : {1, 2}
-        1: the body on which the traction is ``q`` (resultant ``Q``); 2: the other one (``-q``).
-    bulk : float or array_like
+    body : {1, 2} or None
+        1: the body on which the traction is ``q`` (resultant ``Q``); 2: the other one (``-q``);
+        None: the specimen (`specimen`).
+    bulk : float or array_like or None
         Bulk direct stress of body 1 [Pa], one value or one per recorded step. Body 2's is
         ``bulk + sigma``, since only the difference ``sigma = sigma_b2 - sigma_b1`` enters the
-        contact. The default 0 puts all of ``sigma`` in body 2; a specimen that is body 1 and
-        carries the tension ``S`` while the pad carries none has ``sigma = -S`` and ``bulk = S``.
+        contact. None: the specimen carries the bulk stress and the pad none (``-sigma`` when
+        the specimen is body 1, else 0).
 
     Returns
     -------
     xarray.DataArray
-        ``sigma_xx``, dims (step, x), at the nodes.
+        ``sigma_xx``, dims (step, x), at the nodes; attributes ``body`` and ``role``
+        (``"specimen"`` or ``"pad"``).
     """
+    body, role = _body(result, body)
     sign = 1.0 if body == 1 else -1.0
     sigma_b = _bulk(result, body, bulk)
     t = (result.x.values - result.attrs["centre"]) / result.attrs["a"]
@@ -368,8 +396,10 @@ def surface_stress(result, body=1, bulk=0.0):
         f"(body {body}), sigma_b its bulk stress (half-plane surface stress, Johnson 1985 section 2.3; "
         "sliding Hertz check: 2 f p0 at the trailing edge, McEwen 1949)"
     )
-    attrs = _attrs("Pa", f"surface direct stress in body {body}", definition) | {"body": body}
-    return xr.DataArray(stress, coords={"step": result.step, "x": result.x}, name="sigma_xx", attrs=attrs)
+    attrs = _attrs("Pa", f"surface direct stress in the {role} (body {body})", definition)
+    return xr.DataArray(
+        stress, coords={"step": result.step, "x": result.x}, name="sigma_xx", attrs=attrs | {"body": body, "role": role}
+    )
 
 
 def _extremes(loads, first, last):
@@ -399,13 +429,13 @@ def _at_load_extremes(result, body, bulk):
     groups, loads = _recorded_rows(result), (result.Q.values, result.sigma.values)
     extremes = [_extremes(loads, *groups.get(int(number), (0, -1))) for number in result.cycle_number.values]
     picked = np.unique(np.concatenate([np.zeros(0, dtype=np.int64), *extremes]))
-    bulk = np.broadcast_to(np.asarray(bulk, dtype=float), result.sizes["step"])[picked]
+    bulk = None if bulk is None else np.broadcast_to(np.asarray(bulk, dtype=float), result.sizes["step"])[picked]
     stress = surface_stress(result.isel(step=picked), body, bulk).values
     rows = [np.searchsorted(picked, e) for e in extremes]
     return rows, result.step.values[picked], np.abs(result.q.values[picked]), stress
 
 
-def ruiz(result, body=1, bulk=0.0):
+def ruiz(result, body=None, bulk=None):
     """Ruiz parameters of each cycle, ``F1 = max(|q| delta)`` and ``F2 = max(sigma_xx |q| delta)``.
 
     Ruiz, Boddington & Chen (1984) [4]_: ``tau`` the surface shear traction, ``sigma_T`` the surface
@@ -419,9 +449,9 @@ def ruiz(result, body=1, bulk=0.0):
     ----------
     result : xarray.Dataset
         A result of `fretting.engine.simulation` with load cycles.
-    body : {1, 2}
-    bulk : float or array_like
-        As for `surface_stress`.
+    body : {1, 2} or None
+    bulk : float or array_like or None
+        As for `surface_stress`: by default the specimen, with its bulk stress.
 
     Returns
     -------
@@ -431,6 +461,7 @@ def ruiz(result, body=1, bulk=0.0):
         recorded step.
     """
     _require_cycles(result)
+    body, role = _body(result, body)
     delta = slip_amplitude(result).values
     rows, steps, shear, stress = _at_load_extremes(result, body, bulk)
     n = result.sizes["cycle_number"]
@@ -449,7 +480,7 @@ def ruiz(result, body=1, bulk=0.0):
         "F2": _attrs(
             "Pa J/m2",
             "Ruiz parameter F2",
-            f"F2 = max sigma_xx |q| delta, sigma_xx of body {body}, {convention} (Ruiz et al. 1984)",
+            f"F2 = max sigma_xx |q| delta, sigma_xx of the {role} (body {body}), {convention} (Ruiz et al. 1984)",
         ),
         "x_F1": _attrs("m", "position of F1", "node of the maximum F1"),
         "x_F2": _attrs("m", "position of F2", "node of the maximum F2"),
@@ -457,7 +488,7 @@ def ruiz(result, body=1, bulk=0.0):
         "step_F2": _attrs("1", "step of F2", "recorded step of the maximum F2 (-1: none)"),
     }
     data = {name: ("cycle_number", values, attrs[name]) for name, values in out.items()}
-    return xr.Dataset(data, coords={"cycle_number": result.cycle_number}, attrs={"body": body})
+    return xr.Dataset(data, coords={"cycle_number": result.cycle_number}, attrs={"body": body, "role": role})
 
 
 def cycles_to_nucleation(result, w_critical, steady_rtol=STEADY_RTOL):
@@ -577,14 +608,16 @@ def loop_work(result):
     return xr.Dataset(data, coords={"cycle_number": result.cycle_number})
 
 
-def per_cycle(result, body=1, bulk=0.0):
+def per_cycle(result, body=None, bulk=None):
     """Every per-cycle scalar of this module in one Dataset, dims (cycle_number,).
 
     ``E_d``, ``E_d_accumulated``, ``w_max``, ``x_w_max``, ``w_accumulated_max``,
     ``x_w_accumulated_max``, ``slip_amplitude_max`` (the largest slip amplitude, at the node
     ``x_slip_amplitude_max``), ``F1``, ``F2`` with positions and steps (`ruiz`), and the peak
-    surface tension ``sigma_xx_max`` at the cycle's load extremes (`surface_stress` of `body`).
+    surface tension ``sigma_xx_max`` at the cycle's load extremes (`surface_stress` of `body`,
+    by default the specimen with its bulk stress).
     """
+    body, role = _body(result, body)
     ruiz_ = ruiz(result, body, bulk)
     delta = _peak(
         slip_amplitude(result),
@@ -595,10 +628,10 @@ def per_cycle(result, body=1, bulk=0.0):
     )
     rows, _, _, stress = _at_load_extremes(result, body, bulk)
     tension = np.array([stress[cycle].max() if cycle.size else np.nan for cycle in rows])
-    definition = f"max over x of sigma_xx of body {body} at the load extremes of the cycle"
+    definition = f"max over x of sigma_xx of the {role} (body {body}) at the load extremes of the cycle"
     peak_tension = xr.Dataset(
         {"sigma_xx_max": ("cycle_number", tension, _attrs("Pa", "peak surface direct stress", definition))},
         coords={"cycle_number": result.cycle_number},
     )
     parts = [fouvry(result), peak_dissipation_density(result), delta, ruiz_, peak_tension]
-    return xr.merge(parts, combine_attrs="drop_conflicts").assign_attrs(body=body)
+    return xr.merge(parts, combine_attrs="drop_conflicts").assign_attrs(body=body, role=role)

@@ -136,6 +136,7 @@ class Recorder:
             "P": contact.P,
             "centre": contact.centre,
             "profile": repr(contact.profile),
+            "specimen": contact.specimen,
             "nodes": self.model.x.size,
             "model_description": spec.description,
             "steps": len(self.history),

@@ -16,13 +16,13 @@ import numpy as np
 
 from fretting.errors import HistoryError
 from fretting.loading.history import RAMP_STEPS, History
-from fretting.physics.contact import Contact, plane_strain_modulus
+from fretting.physics.contact import POISSON_RANGE, SPECIMEN, Contact, plane_strain_modulus
 from fretting.physics.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 
 __all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_data", "read_history_source"]
 
 #: Keys of the [contact] table besides those of the profile.
-CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P")
+CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P", "specimen")
 
 #: Default steps per segment of a `linear` block, and of a `csv` block: one row, one step.
 LINEAR_STEPS, CSV_STEPS = 16, 1
@@ -200,13 +200,12 @@ def _contact(table):
     else:
         raise table.error(None, "missing key 'E_star', expected E_star or both E and nu")
     profile, f, P = read_profile(table), table.get("f", _positive), table.get("P", _positive)
+    specimen = table.get("specimen", _choice((1, 2)), SPECIMEN)
     try:
-        contact = Contact(profile, E_star, f, P)
+        return Contact(profile, E_star, f, P, specimen)
     except ValueError as error:
-        raise table.error(None, f"found no contact for this profile and load: {error}") from None
-    if isinstance(profile, Gap):
-        _check_covered(table, contact)
-    return contact
+        key = "table" if isinstance(profile, Gap) else None
+        raise table.error(key, f"found no admissible contact for this profile and load: {error}") from None
 
 
 def _gap(table):
@@ -220,17 +219,6 @@ def _gap(table):
         k = back[0]
         raise table.error("table", f"{path}: found x = {x[k + 1]:.6g} after {x[k]:.6g}, expected x increasing")
     return Gap.from_table(x, h0, table.get("breakpoints", _numbers, default=()))
-
-
-def _check_covered(table, contact):
-    """Raise unless the table of a tabulated gap covers the contact interval."""
-    x = contact.profile.h0.x  # the table's positions, kept by its spline
-    low, high = contact.centre - contact.a, contact.centre + contact.a
-    if low < x[0] or high > x[-1]:
-        raise table.error(
-            "table",
-            f"found x in [{x[0]:.6g}, {x[-1]:.6g}] m, expected it to cover the contact, [{low:.6g}, {high:.6g}] m",
-        )
 
 
 #: profile name -> (its keys, reader of the profile from the [contact] table).
@@ -350,7 +338,7 @@ def _read_columns(table, key, path, names, all_required):
     of numbers; rows starting with ``#`` are comments.
     """
     try:
-        with open(path, newline="", encoding="utf-8") as handle:
+        with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's "CSV UTF-8" starts with a BOM
             rows = [(n, [cell.strip() for cell in row]) for n, row in enumerate(csv.reader(handle), start=1)]
     except (OSError, UnicodeDecodeError) as error:
         raise table.error(key, f"cannot read {path}: {getattr(error, 'strerror', None) or error}") from None
@@ -439,8 +427,9 @@ def _non_negative(value):
 
 
 def _poisson(value):
-    if not (_is_number(value) and -1 < value <= 0.5):
-        raise _Expected("a Poisson ratio in (-1, 0.5]")
+    low, high = POISSON_RANGE
+    if not (_is_number(value) and low < value <= high):
+        raise _Expected(f"a Poisson ratio in ({low:g}, {high:g}]")
     return float(value)
 
 
@@ -499,8 +488,8 @@ def _mappings(value):
 
 def _choice(options):
     def choose(value):
-        if not isinstance(value, str) or value not in options:
-            raise _Expected("one of " + ", ".join(f'"{option}"' for option in options))
+        if isinstance(value, bool) or not isinstance(value, type(next(iter(options)))) or value not in options:
+            raise _Expected("one of " + ", ".join(_show(option) for option in options))
         return value
 
     return choose

@@ -2,17 +2,37 @@
 
 import numpy as np
 
-from fretting._validate import positive
+from fretting._validate import finite, positive
 from fretting.physics.profiles import Profile
 
-__all__ = ["Contact", "plane_strain_modulus"]
+__all__ = ["POISSON_RANGE", "SPECIMEN", "Contact", "plane_strain_modulus"]
+
+#: Poisson's ratios of an isotropic elastic material, ``-1 < nu <= 0.5``: its bulk and shear moduli are
+#: positive for ``-1 < nu < 0.5``, and 0.5 is the incompressible limit, where ``E_star`` stays finite.
+POISSON_RANGE = (-1.0, 0.5)
+
+#: The body that is the specimen when none is named: body 2, which carries the traction ``-q`` and,
+#: since ``sigma = sigma_b2 - sigma_b1``, the bulk tension ``sigma`` of a pad that carries none.
+SPECIMEN = 2
 
 
 def plane_strain_modulus(E, nu):
     """``E_star = E / (2 (1 - nu^2))`` [Pa] of two bodies of Young's modulus `E` [Pa], Poisson's ratio `nu`.
 
     The composite modulus of the seed paper (section 2) for elastically similar bodies.
+
+    Raises
+    ------
+    ValueError
+        Unless `E` is a finite number > 0 and `nu` lies in `POISSON_RANGE`, ``(-1, 0.5]``.
     """
+    E, nu = positive("E", E), finite("nu", nu)
+    low, high = POISSON_RANGE
+    if not low < nu <= high:
+        raise ValueError(
+            f"nu must be in ({low:g}, {high:g}] (isotropic: positive bulk and shear moduli, 0.5 incompressible), "
+            f"found {nu!r}"
+        )
     return E / (2 * (1 - nu**2))
 
 
@@ -29,29 +49,49 @@ class Contact:
         Coulomb friction coefficient [-].
     P : float
         Normal load per unit length [N/m].
+    specimen : {1, 2}
+        The body that is the specimen; the other is the pad. Body 1 carries the shear traction
+        ``q`` (resultant ``Q``), body 2 ``-q``, and ``sigma = sigma_b2 - sigma_b1``: a specimen in
+        bulk tension ``S`` under an unstressed pad is body 2 with ``sigma = S`` (the default,
+        `SPECIMEN`), or body 1 with ``sigma = -S``. It changes no mechanics: the nucleation
+        quantities and figures are those of the specimen, with its bulk stress.
 
     Attributes
     ----------
     a : float
-        Contact half-width [m], from `P` (closed form, or solved to 1e-10 relative).
+        Contact half-width [m], from `P`: closed form (`Hertz`), or solved to 1e-10 relative
+        (`RoundedFlat`); a `Gap` is as accurate as its Chebyshev expansion (see `Gap`).
     centre : float
         Middle of the contact interval [m]; zero for symmetric profiles.
     p0 : float
         Peak contact pressure [Pa] (the centre pressure for the sharp flat punch).
+
+    Raises
+    ------
+    ValueError
+        On a bad value, or a profile whose pressure under `P` is not admissible: negative
+        somewhere in the contact (a gap that is not convex where the bodies touch), or, for a
+        tabulated `Gap`, a contact that leaves its table (`Profile.check`).
     """
 
-    def __init__(self, profile, E_star, f, P):
+    def __init__(self, profile, E_star, f, P, specimen=SPECIMEN):
         if not isinstance(profile, Profile):
             raise ValueError(f"profile must be a fretting Profile, found {profile!r}")
+        if isinstance(specimen, bool) or specimen not in (1, 2):
+            raise ValueError(f"specimen must be 1 (the body with traction q) or 2 (traction -q), found {specimen!r}")
         self.profile = profile
         self.E_star = positive("E_star", E_star)
         self.f = positive("f", f)
         self.P = positive("P", P)
+        self.specimen = int(specimen)
         self.a, self.centre = (float(v) for v in profile.half_width(self.P, self.E_star))
+        profile.check(self.a, self.centre, self.P, self.E_star)
         self.p0 = float(profile.peak_pressure(self.a, self.centre, self.P, self.E_star))
 
     def __repr__(self):
-        return f"Contact({self.profile!r}, E_star={self.E_star!r}, f={self.f!r}, P={self.P!r})"
+        return (
+            f"Contact({self.profile!r}, E_star={self.E_star!r}, f={self.f!r}, P={self.P!r}, specimen={self.specimen!r})"
+        )
 
     def pressure(self, x):
         """Contact pressure ``p(x)`` [Pa] at positions `x` [m]; zero outside the contact."""
