@@ -15,9 +15,7 @@ from tqdm import tqdm
 
 from fretting import __version__
 from fretting._validate import positive
-from fretting.bench import add_arguments as add_bench_arguments
-from fretting.bench import run as run_bench
-from fretting.errors import FrettingError, GrossSlipError, HistoryError
+from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
 from fretting.loading.history_file import read_history_source
 from fretting.results.io import Joiner, ResultError, load, save, source_attributes
 from fretting.models.exact import MODEL as MASING_MODEL
@@ -73,7 +71,7 @@ def main(argv=None):
         return _fail(args, error, f"{args.file}: {error}", EXIT_GROSS_SLIP)
     except OSError as error:
         return _fail(args, error, f"{error.filename or args.file}: {error.strerror or error}", EXIT_INPUT)
-    except (HistoryError, ResultError) as error:
+    except (HistoryError, ResultError, MissingDependencyError) as error:
         return _fail(args, error, str(error), EXIT_INPUT)
     except FrettingError as error:
         return _fail(args, error, f"{args.file}: {error}", EXIT_FAILURE)
@@ -142,22 +140,10 @@ def _parser():
     plot.add_argument("-o", "--output", metavar="DIR", help="directory of the figures (default: the result's)")
     plot.set_defaults(command=_plot)
 
-    bench = commands.add_parser(
-        "bench", parents=[common], help="measure speed against error and write results/speed_vs_error.*"
-    )
-    add_bench_arguments(bench)
-    bench.set_defaults(command=_bench, file="bench")
-
     sweep = commands.add_parser("sweep", parents=[common], help="run a sweep file on dask.distributed")
     add_sweep_arguments(sweep)
     sweep.set_defaults(command=run_sweep)
     return parser
-
-
-def _bench(args):
-    code = run_bench(args)
-    if code:
-        raise SystemExit(code)
 
 
 def _at_least(minimum, kind):
