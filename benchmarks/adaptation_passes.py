@@ -3,7 +3,7 @@
 `fretting.adapted_mesh` runs the turning points of the history on a mesh, refines it and runs
 them again until nothing is refined. Each pass starts the solver's active set at a turning
 point from the slip directions the pass before found there (warm); without that it starts from
-the directions of the increment before (cold). On the bench's 10-vertex random scene (Hertz,
+the directions of the increment before (cold). On the harness's 10-vertex random scene (Hertz,
 8 steps per segment) this prints, for each pass of both, the nodes, the releases after the
 first solve per turning point (min to max) and the CPU time of its run, then the CPU time of the
 whole default run (fastest of 5), and of gathering the block of 550 of 764 nodes' rows and columns of ``G``
@@ -16,10 +16,10 @@ import resource
 import sys
 import timeit
 
+import harness
 import numpy as np
 
 import fretting as fr
-from fretting import bench
 
 engine = sys.modules["fretting.engine.simulation"]
 
@@ -60,8 +60,8 @@ def whole(contact, history):
 
 
 def main():
-    contact = bench.hertz_contact()
-    history = bench.baseline_history(contact, 8)
+    contact = harness.hertz_contact()
+    history = harness.baseline_history(contact, 8)
     warm_start = engine._interpolated_directions
     for label, directions in (("warm", warm_start), ("cold", lambda *args: None)):
         engine._interpolated_directions = directions

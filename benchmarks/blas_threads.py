@@ -2,7 +2,7 @@
 
 `fretting.engine.simulation`, `adapted_mesh` and `default_model` limit BLAS and LAPACK to
 `fretting.engine.simulation.BLAS_THREADS` threads while they run. This script times the default run of
-the bench's 10-vertex random scene (Hertz, 8 steps per segment, 72 steps) as it is, and
+the harness's 10-vertex random scene (Hertz, 8 steps per segment, 72 steps) as it is, and
 unwrapped under two threads (`threadpoolctl`), and prints the wall time per step (fastest of 3).
 
 Run:  python benchmarks/blas_threads.py   (about 20 seconds on a 2-core machine)
@@ -11,10 +11,10 @@ Run:  python benchmarks/blas_threads.py   (about 20 seconds on a 2-core machine)
 import sys
 import time
 
+import harness
 from threadpoolctl import threadpool_limits
 
 import fretting as fr
-from fretting import bench
 
 engine = sys.modules["fretting.engine.simulation"]
 
@@ -31,8 +31,8 @@ def ms_per_step(run, contact, history):
 
 
 def main():
-    contact = bench.hertz_contact()
-    history = bench.baseline_history(contact, 8)
+    contact = harness.hertz_contact()
+    history = harness.baseline_history(contact, 8)
     print(
         f"engine (BLAS_THREADS = {engine.BLAS_THREADS}): {ms_per_step(fr.simulate, contact, history):.2f} ms per step"
     )

@@ -15,9 +15,9 @@ Run:  python benchmarks/rounded_flat_near_sliding.py   (about 3 seconds)
 import numpy as np
 
 import fretting as fr
-from fretting.physics import closed_forms
-from fretting.models.galerkin import GalerkinScene
 from fretting.engine.simulation import _Scene
+from fretting.models.galerkin import GalerkinScene
+from fretting.physics import closed_forms
 
 CONTACT = fr.Contact(fr.RoundedFlat(b=1e-3, R=0.02), 115e9, 0.5, 3e5)
 MODELS = {"default": {}, "rtol 1e-4": {"rtol": 1e-4}, "grid 384": {"nodes": 384}, "grid 1536": {"nodes": 1536}}
