@@ -9,23 +9,19 @@ alone at sigma/(f p0) = 0.3, 1, 2.5, 3.5 (stick ends, eq 23). Traction errors ex
 around each stick/slip boundary. Cost: a 10-vertex random Q/sigma history, 8 steps a segment.
 """
 
-import sys
 import time
-from pathlib import Path
 
+import harness
 import numpy as np
 
 import fretting as fr
+from fretting.analysis.accuracy import BAND, traction_error
 from fretting.physics import closed_forms as cf
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from conftest import final, hertz_si  # noqa: E402
 
-BAND = 0.02
-
-
-def away(x, ends, a):
-    return np.all(np.abs(np.subtract.outer(x, np.asarray(ends))) > BAND * a, axis=-1)
+def final(contact, Q, sigma, nodes):
+    """Last step of 8 proportional steps from the virgin contact to ``(Q, sigma)``."""
+    return fr.simulate(contact, fr.History.piecewise_linear([0, Q], [0, sigma], 8), nodes=nodes).isel(step=-1)
 
 
 def errors(contact, nodes):
@@ -37,11 +33,11 @@ def errors(contact, nodes):
 
     for psi in (0.05, 0.2, 0.5, 0.8, 0.95):
         Q = psi * fP
-        r = final(contact, Q, nodes=nodes)
+        r = final(contact, Q, 0.0, nodes)
         x, b = r.x.values, cf.stick_half_width(contact, Q)
         update("stick ends /a", abs(r.stick_end.values[0] - b) / a)
-        q_error = np.abs(r.q.values - cf.cattaneo_mindlin_traction(contact, Q, x))
-        update("traction /fp0", q_error[away(x, [-b, b], a)].max() / fp0)
+        q_exact = cf.cattaneo_mindlin_traction(contact, Q, x)
+        update("traction /fp0", traction_error(x, r.q.values, q_exact, [-b, b], BAND * a) / fp0)
         slip = cf.cattaneo_mindlin_slip(contact, Q, x)
         update("slip /max", np.abs(r.slip.values - slip).max() / slip.max())
     Q_star = 0.8 * fP
@@ -52,21 +48,17 @@ def errors(contact, nodes):
         c = a * np.sqrt(1 - (Q_star - Q_end) / (2 * fP))
         b = cf.stick_half_width(contact, Q_star)
         update("stick ends /a", abs(r.stick_end.values[0] - c) / a)
-        q_error = np.abs(r.q.values - cf.mindlin_deresiewicz_traction(contact, Q_star, Q_end, x))
-        update("traction /fp0", q_error[away(x, [-c, c, -b, b], a)].max() / fp0)
+        q_exact = cf.mindlin_deresiewicz_traction(contact, Q_star, Q_end, x)
+        update("traction /fp0", traction_error(x, r.q.values, q_exact, [-c, c, -b, b], BAND * a) / fp0)
     for tau in (0.3, 1.0, 2.5, 3.5):
         sigma = tau * fp0
-        r = final(contact, 0.0, sigma, nodes=nodes)
+        r = final(contact, 0.0, sigma, nodes)
         update("stick ends /a", abs(r.stick_end.values[0] - cf.bulk_tension_stick_half_width(contact, sigma)) / a)
     return worst
 
 
 def cost(contact, nodes, repeats=3):
-    rng = np.random.default_rng(0)
-    Q = rng.uniform(-0.8, 0.8, 10) * contact.f * contact.P
-    sigma = rng.uniform(-1.0, 1.0, 10) * contact.f * contact.p0
-    Q[0] = sigma[0] = 0
-    history = fr.History.piecewise_linear(Q, sigma, 8)
+    history = harness.baseline_history(contact, 8)
     times = []
     for _ in range(repeats):
         start = time.perf_counter()
@@ -76,7 +68,7 @@ def cost(contact, nodes, repeats=3):
 
 
 def main():
-    contact = hertz_si()
+    contact = harness.hertz_contact()
     header = ("nodes", "stick ends /a", "ends /spacing", "traction /fp0", "slip /max", "ms/step")
     print(" ".join(f"{name:>14}" for name in header))
     for nodes in (128, 256, 384, 512, 768):

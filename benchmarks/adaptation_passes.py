@@ -3,7 +3,7 @@
 `fretting.adapted_mesh` runs the turning points of the history on a mesh, refines it and runs
 them again until nothing is refined. Each pass starts the solver's active set at a turning
 point from the slip directions the pass before found there (warm); without that it starts from
-the directions of the increment before (cold). On the bench's 10-vertex random scene (Hertz,
+the directions of the increment before (cold). On the harness's 10-vertex random scene (Hertz,
 8 steps per segment) this prints, for each pass of both, the nodes, the releases after the
 first solve per turning point (min to max) and the CPU time of its run, then the CPU time of the
 whole default run (fastest of 5), and of gathering the block of 550 of 764 nodes' rows and columns of ``G``
@@ -16,12 +16,14 @@ import resource
 import sys
 import timeit
 
+import harness
 import numpy as np
 
 import fretting as fr
-from fretting import bench
 
-engine = sys.modules["fretting.engine.simulation"]
+method4 = sys.modules["fretting.models.method4"]
+follow_module = sys.modules["fretting.engine.follow"]
+adaptation = sys.modules["fretting.engine.adaptation"]
 
 
 def cpu():
@@ -31,7 +33,7 @@ def cpu():
 
 def passes(contact, history):
     """(nodes, releases of each turning point, CPU seconds) of each pass of the adaptation."""
-    found, solve, follow = [], engine.solve_increment, engine._Run.follow
+    found, solve, follow = [], method4.solve_increment, follow_module._Run.follow
 
     def counting(*args):
         increment = solve(*args)
@@ -44,11 +46,11 @@ def passes(contact, history):
         found[-1][2] = cpu() - found[-1][2]
         return end
 
-    engine.solve_increment, engine._Run.follow = counting, timed
+    method4.solve_increment, follow_module._Run.follow = counting, timed
     try:
         fr.adapted_mesh(contact, history)
     finally:
-        engine.solve_increment, engine._Run.follow = solve, follow
+        method4.solve_increment, follow_module._Run.follow = solve, follow
     return found
 
 
@@ -60,17 +62,17 @@ def whole(contact, history):
 
 
 def main():
-    contact = bench.hertz_contact()
-    history = bench.baseline_history(contact, 8)
-    warm_start = engine._interpolated_directions
+    contact = harness.hertz_contact()
+    history = harness.baseline_history(contact, 8)
+    warm_start = adaptation._interpolated_directions
     for label, directions in (("warm", warm_start), ("cold", lambda *args: None)):
-        engine._interpolated_directions = directions
+        adaptation._interpolated_directions = directions
         passes(contact, history)  # once to load and compile
         print(f"{label}: nodes, releases per turning point, CPU s of the pass")
         for nodes, releases, seconds in passes(contact, history):
             print(f"  {nodes:5d}   {min(releases)} to {max(releases)}   {seconds:.3f}")
         print(f"  whole default run: {min(whole(contact, history) for _ in range(5)):.3f} s CPU (fastest of 5)")
-    engine._interpolated_directions = warm_start
+    adaptation._interpolated_directions = warm_start
     G = np.random.default_rng(0).random((764, 764))
     nodes = np.sort(np.random.default_rng(1).choice(764, 550, replace=False))
     for label, gather in (

@@ -1,8 +1,8 @@
-"""The default run with BLAS on one thread (as `fretting.engine.simulation` runs it) and on two.
+"""The default run with BLAS on one thread (as the engine runs it) and on two.
 
-`fretting.engine.simulation`, `adapted_mesh` and `default_model` limit BLAS and LAPACK to
-`fretting.engine.simulation.BLAS_THREADS` threads while they run. This script times the default run of
-the bench's 10-vertex random scene (Hertz, 8 steps per segment, 72 steps) as it is, and
+The stepper and the mesh adaptation limit BLAS and LAPACK to
+`fretting.engine.threads.BLAS_THREADS` threads while they run. This script times the default run of
+the harness's 10-vertex random scene (Hertz, 8 steps per segment, 72 steps) as it is, and
 unwrapped under two threads (`threadpoolctl`), and prints the wall time per step (fastest of 3).
 
 Run:  python benchmarks/blas_threads.py   (about 20 seconds on a 2-core machine)
@@ -11,12 +11,11 @@ Run:  python benchmarks/blas_threads.py   (about 20 seconds on a 2-core machine)
 import sys
 import time
 
+import harness
 from threadpoolctl import threadpool_limits
 
 import fretting as fr
-from fretting import bench
-
-engine = sys.modules["fretting.engine.simulation"]
+from fretting.engine import threads
 
 
 def ms_per_step(run, contact, history):
@@ -31,14 +30,21 @@ def ms_per_step(run, contact, history):
 
 
 def main():
-    contact = bench.hertz_contact()
-    history = bench.baseline_history(contact, 8)
+    contact = harness.hertz_contact()
+    history = harness.baseline_history(contact, 8)
     print(
-        f"engine (BLAS_THREADS = {engine.BLAS_THREADS}): {ms_per_step(fr.simulate, contact, history):.2f} ms per step"
+        f"engine (BLAS_THREADS = {threads.BLAS_THREADS}): {ms_per_step(fr.simulate, contact, history):.2f} ms per step"
     )
     with threadpool_limits(limits=2, user_api="blas"):
-        unwrapped = fr.simulate.__wrapped__  # without the engine's limit
-        print(f"BLAS on 2 threads: {ms_per_step(unwrapped, contact, history):.2f} ms per step")
+        limit = threads.one_blas_thread
+        threads_kept = lambda: threadpool_limits(limits=2, user_api="blas")  # noqa: E731
+        for module in (sys.modules["fretting.engine.stepper"], sys.modules["fretting.engine.adaptation"]):
+            module.one_blas_thread = threads_kept  # without the engine's limit
+        try:
+            print(f"BLAS on 2 threads: {ms_per_step(fr.simulate, contact, history):.2f} ms per step")
+        finally:
+            for module in (sys.modules["fretting.engine.stepper"], sys.modules["fretting.engine.adaptation"]):
+                module.one_blas_thread = limit
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@ The history file is `histories/hertz_shear_cycling.toml`'s contact under one `si
 `Q_amplitude = 35e3` (`Q*/fP = 0.5`), 64 steps per cycle, `cycles = 100000` (6.4 million steps),
 run at default settings in a fresh process. Its peak memory is the child's maximum resident
 set (`resource.getrusage`); every cycle after the first is compared with the Masing closed
-form (`fretting.bench.cycle_energy`).
+form (`fretting.physics.closed_forms.mindlin_deresiewicz_energy`).
 
 Run:  python benchmarks/cli_long_run.py [CYCLES]   (about 10 s for the default 100000)
 """
@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 import fretting as fr
-from fretting.bench import cycle_energy
+from fretting.physics.closed_forms import mindlin_deresiewicz_energy
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "histories" / "hertz_shear_cycling.toml"
 Q_AMPLITUDE = 35e3
@@ -46,7 +46,8 @@ def main(cycles=100_000):
         peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024  # kB on Linux
         result = fr.load(output)
         contact = fr.read_history(source)[0]
-        error = np.max(np.abs(result.cycle_dissipation.values[1:] / cycle_energy(contact, Q_AMPLITUDE) - 1))
+        W = mindlin_deresiewicz_energy(contact, Q_AMPLITUDE)
+        error = np.max(np.abs(result.cycle_dissipation.values[1:] / W - 1))
         print(
             f"{cycles} cycles, {result.attrs['steps'] - 1} steps, {result.attrs['nodes']} nodes: "
             f"{seconds:.2f} s wall, peak resident {peak / 1e6:.0f} MB, file {output.stat().st_size / 1e6:.2f} MB, "

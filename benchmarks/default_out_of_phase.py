@@ -1,7 +1,7 @@
 """Cost of the default model on random out-of-phase cycles, where Galerkin meshes grow largest.
 
-Draws scenes from the families of tests/test_hard_properties.py (Hertz, rounded flat and
-asymmetric flat profiles; f, P, and Q, sigma amplitudes and phase as its
+Draws scenes from the families of `harness.SHAPES` (Hertz, rounded flat and asymmetric flat
+profiles; f, P, and Q, sigma amplitudes and phase as tests/test_hard_properties.py's
 `test_loop_work_equals_dissipation_on_non_proportional_cycles` draws them), runs 30 cycles of
 32 steps at default settings and prints the model each got and the wall time: the default
 gives up a mesh of more than `fretting.MAX_DEFAULT_MESH` nodes for the grid.
@@ -11,14 +11,11 @@ Run:  python benchmarks/default_out_of_phase.py [SEED] [SCENES]   (defaults 1 an
 
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
+from harness import SHAPES, SMOOTH, family_contact
 
 import fretting as fr
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from test_hard_properties import SHAPES, SMOOTH, contact  # noqa: E402
 
 
 def main(seed=1, scenes=40):
@@ -27,7 +24,7 @@ def main(seed=1, scenes=40):
     for _ in range(scenes):
         kind = str(rng.choice(SMOOTH))
         shape = SHAPES[kind][rng.integers(len(SHAPES[kind]))]
-        scene = contact(kind, tuple(shape), float(rng.choice([0.3, 0.6, 1.0])), float(rng.choice([3e4, 3e5])))
+        scene = family_contact(kind, tuple(shape), float(rng.choice([0.3, 0.6, 1.0])), float(rng.choice([3e4, 3e5])))
         psi, tau, phase = rng.uniform(0.1, 0.7), rng.uniform(0.1, 1.5), rng.uniform(30, 150)
         history = fr.History.sinusoidal(
             psi * scene.f * scene.P, tau * scene.f * scene.p0, phase, cycles=30, steps_per_cycle=32

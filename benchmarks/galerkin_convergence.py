@@ -2,50 +2,38 @@
 
 Run: python benchmarks/galerkin_convergence.py [--rtol 1e-3 1e-4] [--no-chebyshev]
 
-Each case runs the adaptive loop of tests/test_galerkin.py (run the history, reduce
+Each case runs the adaptive loop of `harness.adapt` (run the history, reduce
 `element_targets` over every increment, `refine`, until the mesh stays) from
 `galerkin.initial_theta()`, then reports the error of the settled mesh against the closed
 forms, its nodes, the passes it took and the wall time per increment on it (one BLAS thread).
 
 Cases (Hertz, R = 50 mm, E = 210 GPa, nu = 0.3, P = 100 N/mm, f = 0.6):
 - cycle psi: energy of the second cycle of Q = +-psi f P, 4 increments a segment, relative to
-  the Masing closed form (tests/test_galerkin.hertz_cycle_energy);
+  the Masing closed form (`fretting.physics.closed_forms.mindlin_deresiewicz_energy`);
 - CM psi: Cattaneo-Mindlin after 4 increments: stick ends /a, traction /(f p0) away from
   0.02 a of the ends, slip /max;
 - MD Q_end: 0 -> 0.8 f P -> Q_end (4 + 8 increments): stick ends /a, traction /(f p0);
 - tension tau: bulk tension sigma = tau f p0 alone (eq 23), stick ends /a;
 - rounded flat psi: b = 1 mm, R = 20 mm, Ciavarella-Jaeger stick ends /a;
 - flat punch: Q up to 0.999999 f P, largest |slip| (must be exactly 0).
-The Chebyshev rows run the same histories on the fixed grid of `fretting.engine.simulation` (384 is the
+The Chebyshev rows run the same histories on the fixed grid of `fretting.models.collocation` (384 is the
 default, 1536 four times finer).
 """
 
 import argparse
 import os
-import sys
 import time
-from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # 2-core machine: threads slow large dense solves
 
 import numpy as np  # noqa: E402
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from conftest import hertz_si  # noqa: E402
-from test_galerkin import (  # noqa: E402
-    adapt,
-    away,
-    cycle_energy,
-    cycles,
-    ends,
-    hertz_cycle_energy,
-    monotonic,
-    run,
-)
+from harness import adapt, cycle_energy, cycles, ends, hertz_contact, increments, monotonic  # noqa: E402
 
 import fretting as fr  # noqa: E402
-from fretting.engine.simulation import _Scene  # noqa: E402
+from fretting.analysis.accuracy import BAND, traction_error  # noqa: E402
 from fretting.models import galerkin as gk  # noqa: E402
+from fretting.models.collocation import CollocationModel  # noqa: E402
+from fretting.models.method4 import stick_zones  # noqa: E402
 from fretting.physics import closed_forms as cf  # noqa: E402
 
 CYCLE_STEPS = 4
@@ -58,8 +46,11 @@ CHEBYSHEV_NODES = (384, 1536)
 HEADER = ("case", "rtol", "nodes", "passes", "energy", "ends /a", "q /fp0", "slip /max", "ms/step")
 
 
-class _ChebyshevScene(_Scene):
-    """The fixed-grid scene with the two names the benchmark's loop reads."""
+class _ChebyshevScene(CollocationModel):
+    """The fixed-grid model with the two names the benchmark's loop reads."""
+
+    def __init__(self, contact, nodes):
+        super().__init__(contact, fr.models.Grid(nodes))
 
     @property
     def nodes(self):
@@ -71,7 +62,7 @@ def timed(scene, Q, sigma=None, repeats=3):
     times = []
     for _ in range(repeats):
         start = time.perf_counter()
-        ds, g = run(scene, Q, sigma)
+        ds, g = increments(scene, Q, sigma)
         times.append(time.perf_counter() - start)
     return ds, g, 1e3 * np.median(times) / (len(Q) - 1)
 
@@ -86,13 +77,11 @@ def scenes(contact, Q, sigma, rtol, chebyshev):
 
 def traction(scene, g, ds):
     """Nodal traction [Pa]: the Galerkin scene keeps Coulomb exactly where `ds` slipped."""
-    return scene.traction(g) if isinstance(scene, _ChebyshevScene) else scene.traction(g, ds)
+    return g / (scene.pressure_scale * np.sqrt(1 - scene.t**2)) if isinstance(scene, _ChebyshevScene) else scene.nodal_traction(g, ds)
 
 
 def stick_ends(scene, slip):
     if isinstance(scene, _ChebyshevScene):
-        from fretting.engine.simulation import stick_zones
-
         return scene.contact.centre + scene.contact.a * np.array(stick_zones(scene.grid.t, slip))
     return ends(scene, slip)
 
@@ -118,7 +107,7 @@ def cycle_cases(contact, rtol, chebyshev):
     fP = contact.f * contact.P
     for psi in CYCLE_PSI:
         Q = cycles(psi * fP, CYCLE_STEPS)
-        exact = hertz_cycle_energy(contact, psi * fP)
+        exact = cf.mindlin_deresiewicz_energy(contact, psi * fP)
         for label, tol, scene, passes in scenes(contact, Q, None, rtol, chebyshev and psi >= 1e-3):
             ds, _, ms = timed(scene, Q)
             row(
@@ -142,12 +131,12 @@ def cattaneo_mindlin_cases(contact, rtol, chebyshev):
             slip, x = ds.sum(axis=0), scene.x
             found = stick_ends(scene, slip)
             ends_error = np.abs(found - [[-b, b]]).max() / a if found.shape == (1, 2) else np.inf
-            q_error = np.abs(traction(scene, g[-1], ds[-1]) - cf.cattaneo_mindlin_traction(contact, Q[-1], x))
+            q_exact = cf.cattaneo_mindlin_traction(contact, Q[-1], x)
             exact_slip = cf.cattaneo_mindlin_slip(contact, Q[-1], x)
             row(
                 f"CM {psi:g}", label, tol, scene, passes, ms,
                 ends_error=ends_error,
-                traction=q_error[away(x, [-b, b], a)].max() / fp0,
+                traction=traction_error(x, traction(scene, g[-1], ds[-1]), q_exact, [-b, b], BAND * a) / fp0,
                 slip=np.abs(slip - exact_slip).max() / exact_slip.max(),
             )  # fmt: skip
 
@@ -165,7 +154,8 @@ def mindlin_deresiewicz_cases(contact, rtol, chebyshev):
             found = stick_ends(scene, episode)
             ends_error = np.abs(found - [[-c, c]]).max() / a if found.shape == (1, 2) else np.inf
             q_exact = cf.mindlin_deresiewicz_traction(contact, Q_star, Q_end * fP, scene.x)
-            q_error = np.abs(traction(scene, g[-1], ds[-1]) - q_exact)[away(scene.x, [-c, c, -b, b], a)].max() / fp0
+            q = traction(scene, g[-1], ds[-1])
+            q_error = traction_error(scene.x, q, q_exact, [-c, c, -b, b], BAND * a) / fp0
             row(f"MD 0.8 -> {Q_end:g}", label, tol, scene, passes, ms, ends_error=ends_error, traction=q_error)
 
 
@@ -191,8 +181,8 @@ def rounded_flat_cases(contact, rtol, chebyshev):
             found = stick_ends(scene, ds.sum(axis=0))
             ends_error = np.abs(found - [[-c, c]]).max() / rounded.a if found.shape == (1, 2) else np.inf
             q_exact = cf.ciavarella_jaeger(rounded, Q[-1], scene.x)[0]
-            band = away(scene.x, [-c, c], rounded.a)
-            q_error = np.abs(traction(scene, g[-1], ds[-1]) - q_exact)[band].max() / (rounded.f * rounded.p0)
+            q = traction(scene, g[-1], ds[-1])
+            q_error = traction_error(scene.x, q, q_exact, [-c, c], BAND * rounded.a) / (rounded.f * rounded.p0)
             row(f"rounded flat {psi:g}", label, tol, scene, passes, ms, ends_error=ends_error, traction=q_error)
 
 
@@ -209,7 +199,7 @@ def main():
     parser.add_argument("--rtol", type=float, nargs="+", default=[1e-3, gk.DEFAULT_RTOL])
     parser.add_argument("--no-chebyshev", action="store_true", help="skip the fixed-grid rows")
     options = parser.parse_args()
-    contact = hertz_si()
+    contact = hertz_contact()
     print(f"{HEADER[0]:<34}" + "".join(f"{h:>11}" for h in HEADER[1:]))
     for rtol in options.rtol:
         chebyshev = not options.no_chebyshev and rtol == options.rtol[-1]

@@ -15,8 +15,6 @@ Run:  python benchmarks/rounded_flat_near_sliding.py   (about 3 seconds)
 import numpy as np
 
 import fretting as fr
-from fretting.engine.simulation import _Scene
-from fretting.models.galerkin import GalerkinScene
 from fretting.physics import closed_forms
 
 CONTACT = fr.Contact(fr.RoundedFlat(b=1e-3, R=0.02), 115e9, 0.5, 3e5)
@@ -55,8 +53,8 @@ def strip_slips():
         strip = closed_forms.ciavarella_jaeger(CONTACT, psi * fP, np.zeros(1))[1].a - b
         print(f"f h0(c) at psi = {psi}: {CONTACT.f * strip**2 / (2 * R):.2g} m")
     history = fr.History.piecewise_linear([0.0, 0.999999 * fP], [0.0, 0.0], 8)
-    mesh = GalerkinScene(CONTACT, fr.adapted_mesh(CONTACT, history, 1e-4))
-    for label, scene in (("grid 384", _Scene(CONTACT, 384)), (f"mesh of {mesh.x.size} nodes", mesh)):
+    mesh = fr.models.Mesh(theta=fr.adapted_mesh(CONTACT, history, 1e-4)).build(CONTACT)
+    for label, scene in (("grid 384", fr.models.Grid(384).build(CONTACT)), (f"mesh of {mesh.x.size} nodes", mesh)):
         print(f"slip under q = f p, range over the flat, {label}: {sliding_unevenness(scene):.2g} m")
 
 

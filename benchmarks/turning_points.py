@@ -1,7 +1,7 @@
 """Meshes adapted at the turning points of a history against meshes adapted at every step.
 
 `fretting.adapted_mesh` asks `element_targets` about the increments between turning points of
-the load path only (curved stretches cut where they have turned by `fretting.engine.simulation.MAX_TURN`).
+the load path only (curved stretches cut where they have turned by `fretting.engine.adaptation.MAX_TURN`).
 This script measures what that costs in accuracy: for each scene it adapts a second mesh to
 every increment of the history (the stick and slip zones of every step resolved), and compares
 nodes, time and the energy of the last cycle with the closed form (Hertz under Q alone,
@@ -12,11 +12,12 @@ Run:  python benchmarks/turning_points.py   (about 4 minutes on one core)
 
 import time
 
+import harness
 import numpy as np
 
 import fretting as fr
-from fretting import bench
 from fretting.models import galerkin
+from fretting.physics import closed_forms as cf
 
 
 def every_step_mesh(contact, history, rtol):
@@ -25,7 +26,7 @@ def every_step_mesh(contact, history, rtol):
     while True:
         result = fr.simulate(contact, history, mesh=theta)
         ds = np.diff(result.slip.values, axis=0)  # exactly 0 where a node stuck
-        scene = galerkin.GalerkinScene(contact, theta)
+        scene = galerkin.Mesh(theta=theta).build(contact)
         refined = galerkin.refine(theta, galerkin.element_targets(theta, ds, rtol, scene.breakpoints))
         if refined is theta:
             return theta, result
@@ -37,7 +38,7 @@ def last_cycle(result):
 
 
 def main():
-    hertz = bench.hertz_contact()
+    hertz = harness.hertz_contact()
     fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
     scenes = {
         f"Q = +-{psi} fP": (fr.History.sinusoidal(psi * fP, cycles=3), psi * fP) for psi in (0.001, 0.05, 0.5, 0.95)
@@ -57,7 +58,7 @@ def main():
         began = time.perf_counter()
         theta, every = every_step_mesh(hertz, history, fr.DEFAULT_RTOL)
         every_s = time.perf_counter() - began
-        reference = bench.cycle_energy(hertz, Q_star) if Q_star else last_cycle(every)
+        reference = cf.mindlin_deresiewicz_energy(hertz, Q_star) if Q_star else last_cycle(every)
         errors = [abs(last_cycle(r) / reference - 1) for r in (turning, every)]
         every_error = f"{errors[1]:9.1e}" if Q_star else f"{'(ref)':>9}"
         print(

@@ -14,12 +14,10 @@ from tqdm import tqdm
 
 from fretting import __version__
 from fretting._validate import positive
-from fretting.bench import add_arguments as add_bench_arguments
-from fretting.bench import run as run_bench
 from fretting.engine.choice import MAX_DEFAULT_MESH
 from fretting.engine.recorder import RECORD_ALL_STEPS, RECORDED_ENDS
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
-from fretting.errors import FrettingError, GrossSlipError, HistoryError
+from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
 from fretting.loading.history_file import read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
@@ -51,7 +49,7 @@ def main(argv=None):
         return _fail(args, error, f"{args.file}: {error}", EXIT_GROSS_SLIP)
     except OSError as error:
         return _fail(args, error, f"{error.filename or args.file}: {error.strerror or error}", EXIT_INPUT)
-    except (HistoryError, ResultError) as error:
+    except (HistoryError, ResultError, MissingDependencyError) as error:
         return _fail(args, error, str(error), EXIT_INPUT)
     except FrettingError as error:
         return _fail(args, error, f"{args.file}: {error}", EXIT_FAILURE)
@@ -126,22 +124,10 @@ def _parser():
     )
     plot.set_defaults(command=_plot)
 
-    bench = commands.add_parser(
-        "bench", parents=[common], help="measure speed against error and write results/speed_vs_error.*"
-    )
-    add_bench_arguments(bench)
-    bench.set_defaults(command=_bench, file="bench")
-
     sweep = commands.add_parser("sweep", parents=[common], help="run a sweep file on dask.distributed")
     add_sweep_arguments(sweep)
     sweep.set_defaults(command=run_sweep)
     return parser
-
-
-def _bench(args):
-    code = run_bench(args)
-    if code:
-        raise SystemExit(code)
 
 
 def _at_least(minimum, kind):

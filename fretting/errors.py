@@ -1,6 +1,6 @@
 """Exceptions raised by `fretting`."""
 
-__all__ = ["FrettingError", "GrossSlipError", "HistoryError", "SolverError"]
+__all__ = ["FrettingError", "GrossSlipError", "HistoryError", "MissingDependencyError", "SolverError"]
 
 
 class FrettingError(Exception):
@@ -35,3 +35,7 @@ class HistoryError(FrettingError, ValueError):
 
 class SolverError(FrettingError, RuntimeError):
     """An increment could not be solved to the friction conditions."""
+
+
+class MissingDependencyError(FrettingError, ImportError):
+    """A package of an optional extra (``pip install 'fretting[<extra>]'``) is not installed."""

@@ -1,6 +1,12 @@
 """Shared scenes: the SI Hertz contact of the issue, and its unit-free twin."""
 
 import os
+import sys
+from pathlib import Path
+
+#: The benchmark harness (benchmarks/harness.py) is not in the package; tests of it, and tests
+#: that share its scenes, import it from there.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 
 # One BLAS thread, set before NumPy loads OpenBLAS: on 2 cores its two threads make the dense
 # solves of a few hundred nodes up to ten times slower (README, known limits).

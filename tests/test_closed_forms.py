@@ -7,9 +7,12 @@ boundary sits up to a fraction of a node spacing (0.012 a at the centre with 256
 the true one.
 """
 
+import math
+
 import numpy as np
 import pytest
 from conftest import final
+from scipy import integrate
 
 import fretting as fr
 from fretting.physics import closed_forms as cf
@@ -124,3 +127,63 @@ def test_si_and_unit_free_inputs_agree(hertz, unit_hertz):
 
     for si, unit_free in zip(normalised(hertz), normalised(unit_hertz), strict=True):
         np.testing.assert_allclose(si, unit_free, rtol=0, atol=1e-9)
+
+
+# -- The closed forms of the energy, checked against their derivations --------------------------
+
+
+def mean_slip(contact, Q):
+    """``(1/pi) int_0^pi s(a cos th) dth`` of `cattaneo_mindlin_slip` by quadrature [m]."""
+    kink = math.acos(float(cf.stick_half_width(contact, Q)) / contact.a)
+    slip = lambda th: float(cf.cattaneo_mindlin_slip(contact, Q, contact.a * math.cos(th)))  # noqa: E731
+    return (
+        integrate.quad(slip, 0, math.pi, points=[kink, math.pi - kink], epsabs=0, epsrel=1e-11, limit=200)[0] / math.pi
+    )
+
+
+@pytest.mark.parametrize(
+    ("psi", "rel"),
+    [(0.001, 1e-10), (0.01, 1e-12), (0.2, 1e-12), (0.3, 1e-12), (0.6, 1e-12), (0.9, 1e-12), (0.95, 1e-12)],
+)
+def test_compliance_is_the_mean_slip_of_cattaneo_mindlin(hertz, psi, rel):
+    """At 0.001 the quadrature, of a slip formula that cancels there, is good to 1e-10 only."""
+    Q = psi * hertz.f * hertz.P
+    assert cf.cattaneo_mindlin_compliance(hertz, Q) == pytest.approx(mean_slip(hertz, Q), rel=rel)
+    assert cf.cattaneo_mindlin_compliance(hertz, -Q) == -cf.cattaneo_mindlin_compliance(hertz, Q)
+
+
+@pytest.mark.parametrize("psi", [0.02, 0.05, 0.3, 0.5, 0.8, 0.9])
+def test_cycle_energy_is_the_area_of_the_masing_loop(hertz, psi):
+    """Mindlin-Deresiewicz ``W = 4 Q* dv(Q*) - 8 int_0^Q* dv``, the loop of ``Q`` against the
+    compliance, by quadrature; and the logarithm form ``(2 fP f p0 a / E_star) ((1 - psi)
+    ln(1 - psi) + psi - psi^2 / 2)``."""
+    fP = hertz.f * hertz.P
+    Q_star = psi * fP
+    dv = lambda Q: cf.cattaneo_mindlin_compliance(hertz, Q)  # noqa: E731
+    loop = 4 * Q_star * dv(Q_star) - 8 * integrate.quad(dv, 0, Q_star, epsabs=0, epsrel=1e-12)[0]
+    W = cf.mindlin_deresiewicz_energy(hertz, Q_star)
+    assert W == pytest.approx(loop, rel=1e-9)
+    scale = 2 * fP * hertz.f * hertz.p0 * hertz.a / hertz.E_star
+    assert W == pytest.approx(scale * ((1 - psi) * np.log1p(-psi) + psi - psi**2 / 2), rel=1e-12)
+
+
+@pytest.mark.parametrize("psi", [1e-4, 1e-3, 1e-2])
+def test_small_loops_dissipate_as_the_cube_of_the_amplitude(hertz, psi):
+    """``W = (pi (f p0 a)^2 / E_star) psi^3 / 6 (1 + psi / 2 + 3 psi^2 / 10 + ...)``."""
+    cubic = math.pi * (hertz.f * hertz.p0 * hertz.a) ** 2 / hertz.E_star * psi**3 / 6
+    W = cf.mindlin_deresiewicz_energy(hertz, psi * hertz.f * hertz.P)
+    assert W == pytest.approx(cubic * (1 + psi / 2), rel=psi**2)
+    assert W / cubic - 1 == pytest.approx(psi / 2 + 3 * psi**2 / 10, rel=psi)
+
+
+def test_masing_walk_keeps_and_erases_turning_points():
+    """0 -> 6 -> -4 -> 2 -> -4 (loop closed) -> -6 (past -Q_1: virgin again) -> 0."""
+    Q = [0, 3, 6, 1, -4, 2, -1, -4, -6, 0]
+    stacks, pieces = cf.masing_walk(Q)
+    assert stacks == [(), (), (), (6,), (6,), (6, -4), (6, -4, 2), (6,), (), (-6,)]
+    assert pieces[1] == [(0.0, 1, 0, 3)]
+    assert pieces[4] == [(6, 2, 1, -4)]
+    assert pieces[7] == [(2, 2, -1, -4), (6, 2, -4, -4)]  # reaches -4: the minor loop closes there
+    assert pieces[8] == [(6, 2, -4, -6), (0.0, 1, -6, -6)]
+    with pytest.raises(ValueError, match="virgin state"):
+        cf.masing_walk([1.0, 2.0])

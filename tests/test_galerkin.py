@@ -10,17 +10,18 @@ targets of every increment, refine, until the mesh stays.
 
 import sys
 
+import harness
 import numpy as np
 import pytest
 import xarray as xr
 from conftest import hertz_si
+from harness import adapt, cycle_energy, cycles, ends, increments, monotonic
 from scipy import integrate, special
 
 import fretting as fr
-from fretting import bench
+from fretting.analysis import accuracy
 from fretting.models import Grid, Outcome
 from fretting.models import galerkin as gk
-from fretting.models.method4 import stick_zones
 from fretting.models.solver import solve_increment
 from fretting.physics import closed_forms as cf
 
@@ -34,113 +35,14 @@ def slipped(slip):
     """An outcome that left the slip `slip` [m] (rows of a 2-D `slip`), for the model's delta_Q and delta_sigma."""
     return Outcome(None, None, slip, 0.0)
 
-
 BOUNDARY_BAND = 0.02  # [a]: the traction has a square-root kink at a stick/slip boundary
-#: Below this Q*/fP the energy per cycle is summed as its power series (the closed form cancels).
-SERIES_BELOW = 0.05
-SERIES_TERMS = 40  # 0.05^40: far below rounding
 
 
-# --- references ------------------------------------------------------------------------------
-
-
-def hertz_delta_Q(contact, Q):
-    """``delta_Q`` [m] of the Cattaneo-Mindlin slip (eq 19): ``(1/pi) int_0^pi s(a cos th) dth``.
-
-    ``(f p0 a / (2 E_star)) [psi + (1 - psi) ln(1 - psi)]`` with ``psi = |Q| / (f P)``, odd in Q.
-    """
-    psi = abs(Q) / (contact.f * contact.P)
-    return np.sign(Q) * contact.f * contact.p0 * contact.a / (2 * contact.E_star) * (psi + (1 - psi) * np.log1p(-psi))
-
-
-def hertz_cycle_energy(contact, Q_star):
-    """Energy [J/m] dissipated per cycle of ``Q = +-Q_star`` (Masing): ``4 Q* dv(Q*) - 8 int_0^Q* dv``.
-
-    ``(4 (f P)^2 / (pi E_star)) [(1 - psi) ln(1 - psi) + psi - psi^2 / 2]
-    = (4 (f P)^2 / (pi E_star)) sum_{k>=2} psi^(k+1) / (k (k+1))``.
-    """
-    fP = contact.f * contact.P
-    psi = abs(Q_star) / fP
-    if psi < SERIES_BELOW:
-        k = np.arange(2, SERIES_TERMS)
-        shape = np.sum(psi ** (k + 1) / (k * (k + 1)))
-    else:
-        shape = (1 - psi) * np.log1p(-psi) + psi - psi**2 / 2
-    return 4 * fP**2 / (np.pi * contact.E_star) * shape
-
-
-# --- a throwaway adaptive driver ---------------------------------------------------------------
-
-
-def run(scene, Q, sigma=None):
-    """Increments of the path ``Q[k], sigma[k]`` from the virgin contact: slip increments and ``g``."""
-    sigma = np.zeros_like(Q) if sigma is None else sigma
-    slip = np.zeros(scene.x.size)
-    ds, g = [], []
-    for k in range(1, len(Q)):
-        increment = solve_increment(scene.G, scene.g_stuck(Q[k], sigma[k]) - scene.G @ slip, scene.limit)
-        slip = slip + increment.ds
-        ds.append(increment.ds)
-        g.append(increment.g)
-    return np.array(ds), np.array(g)
-
-
-def adapt(contact, Q, sigma=None, rtol=gk.DEFAULT_RTOL, theta=None, passes=30):
-    """Refine until the mesh stays: the scene, its increments and the number of passes."""
-    theta = gk.initial_theta() if theta is None else theta
-    for count in range(1, passes + 1):
-        scene = scene_of(contact, theta)
-        ds, g = run(scene, Q, sigma)
-        refined = gk.refine(theta, gk.element_targets(theta, ds, rtol, scene.breakpoints))
-        if refined is theta:
-            return scene, ds, g, count
-        theta = refined
-    raise RuntimeError("the mesh did not settle")
-
-
-def cycles(Q_star, steps):
-    """``0 -> Q* -> -Q* -> Q* -> -Q* -> Q*``, `steps` increments a segment; the second cycle is the last 2 segments."""
-    vertices = [0.0, Q_star, -Q_star, Q_star, -Q_star, Q_star]
-    segments = (np.linspace(u, v, steps + 1)[1:] for u, v in zip(vertices[:-1], vertices[1:], strict=True))
-    return np.concatenate([[0.0], *segments])
-
-
-def cycle_energy(scene, ds, steps):
-    return sum(scene.dissipation(row) for row in ds[3 * steps :])
-
-
-def monotonic(Q_end, steps=4, sigma_end=0.0):
-    return np.linspace(0, Q_end, steps + 1), np.linspace(0, sigma_end, steps + 1)
-
-
-def ends(scene, slip):
-    """Stick zones ``(start, end)`` [m] from the slip of an episode (zero where it stuck)."""
-    return scene.contact.centre + scene.contact.a * np.array(stick_zones(scene.t, slip))
+# --- helpers ---------------------------------------------------------------------------------
 
 
 def away(x, boundaries, a):
     return np.all(np.abs(np.subtract.outer(x, np.asarray(boundaries))) > BOUNDARY_BAND * a, axis=-1)
-
-
-# --- references are right ----------------------------------------------------------------------
-
-
-def test_delta_Q_closed_form(hertz):
-    for psi in (1e-3, 0.3, 0.9):
-        Q = psi * hertz.f * hertz.P
-        slip = lambda th, Q=Q: cf.cattaneo_mindlin_slip(hertz, Q, hertz.a * np.cos(th))  # noqa: E731
-        kinks = np.arccos(np.array([1, -1]) * cf.stick_half_width(hertz, Q) / hertz.a)
-        quadrature = integrate.quad(slip, 0, np.pi, points=kinks, epsabs=0, epsrel=1e-11, limit=200)[0] / np.pi
-        np.testing.assert_allclose(hertz_delta_Q(hertz, Q), quadrature, rtol=1e-10)
-
-
-def test_cycle_energy_closed_form(hertz):
-    fP = hertz.f * hertz.P
-    for psi in (0.02, 0.05, 0.5, 0.9):
-        Q_star = psi * fP
-        dv = lambda Q: hertz_delta_Q(hertz, Q)  # noqa: E731
-        masing = 4 * Q_star * dv(Q_star) - 8 * integrate.quad(dv, 0, Q_star, epsabs=0, epsrel=1e-12)[0]
-        np.testing.assert_allclose(hertz_cycle_energy(hertz, Q_star), masing, rtol=1e-9)
 
 
 # --- kernel and scene --------------------------------------------------------------------------
@@ -361,14 +263,14 @@ def test_hertz_cycle_energy(hertz, psi):
     steps = 4
     Q_star = psi * hertz.f * hertz.P
     scene, ds, _, _ = adapt(hertz, cycles(Q_star, steps))
-    np.testing.assert_allclose(cycle_energy(scene, ds, steps), hertz_cycle_energy(hertz, Q_star), rtol=1e-4)
+    np.testing.assert_allclose(cycle_energy(scene, ds, steps), cf.mindlin_deresiewicz_energy(hertz, Q_star), rtol=1e-4)
 
 
 def test_hertz_cycle_energy_tiny_amplitude(hertz):
     steps = 4
     Q_star = 1e-3 * hertz.f * hertz.P
     scene, ds, _, _ = adapt(hertz, cycles(Q_star, steps))
-    np.testing.assert_allclose(cycle_energy(scene, ds, steps), hertz_cycle_energy(hertz, Q_star), rtol=1e-3)
+    np.testing.assert_allclose(cycle_energy(scene, ds, steps), cf.mindlin_deresiewicz_energy(hertz, Q_star), rtol=1e-3)
 
 
 @pytest.mark.parametrize("psi", [0.2, 0.8, 0.999, 0.999999])
@@ -441,7 +343,7 @@ def test_coulomb_at_every_node(hertz):
     Q = np.array([0.0, 0.6, -0.3, 0.5]) * fP
     sigma = np.array([0.0, 0.5, -1.0, 0.2]) * fp0
     scene = scene_of(hertz, gk.initial_theta())
-    ds, g = run(scene, Q, sigma)
+    ds, g = increments(scene, Q, sigma)
     q, fp = scene.nodal_traction(g, ds), hertz.f * hertz.pressure(scene.x)
     assert np.all(np.abs(q) <= fp)
     np.testing.assert_array_equal(q[ds != 0], (fp * np.sign(ds))[ds != 0])
@@ -451,7 +353,7 @@ def test_sharp_flat_punch_never_slips(hertz):
     contact = fr.Contact(fr.FlatPunch(1e-3), hertz.E_star, hertz.f, hertz.P)
     Q = np.array([0.0, 0.5, 0.9, 0.999, 0.999999, -0.999999, 0.3]) * contact.f * contact.P
     scene = scene_of(contact, gk.initial_theta())
-    ds, _ = run(scene, Q)
+    ds, _ = increments(scene, Q)
     assert np.all(ds == 0)
 
 
@@ -582,7 +484,7 @@ def test_default_energy_of_a_90_degree_cycle(hertz):
     history = fr.History.sinusoidal(0.5 * fP, 0.8 * fp0, 90, cycles=2, steps_per_cycle=32)
     result = fr.simulate(hertz, history)
     assert result.attrs["rtol"] == gk.DEFAULT_RTOL  # a mesh, not the grid it falls back to
-    errors = bench.score(result, bench.run_reference(fr.simulate(hertz, history, nodes=1024), "grid"))
+    errors = accuracy.score(result, accuracy.run_reference(fr.simulate(hertz, history, nodes=1024), "grid"))
     assert errors["energy_rel"] < gk.DEFAULT_RTOL
     assert errors["traction_fp0"] < 1e-3
 
@@ -597,7 +499,7 @@ def test_many_steps_per_cycle_at_the_default_rtol(hertz, psi):
     result = fr.simulate(hertz, fr.History.sinusoidal(Q_star, cycles=3, steps_per_cycle=64), rtol=gk.DEFAULT_RTOL)
     assert result.attrs["rtol"] == gk.DEFAULT_RTOL
     steady = result.cycle_dissipation.values[1:]  # the first cycle starts from the virgin contact
-    np.testing.assert_allclose(steady, hertz_cycle_energy(hertz, Q_star), rtol=1e-4)
+    np.testing.assert_allclose(steady, cf.mindlin_deresiewicz_energy(hertz, Q_star), rtol=1e-4)
 
 
 def test_default_runs_the_grid_where_the_mesh_would_be_too_large():
@@ -659,9 +561,9 @@ def test_the_increment_does_not_depend_on_the_solver_s_start(hertz, seed):
 def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkeypatch):
     """Starting each pass's active sets from the directions the pass before found (the default)
     or from the increment before's (as `simulate` does) gives the same mesh, node for node, on
-    the bench's 10-vertex random scene."""
-    contact = bench.hertz_contact()
-    history = bench.baseline_history(contact, 2)
+    the harness's 10-vertex random scene."""
+    contact = harness.hertz_contact()
+    history = harness.baseline_history(contact, 2)
     warm = fr.adapted_mesh(contact, history)
     monkeypatch.setattr(sys.modules["fretting.engine.adaptation"], "_interpolated_directions", lambda *args: None)
     np.testing.assert_array_equal(warm, fr.adapted_mesh(contact, history))

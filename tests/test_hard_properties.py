@@ -6,46 +6,13 @@ would, on random Hertz, rounded-flat, sharp-flat and asymmetric (``fretting.Gap`
 with non-proportional closed cycles for the loop work and nested reversals for the memory.
 """
 
-import functools
-
 import numpy as np
+from harness import SHAPES, SMOOTH, family_contact
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_hard_cases import (
-    assert_friction_conditions,
-    assert_zone_ends_are_consistent,
-    asymmetric_flat,
-    simulate_as_a_user,
-)
+from test_hard_cases import assert_friction_conditions, assert_zone_ends_are_consistent, simulate_as_a_user
 
 import fretting as fr
-
-E_STAR = 115e9
-
-
-@functools.cache
-def contact(kind, shape, f, P):
-    """A contact of one of the families; `shape` is a tuple of lengths [m], `P` in N/m."""
-    if kind == "hertz":
-        profile = fr.Hertz(*shape)
-    elif kind == "rounded_flat":
-        profile = fr.RoundedFlat(*shape)
-    elif kind == "flat":
-        profile = fr.FlatPunch(*shape)
-    else:
-        profile = fr.Gap(*asymmetric_flat(*shape))
-    return fr.Contact(profile, E_STAR, f, P)
-
-
-SHAPES = {
-    "hertz": [(0.01,), (0.05,), (0.5,)],
-    "rounded_flat": [(2e-4, 0.02), (1e-3, 0.02), (5e-4, 0.1)],
-    "flat": [(3e-4,), (2e-3,)],
-    "asymmetric": [(5e-4, 0.01, 0.04), (2e-4, 0.05, 0.005), (1e-4, 0.02, 0.2)],
-}
-
-#: Profiles whose pressure vanishes at the contact ends (all but the sharp flat punch).
-SMOOTH = ["hertz", "rounded_flat", "asymmetric"]
 
 
 @st.composite
@@ -54,7 +21,7 @@ def scenes(draw, kinds):
     shape = draw(st.sampled_from(SHAPES[kind]))
     f = draw(st.sampled_from([0.3, 0.6, 1.0]))
     P = draw(st.sampled_from([3e4, 3e5]))
-    return contact(kind, shape, f, P)
+    return family_contact(kind, shape, f, P)
 
 
 # ----------------------------------------------------------------------------------------------

@@ -1,5 +1,8 @@
 """Sweeps on a real dask.distributed cluster: every case equals a direct simulate, resume, errors, command line."""
 
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -176,6 +179,27 @@ def test_malformed_scheduler_address_exits_2(tmp_path, capsys):
     assert capsys.readouterr().err == (
         f"fretting: error: {sweep_file}: scheduler nonsense: missing port number in address 'nonsense'\n"
     )
+
+
+def test_without_dask_distributed_a_sweep_names_the_extra(tmp_path, capsys, monkeypatch):
+    """Without the extra ``fretting[sweep]``, `fretting.sweep` and ``fretting sweep`` fail with one
+    line naming it (exit code 2), and nothing else needs it: ``import fretting`` loads no dask."""
+    monkeypatch.setitem(sys.modules, "distributed", None)  # `import distributed` raises ImportError
+    monkeypatch.setitem(sys.modules, "dask.distributed", None)
+    base = write(tmp_path / "base.toml", BASE.format(Q=20e3, sigma=0.0))
+    with pytest.raises(fr.FrettingError, match=r"fretting\[sweep\]") as error:
+        fr.sweep(base, {"contact.f": [0.5]})
+    assert isinstance(error.value, ImportError) and "\n" not in str(error.value)
+    sweep_file = write(tmp_path / "map.toml", 'history = "base.toml"\n[grid]\n"contact.f" = [0.5]\n')
+    assert cli.main(["sweep", str(sweep_file)]) == 2
+    message = capsys.readouterr().err
+    assert message.startswith("fretting: error: ") and "pip install 'fretting[sweep]'" in message
+    assert message.count("\n") == 1
+    loaded = subprocess.run(
+        [sys.executable, "-c", "import sys, fretting; print(sorted({m.split('.')[0] for m in sys.modules}))"],
+        capture_output=True, text=True, check=True, env=os.environ | {"PYTHONPATH": str(ROOT)},
+    ).stdout  # fmt: skip
+    assert "'dask'" not in loaded and "'distributed'" not in loaded and "'matplotlib'" not in loaded
 
 
 def test_inline_base_and_keys_inside_repeated_blocks(tmp_path):

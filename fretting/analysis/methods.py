@@ -23,7 +23,6 @@ from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
-from matplotlib.figure import Figure
 from numpy.polynomial import chebyshev, legendre
 from scipy import fft, linalg, optimize
 
@@ -458,6 +457,8 @@ def comparison_figure(path):
     contact = Contact(Hertz(scene["R"]), scene["E_star"], scene["f"], scene["P"])
     Q = scene["Q/fP"] * contact.f * contact.P
     fp0, a = contact.f * contact.p0, contact.a
+    from matplotlib.figure import Figure  # here: `import fretting` does without matplotlib
+
     figure = Figure(figsize=(11, 5), layout="constrained")
     traction, slip = figure.subplots(1, 2)
     styles = {1: ("-", ""), 2: ("--", "o"), 3: (":", "s"), 4: ("-.", "^")}

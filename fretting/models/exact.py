@@ -33,6 +33,7 @@ import numpy as np
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.solver import chebyshev_angles
+from fretting.physics.closed_forms import masing_increment, masing_origin
 
 __all__ = ["Exact", "ExactModel", "gap", "nodes_theta"]
 
@@ -197,27 +198,17 @@ class ExactModel(Model):
 
         ``sigma`` is zero for this model (`Exact.holds_for`); `guess` is not needed.
         """
-        turning = list(state.memory)
         if Q == state.Q:
-            slip, q, delta_Q, _ = self._at(turning, Q)
+            slip, q, delta_Q, _ = self._at(state.memory, Q)
             return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
-        direction = np.sign(Q - state.Q)
-        origin = _origin(turning)[0]
-        if state.Q != origin and np.sign(state.Q - origin) != direction:  # a reversal: Q_k is a turning point
-            turning.append(state.Q)
-        energy, position = 0.0, state.Q
-        while True:  # each loop that the increment closes, then the branch it ends on
-            closes = None if not turning else (turning[-2] if len(turning) > 1 else -turning[0])
-            passes = closes is not None and (Q - closes) * direction >= 0
-            end = closes if passes else Q
-            factor = _origin(turning)[1]
-            energy += factor * (self._branch(turning, end).energy - self._branch(turning, position).energy)
-            if not passes:
-                break
-            position, turning = end, turning[:-2]
+        turning, pieces = masing_increment(state.memory, state.Q, Q)
+        energy = 0.0
+        for origin, factor, start, end in pieces:  # each loop that the increment closes, then the branch it ends on
+            upper, lower = (self._solution(origin, factor, load).energy for load in (end, start))
+            energy += factor * (upper - lower)
         slip, q, delta_Q, c = self._at(turning, Q)
         zones = [(-c / self.contact.a, c / self.contact.a)]
-        return Outcome(q, slip - state.slip, slip, self.contact.f**2 * energy, tuple(turning), zones, delta_Q)
+        return Outcome(q, slip - state.slip, slip, self.contact.f**2 * energy, turning, zones, delta_Q)
 
     def _at(self, turning, Q):
         """Slip [m], traction [Pa] at the nodes, ``delta_Q`` [m] and the stick half-width [m] at `Q`
@@ -247,8 +238,11 @@ class ExactModel(Model):
         return summed
 
     def _branch(self, turning, Q):
-        """`_Branch` of the last branch of the open `turning` points at `Q` [N/m], computed once per ``P_c``."""
-        origin, factor = _origin(turning)
+        """`_Branch` of the last branch of the open `turning` points at `Q` [N/m]."""
+        return self._solution(*masing_origin(turning), Q)
+
+    def _solution(self, origin, factor, Q):
+        """`_Branch` at `Q` [N/m] of the branch from `origin` [N/m] with `factor`, computed once per ``P_c``."""
         P_c = self.contact.P - abs(Q - origin) / (factor * self.contact.f)
         if P_c not in self._branches:
             if len(self._branches) >= CACHED_BRANCHES:
@@ -285,15 +279,9 @@ def _to_breakpoint(profile, c):
     return min(inside, default=np.inf)
 
 
-def _origin(turning):
-    """Start [N/m] and factor of the last branch: the last open turning point and 2 (Masing), or the
-    contact just formed and 1."""
-    return (turning[-1], 2.0) if turning else (0.0, 1.0)
-
-
 def _signed(turning, Q):
     """Factor of the last branch at `Q`, signed as its change of load."""
-    origin, factor = _origin(turning)
+    origin, factor = masing_origin(turning)
     return np.sign(Q - origin) * factor
 
 

@@ -4,6 +4,9 @@ Conventions of formulation.md: positive Q gives positive slip; positive Q and si
 move the stick zone toward negative x.
 """
 
+import itertools
+import math
+
 import numpy as np
 from scipy import optimize, special
 
@@ -19,7 +22,17 @@ __all__ = [
     "nowell_hills_traction",
     "nowell_hills_offset",
     "ciavarella_jaeger",
+    "cattaneo_mindlin_compliance",
+    "cattaneo_mindlin_dissipation",
+    "mindlin_deresiewicz_energy",
+    "masing_origin",
+    "masing_increment",
+    "masing_walk",
 ]
+
+#: Terms of the power series of `_slip_series`, which it sums below ``psi = 1/4``: ``4^-80`` is
+#: far below rounding.
+SERIES_TERMS = 80
 
 
 def stick_half_width(contact, Q):
@@ -104,3 +117,121 @@ def ciavarella_jaeger(contact, Q, x):
     corrective = Contact(contact.profile, contact.E_star, contact.f, contact.P - abs(Q) / contact.f)
     q = contact.f * (contact.pressure(x) - corrective.pressure(x))
     return np.sign(Q) * q, corrective
+
+
+def _slip_series(psi, first):
+    """``sum_{n >= first} psi^n / (n (n - 1))`` for ``0 <= psi <= 1`` and `first` 2 or 3, without cancellation.
+
+    For ``first = 2`` the sum is ``psi + (1 - psi) ln(1 - psi)``; that form cancels for small
+    ``psi`` (to ``psi^2 / 2``), so below ``psi = 1/4`` the series is summed instead.
+    """
+    psi = float(psi)
+    if psi < 0.25:
+        n = np.arange(first, first + SERIES_TERMS)
+        return float(np.sum(psi**n / (n * (n - 1.0))))
+    two = psi + (1 - psi) * math.log1p(-psi) if psi < 1 else 1.0
+    return two if first == 2 else two - psi**2 / 2
+
+
+def cattaneo_mindlin_compliance(contact, Q):
+    """Tangential displacement ``delta_Q`` [m] of a Hertz contact under monotonic ``Q`` [N/m] (Mindlin 1949).
+
+    The mean slip ``(1/pi) int_0^pi s(a cos th) dth`` of `cattaneo_mindlin_slip`:
+    ``delta_Q = (f p0 a / (2 E_star)) (psi + (1 - psi) ln(1 - psi))`` with ``psi = |Q| / (f P)``,
+    signed as ``Q``; ``f p0 a psi^2 / (4 E_star)`` to leading order.
+    """
+    psi = abs(Q) / (contact.f * contact.P)
+    return math.copysign(contact.f * contact.p0 * contact.a / (2 * contact.E_star) * _slip_series(psi, 2), Q)
+
+
+def cattaneo_mindlin_dissipation(contact, Q):
+    """Energy [J/m] that a Hertz contact dissipates as ``Q`` [N/m] rises monotonically from zero.
+
+    ``int f p |s| dx`` of `cattaneo_mindlin_slip` (every point slips one way only):
+    ``(pi (f p0 a)^2 / (4 E_star)) sum_{n >= 3} psi^n / (n (n - 1))``, ``psi = |Q| / (f P)``.
+    """
+    psi = abs(Q) / (contact.f * contact.P)
+    return math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star) * _slip_series(psi, 3)
+
+
+def mindlin_deresiewicz_energy(contact, Q_star):
+    """Energy [J/m] a Hertz contact dissipates per steady cycle of ``Q`` between ``-Q_star`` and ``Q_star`` [N/m].
+
+    Mindlin & Deresiewicz (1953): the area of the Masing loop of ``Q`` against ``delta_Q``,
+    ``W = 4 Q* delta_Q(Q*) - 8 int_0^Q* delta_Q(u) du`` with `cattaneo_mindlin_compliance`; each
+    of the loop's two branches dissipates twice `cattaneo_mindlin_dissipation` of ``Q*``, so
+    ``W = (pi (f p0 a)^2 / E_star) sum_{n >= 3} psi^n / (n (n - 1))``: the cubic law
+    ``(pi (f p0 a)^2 / E_star) psi^3 / 6 (1 + psi / 2 + ...)`` for small ``psi = Q* / (f P)``.
+    """
+    return 4 * cattaneo_mindlin_dissipation(contact, Q_star)
+
+
+def masing_origin(turning):
+    """Start [N/m] and factor of the branch after the open `turning` points: the last of them and 2
+    (Masing), or the virgin state ``Q = 0`` and 1."""
+    return (turning[-1], 2.0) if turning else (0.0, 1.0)
+
+
+def masing_increment(turning, Q_from, Q_to):
+    """Turning-point memory of Masing's rule over one change of the load ``Q`` [N/m].
+
+    The memory is the stack of open turning points ``Q_1, Q_2, ...``: the path from ``0`` to
+    ``Q_1`` is the virgin (monotonic) curve, every later branch ``Q_i -> Q_(i+1)`` is twice the
+    virgin curve at half the load change (`masing_origin`). A reversal makes ``Q_from`` a
+    turning point; a branch that reaches the turning point before its own start closes that
+    loop, both points leave the stack and the older branch goes on (return-point memory;
+    the virgin curve's bound is ``-Q_1``).
+
+    Parameters
+    ----------
+    turning : sequence of float
+        Open turning points before the change [N/m].
+    Q_from, Q_to : float
+        Load before and after the change [N/m].
+
+    Returns
+    -------
+    turning : tuple of float
+        Open turning points after the change.
+    pieces : list of tuple
+        Branch pieces ``(origin, factor, Q_start, Q_end)`` walked, in order; empty if ``Q`` did
+        not change.
+    """
+    turning = list(turning)
+    if Q_to == Q_from:
+        return tuple(turning), []
+    direction = np.sign(Q_to - Q_from)
+    origin = masing_origin(turning)[0]
+    if Q_from != origin and np.sign(Q_from - origin) != direction:
+        turning.append(Q_from)
+    pieces, start = [], Q_from
+    while True:
+        closes = None if not turning else (turning[-2] if len(turning) > 1 else -turning[0])
+        passes = closes is not None and (Q_to - closes) * direction >= 0
+        end = closes if passes else Q_to
+        pieces.append((*masing_origin(turning), start, end))
+        if not passes:
+            return tuple(turning), pieces
+        start, turning = end, turning[:-2]
+
+
+def masing_walk(Q):
+    """`masing_increment` along a whole history of ``Q`` [N/m] from the virgin state ``Q[0] = 0``.
+
+    Returns
+    -------
+    stacks : list of tuple
+        Open turning points after each step.
+    pieces : list of list of tuple
+        Branch pieces ``(origin, factor, Q_start, Q_end)`` walked in the increment ending at each
+        step (none at step 0).
+    """
+    Q = np.asarray(Q, dtype=float)
+    if Q[0] != 0:
+        raise ValueError(f"the Masing walk starts from the virgin state Q = 0, found {Q[0]!r}")
+    stacks, pieces = [()], [[]]
+    for before, after in itertools.pairwise(Q.tolist()):
+        stack, walked = masing_increment(stacks[-1], before, after)
+        stacks.append(stack)
+        pieces.append(walked)
+    return stacks, pieces

@@ -33,14 +33,10 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
-from matplotlib.colors import BoundaryNorm, ListedColormap
-from matplotlib.figure import Figure
-from matplotlib.patches import Patch
-from matplotlib.ticker import LogLocator
 
 from fretting.analysis import nucleation
 from fretting.engine.simulation import simulate
-from fretting.errors import GrossSlipError
+from fretting.errors import GrossSlipError, MissingDependencyError
 from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
 from fretting.results.io import ENGINE, save
 
@@ -215,6 +211,8 @@ def sweep(path, grid, scheduler=None, *, output=None):
         When the file cannot be read, or the scheduler does not answer.
     HistoryFileError
         When the file is malformed, a key is not in it, or a value is not one the key takes.
+    MissingDependencyError
+        When dask.distributed, of the extra ``fretting[sweep]``, is not installed.
     """
     source = read_history_source(path)
     base = Base(source.path, source.text, tomllib.loads(source.text))
@@ -408,11 +406,10 @@ def run_sweep(plan, scheduler=None, output=None):
     summaries = [_finished(file, plan.base, case) for file, case in zip(files, cases, strict=True)]
     todo = [k for k, summary in enumerate(summaries) if summary is None]
     if todo:
-        from distributed import as_completed  # here: half a second of imports that only sweeps need
-
-        with _client(scheduler, len(todo)) as client:
+        distributed = _distributed()
+        with _client(distributed, scheduler, len(todo)) as client:
             futures = {client.submit(run_case, plan.base, cases[k], plan.origin, pure=False): k for k in todo}
-            for future in as_completed(futures):
+            for future in distributed.as_completed(futures):
                 k = futures[future]
                 summaries[k] = future.result()
                 if files[k] is not None:
@@ -443,12 +440,29 @@ def _finished(file, base, case):
     return summary if all(summary.attrs.get(name) == value for name, value in identity.items()) else None
 
 
-@contextlib.contextmanager
-def _client(scheduler, cases):
-    """A dask.distributed client of the scheduler at `scheduler`, or of a local cluster for `cases` cases."""
-    from dask.system import CPU_COUNT  # the cores this process may use
-    from distributed import Client, LocalCluster
+def _distributed():
+    """The module ``distributed``, imported here: half a second of imports that only sweeps need, and an extra.
 
+    Raises
+    ------
+    MissingDependencyError
+        When dask.distributed is not installed.
+    """
+    try:
+        import distributed
+    except ImportError as error:
+        raise MissingDependencyError(
+            f"sweeps run on dask.distributed, which is not installed ({error}): pip install 'fretting[sweep]'"
+        ) from None
+    return distributed
+
+
+@contextlib.contextmanager
+def _client(distributed, scheduler, cases):
+    """A client of the module `distributed` to the scheduler at `scheduler`, or to a local cluster for `cases` cases."""
+    from dask.system import CPU_COUNT  # the cores this process may use; dask comes with distributed
+
+    Client, LocalCluster = distributed.Client, distributed.LocalCluster
     if scheduler is not None:
         try:
             client = Client(scheduler)
@@ -522,6 +536,10 @@ def fretting_map(cases, ax):
     (x, x_label), (y, y_label) = (_axis(cases, key) for key in (x_key, y_key))
     x, y = (values.transpose(y_key, x_key).values for values in xr.broadcast(x, y))
     regime = cases.regime.transpose(y_key, x_key).values
+    from matplotlib.colors import BoundaryNorm, ListedColormap  # here: `import fretting` does without matplotlib
+    from matplotlib.patches import Patch
+    from matplotlib.ticker import LogLocator
+
     colours = ListedColormap(REGIME_COLOURS)
     ax.pcolormesh(x, y, regime, cmap=colours, norm=BoundaryNorm(np.arange(len(REGIMES) + 1) - 0.5, len(REGIMES)))
     energy = cases.energy_per_cycle.transpose(y_key, x_key).values
@@ -550,6 +568,8 @@ def _axis(cases, key):
 
 def save_map(cases, path):
     """Write the `fretting_map` of `cases` to the PNG file `path` (6.4 x 4.4 inches, 100 dpi); return `path`."""
+    from matplotlib.figure import Figure
+
     figure = Figure(figsize=(6.4, 4.4), layout="constrained")
     fretting_map(cases, figure.subplots())
     figure.savefig(path, dpi=MAP_DPI)

@@ -1,33 +1,25 @@
-"""Speed against error (issue 5): what each engine configuration costs and how right it is.
+"""The speed-against-error benchmark: scenes, engine configurations, a hand-written baseline, timing.
 
-``fretting bench`` runs every configuration of `configurations` (and the engine's defaults) on
-the scenes of `scenes`, times them (median of repeats, one core), scores them against
-references and writes ``speed_vs_error.csv``, ``speed_vs_error.png`` and ``speed_vs_error.md``.
-Until the command line is wired, ``python -m fretting.bench [--quick] [--out DIR]`` does the same.
+benchmarks/speed_vs_error.py runs it and writes the report; the other scripts of benchmarks/ take
+their scenes from here (``import harness``: run them as ``python benchmarks/<script>.py``, which
+puts this folder on the path). Not part of the installed package.
 
 Scenes: a Hertz contact under Q cycling (reference: Cattaneo-Mindlin with the Masing rule, the
 energy per cycle of Mindlin-Deresiewicz), under in-phase Q and sigma (Nowell-Hills with the
 Masing rule), a rounded flat punch under a seeded random Q/sigma path and a Hertz contact under
 90-degree out-of-phase Q/sigma (both: the most resolved run, `reference_configuration`), and the
 10-vertex random Q/sigma Hertz path on which `baseline_simulate`, the dense active-set method-4
-solver the field writes by hand, is timed beside the engine.
-
-Errors, each the largest over the steps (or cycles) of a run:
-
-- stick ends [a]: distance between the stick-zone ends of the run and of the reference (a zone
-  only one of them has counts by half its width, `zone_distance`);
-- energy per cycle [-]: ``|W / W_ref - 1|``;
-- traction [f p0]: ``|q - q_ref|`` at the run's own points, leaving out `BAND` around every
-  stick/slip boundary of the reference, those of the step and those its memory keeps (former
-  boundaries where locked-in slip starts like ``d^(3/2)``), and inside each contact edge: there
-  the traction has square-root kinks.
+solver the field writes by hand, is timed beside the engine. Errors are those of
+`fretting.analysis.accuracy.score`, each the largest over the steps (or cycles) of a run.
 
 Only the public interface is used: ``fretting.simulate(contact, history, **kwargs)`` and its
 dataset, so any model the engine offers is measured the same way.
+
+Also here, shared by the scripts and the tests: the profile families of the property tests
+(`SHAPES`, `family_contact`) and the Galerkin mesh's adaptive loop written out by hand (`adapt`).
 """
 
-import argparse
-import csv
+import functools
 import itertools
 import json
 import math
@@ -44,41 +36,15 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
-from scipy import integrate
 
 import fretting as fr
+from fretting.analysis import accuracy
+from fretting.models import galerkin as gk
 from fretting.models.method4 import stick_zones
-from fretting.physics import closed_forms as cf
+from fretting.models.solver import solve_increment
 
-__all__ = [
-    "BAND",
-    "DEFAULT",
-    "LongTarget",
-    "Reference",
-    "Scene",
-    "add_arguments",
-    "baseline_configurations",
-    "baseline_simulate",
-    "configurations",
-    "cycle_energy",
-    "energy_error",
-    "long_targets",
-    "masing_reference",
-    "masing_walk",
-    "memory_kinks",
-    "mindlin_compliance",
-    "monotonic_dissipation",
-    "reference_configuration",
-    "run",
-    "run_reference",
-    "scenes",
-    "score",
-    "traction_error",
-    "zone_distance",
-]
-
-#: Band left out of the traction error around each stick/slip boundary and inside each edge [a].
-BAND = 0.02
+#: This folder: the long runs' child processes import the harness from it.
+HERE = Path(__file__).resolve().parent
 
 #: The engine as a user gets it: ``fretting.simulate(contact, history)``.
 DEFAULT = ("default", {})
@@ -99,11 +65,6 @@ BASELINE_ITERATIONS = 200
 BASELINE_ROUNDING = 1e-13
 
 ERRORS = ("stick_ends_a", "energy_rel", "traction_fp0")
-ERROR_TITLES = {
-    "stick_ends_a": "stick-zone ends /a",
-    "energy_rel": "energy per cycle (relative)",
-    "traction_fp0": "traction /(f p0)",
-}
 
 
 # -- Configurations -------------------------------------------------------------------------
@@ -122,7 +83,7 @@ def configurations(quick=False):
     Returns
     -------
     list of (str, dict)
-        Label and keyword arguments of `fretting.engine.simulation`.
+        Label and keyword arguments of `fretting.simulate`.
     """
     nodes = (32, 64) if quick else (64, 128, 256, 384, 512, 768, 1024)
     tolerances = () if quick else (1e-3, 1e-4)
@@ -355,352 +316,52 @@ def scenes(quick=False):
     ]
 
 
-# -- Closed forms -----------------------------------------------------------------------------
+# -- Profile families: random contacts of the property tests and of default_out_of_phase.py ------
 
 
-def _tail(psi, first):
-    """``sum_{n >= first} psi^n / (n (n - 1))`` for ``0 <= psi <= 1`` and ``first`` 2 or 3, without cancellation."""
-    psi = float(psi)
-    if psi < 0.25:
-        n = np.arange(first, first + 80)
-        return float(np.sum(psi**n / (n * (n - 1.0))))
-    two = psi + (1 - psi) * math.log1p(-psi) if psi < 1 else 1.0
-    return two if first == 2 else two - psi**2 / 2
+def asymmetric_flat(b=5e-4, right=0.01, left=0.04):
+    """Flat of half-width `b` [m] with a corner of radius `right` [m] at x > b and `left` [m] at x < -b.
 
-
-def mindlin_compliance(contact, Q):
-    """``delta_Q`` [m] of the Cattaneo-Mindlin slip of a Hertz contact under monotonic ``Q`` [N/m].
-
-    ``delta_Q = (1/pi) int_0^pi s(a cos th) dth = (f p0 a / (2 E_star)) (psi + (1 - psi) ln(1 - psi))``,
-    ``psi = |Q| / (f P)``, signed as ``Q`` (from ``ds/db = -(2 f p0 b / (E_star a)) arccosh(|x|/b)``).
-    """
-    psi = abs(Q) / (contact.f * contact.P)
-    return math.copysign(contact.f * contact.p0 * contact.a / (2 * contact.E_star) * _tail(psi, 2), Q)
-
-
-def cycle_energy(contact, Q_star):
-    """Energy dissipated per steady cycle between ``+-Q_star`` [J/m] of a Hertz contact (Mindlin-Deresiewicz).
-
-    ``W = 4 Q* dv(Q*) - 8 int_0^Q* dv(u) du`` with ``dv`` = `mindlin_compliance`: the area of the
-    Masing loop of ``Q`` against ``delta_Q``.
-    """
-    Q_star = abs(Q_star)
-    area, _ = integrate.quad(lambda u: mindlin_compliance(contact, u), 0.0, Q_star, epsabs=0.0, epsrel=1e-13)
-    return 4 * Q_star * mindlin_compliance(contact, Q_star) - 8 * area
-
-
-def monotonic_dissipation(contact, Q, ratio=0.0):
-    """Energy [J/m] dissipated by a Hertz contact loaded from zero along ``sigma = ratio Q`` to ``Q`` [N/m].
-
-    ``int f p |s| dx`` of the Nowell-Hills slip (Cattaneo-Mindlin when ``ratio = 0``): every point
-    slips one way only. Closed form for ``ratio = 0``,
-    ``(pi f^2 p0^2 a^2 / (4 E_star)) sum_{n>=3} psi^n / (n (n - 1))``; otherwise quadrature.
-
-    Parameters
-    ----------
-    ratio : float
-        ``sigma / Q`` [1/m], within Nowell-Hills' range ``|ratio| <= 2 p0 / P``.
-    """
-    if ratio == 0.0:
-        psi = abs(Q) / (contact.f * contact.P)
-        return math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star) * _tail(psi, 3)
-    return _slip_work(contact, Q, ratio)
-
-
-def _slip_work(contact, Q, ratio, order=64):
-    """``int f p |s| dx`` [J/m] of the Nowell-Hills slip at ``Q``, ``sigma = ratio Q``, by quadrature.
-
-    Each slip zone, from its stick end ``L`` to the contact edge ``E``, is mapped by
-    ``x = L + (E - L) sin^2(phi / 2)``: the ``(x - L)^(3/2)`` of the slip and the
-    ``sqrt(E - x)`` of the pressure become analytic in ``phi``, so Gauss-Legendre of `order`
-    points converges exponentially: 1e-14 of the closed form at ``Q/(f P) >= 0.2``, 2e-10 at 0.001,
-    where the slip formula's own cancellation dominates.
-    """
-    if Q == 0:
-        return 0.0
-    a = contact.a
-    b = float(cf.stick_half_width(contact, Q))
-    e = float(np.sign(Q) * cf.nowell_hills_offset(contact, ratio * Q))
-    node, weight = np.polynomial.legendre.leggauss(order)
-    phi = np.pi * (node + 1) / 2
-    total = 0.0
-    for stick_end, edge in ((e + b, a), (e - b, -a)):
-        x = stick_end + (edge - stick_end) * np.sin(phi / 2) ** 2
-        dx = (edge - stick_end) * np.sin(phi / 2) * np.cos(phi / 2) * np.pi / 2
-        slip = np.abs(cf.cattaneo_mindlin_slip(contact, Q, x - e))
-        total += np.sum(weight * contact.f * contact.pressure(x) * slip * np.abs(dx))
-    return float(total)
-
-
-@dataclass(frozen=True, eq=False)
-class _Monotonic:
-    """Hertz contact loaded from zero along ``sigma = ratio Q``: Nowell-Hills (Cattaneo-Mindlin if ``ratio = 0``)."""
-
-    contact: fr.Contact
-    ratio: float
-
-    def traction(self, Q, x):
-        return cf.nowell_hills_traction(self.contact, Q, self.ratio * Q, x)
-
-    def zone(self, Q):
-        """Stick zone ``(start, end)`` [m]."""
-        centre = float(np.sign(Q) * cf.nowell_hills_offset(self.contact, self.ratio * Q))
-        b = float(cf.stick_half_width(self.contact, Q))
-        return centre - b, centre + b
-
-    def dissipation(self, Q, cache):
-        key = abs(Q)
-        if key not in cache:
-            cache[key] = monotonic_dissipation(self.contact, key, self.ratio)
-        return cache[key]
-
-
-# -- Masing reference -------------------------------------------------------------------------
-
-
-def masing_walk(Q):
-    """Turning-point memory of the Masing rule along the load parameter ``Q``.
-
-    The state is a stack of turning points ``Q_1, Q_2, ...``: the path ``0 -> Q_1`` is the
-    virgin (monotonic) curve, every later branch ``Q_i -> Q_{i+1}`` is twice the virgin curve at
-    half the load change. A branch that reaches the turning point before its own start closes
-    its loop: both points leave the stack (the virgin curve's bound is ``-Q_1``).
-
-    Parameters
-    ----------
-    Q : array_like, shape (n,)
-        Load parameter at each step [N/m]; step 0 is the virgin state at ``Q = 0``.
-
-    Returns
-    -------
-    stacks : list of tuple
-        Turning points after each step.
-    segments : list of list of tuple
-        Branch pieces ``(origin, scale, Q_from, Q_to)`` walked in the increment ending at each
-        step, ``scale`` 1 on the virgin curve (origin 0) and 2 after a turning point.
-    """
-    Q = np.asarray(Q, dtype=float)
-    if Q[0] != 0:
-        raise ValueError(f"the Masing walk starts from the virgin state Q = 0, found {Q[0]!r}")
-    stack, direction = [], 0.0
-    stacks, segments = [()], [[]]
-    for previous, load in itertools.pairwise(Q.tolist()):
-        move = float(np.sign(load - previous))
-        walked = []
-        if move:
-            if direction and move != direction:
-                stack.append(previous)
-            direction, start = move, previous
-            while True:
-                origin, scale = (stack[-1], 2) if stack else (0.0, 1)
-                bound = stack[-2] if len(stack) > 1 else (-stack[0] if stack else None)
-                if bound is not None and (load - bound) * move >= 0:
-                    walked.append((origin, scale, start, bound))
-                    start = bound
-                    del stack[-2:]
-                    continue
-                walked.append((origin, scale, start, load))
-                break
-        stacks.append(tuple(stack))
-        segments.append(walked)
-    return stacks, segments
-
-
-@dataclass(frozen=True, eq=False)
-class Reference:
-    """What a run is scored against, per step of the history.
-
-    Attributes
-    ----------
-    label : str
-        "closed form" or the label of the reference run.
-    zones : list of ndarray, shape (n_zones, 2)
-        Stick zones ``(start, end)`` of the increment ending at each step [m].
-    kinks : list of ndarray
-        Where the traction has a square-root kink at each step [m]: left out of the traction error.
-    cycle_energy : ndarray
-        Energy dissipated in each cycle [J/m].
-    tractions : callable
-        ``tractions(step, x)``: the traction [Pa] at positions ``x`` [m].
+    Returns ``h0``, its slope and the ends of the flat, where the curvature jumps.
     """
 
-    label: str
-    zones: list
-    kinks: list
-    cycle_energy: np.ndarray
-    tractions: object
+    def h0(x):
+        x = np.asarray(x, float)
+        return np.where(x > b, (x - b) ** 2 / (2 * right), np.where(x < -b, (x + b) ** 2 / (2 * left), 0.0))
+
+    def slope(x):
+        x = np.asarray(x, float)
+        return np.where(x > b, (x - b) / right, np.where(x < -b, (x + b) / left, 0.0))
+
+    return h0, slope, (-b, b)
 
 
-def _proportional_ratio(history):
-    """``sigma / Q`` of a proportional history (raises if it is not)."""
-    k = int(np.argmax(np.abs(history.Q)))
-    ratio = float(history.sigma[k] / history.Q[k])
-    if not np.allclose(history.sigma, ratio * history.Q, rtol=1e-12, atol=1e-12 * np.abs(history.sigma).max()):
-        raise ValueError("the Masing reference needs proportional loads, sigma = ratio Q")
-    return ratio
+E_STAR = 115e9
 
 
-def masing_reference(contact, history):
-    """Closed-form reference of a Hertz contact under proportional loads ``sigma = ratio Q`` from zero.
-
-    The Masing rule over the Nowell-Hills solution (Cattaneo-Mindlin and Mindlin-Deresiewicz
-    when ``sigma = 0``): valid while Nowell-Hills is, ``|ratio| <= 2 p0 / P`` and the stick zone
-    inside the contact.
-
-    Returns
-    -------
-    Reference
-        Kinks include the stick-zone ends of every branch the memory keeps.
-    """
-    mono = _Monotonic(contact, _proportional_ratio(history))
-    stacks, segments = masing_walk(history.Q)
-    cache = {}
-    dissipation = np.array([sum(_branch_dissipation(mono, piece, cache) for piece in walk) for walk in segments])
-    zones = [np.array([_last_zone(mono, walk)]) for walk in segments]
-    paths = [_branches(stack, load) for stack, load in zip(stacks, history.Q.tolist(), strict=True)]
-    kinks = [np.array([end for o, s, to in path if to != o for end in mono.zone((to - o) / s)]) for path in paths]
-
-    def tractions(step, x):
-        return sum((s * mono.traction((to - o) / s, x) for o, s, to in paths[step]), np.zeros(np.shape(x)))
-
-    energy = np.bincount(history.cycle, weights=dissipation)[1:]
-    return Reference("closed form (Masing)", zones, kinks, energy, tractions)
+@functools.cache
+def family_contact(kind, shape, f, P):
+    """A contact of one of the families of `SHAPES` (``E_star = E_STAR``); `shape`: lengths [m], `P` [N/m]."""
+    if kind == "hertz":
+        profile = fr.Hertz(*shape)
+    elif kind == "rounded_flat":
+        profile = fr.RoundedFlat(*shape)
+    elif kind == "flat":
+        profile = fr.FlatPunch(*shape)
+    else:
+        profile = fr.Gap(*asymmetric_flat(*shape))
+    return fr.Contact(profile, E_STAR, f, P)
 
 
-def _branch_dissipation(mono, piece, cache):
-    """Energy [J/m] dissipated along a piece ``(origin, scale, Q_from, Q_to)`` of a Masing branch."""
-    origin, scale, start, end = piece
-    return scale * (mono.dissipation((end - origin) / scale, cache) - mono.dissipation((start - origin) / scale, cache))
+SHAPES = {
+    "hertz": [(0.01,), (0.05,), (0.5,)],
+    "rounded_flat": [(2e-4, 0.02), (1e-3, 0.02), (5e-4, 0.1)],
+    "flat": [(3e-4,), (2e-3,)],
+    "asymmetric": [(5e-4, 0.01, 0.04), (2e-4, 0.05, 0.005), (1e-4, 0.02, 0.2)],
+}
 
-
-def _last_zone(mono, walk):
-    """Stick zone [m] of an increment: that of the branch it ends on; the whole contact if nothing moved."""
-    if not walk:
-        return (-mono.contact.a, mono.contact.a)
-    origin, scale, _, end = walk[-1]
-    return mono.zone((end - origin) / scale)
-
-
-def _branches(stack, load):
-    """Branches ``(origin, scale, end)`` from the virgin state through the turning points to ``load``."""
-    points = [0.0, *stack, load]
-    return [(o, 1 if i == 0 else 2, to) for i, (o, to) in enumerate(itertools.pairwise(points))]
-
-
-def run_reference(result, label):
-    """Reference from a (most resolved) run of every step: its stick zones, energies and traction.
-
-    The traction is interpolated linearly. Kinks are the stick-zone ends of the step and the
-    boundaries the memory keeps, `memory_kinks`.
-    """
-    if not np.array_equal(result.step.values, np.arange(result.sizes["step"])):
-        raise ValueError("a reference run must record every step")
-    zones = [_run_zones(result, k) for k in range(result.sizes["step"])]
-    x, q = result.x.values, result.q.values
-    kinks = [np.concatenate([z.ravel(), m]) for z, m in zip(zones, memory_kinks(x, result.stick.values), strict=True)]
-
-    def tractions(step, at):
-        return np.interp(at, x, q[step])
-
-    return Reference(label, zones, kinks, result.cycle_dissipation.values, tractions)
-
-
-def memory_kinks(x, stick):
-    """Former stick/slip boundaries where the locked-in slip still puts a kink in the traction [m], per step.
-
-    Where a point that slipped at step ``k`` meets one that last slipped before ``k - 1`` (or
-    never), the slip of the later episode starts like ``d^(3/2)`` and the traction has a
-    square-root kink; a boundary that sweeps outward step by step leaves none. The kink is placed
-    midway between the two points.
-
-    Parameters
-    ----------
-    x : ndarray, shape (N,)
-        Positions [m], ascending.
-    stick : ndarray of bool, shape (n_steps, N)
-        The point did not slip in the increment ending at each step (step 0: the start).
-
-    Returns
-    -------
-    list of ndarray
-    """
-    steps = np.arange(stick.shape[0])[:, None]
-    last = np.maximum.accumulate(np.where(stick, -2, steps), axis=0)  # -2: never slipped
-    middle = (x[1:] + x[:-1]) / 2
-    return [middle[np.abs(np.diff(row)) > 1] for row in last]
-
-
-def _run_zones(result, k):
-    """Stick zones ``(start, end)`` [m] of row `k` of a result."""
-    pairs = np.stack([result.stick_start.values[k], result.stick_end.values[k]], axis=-1)
-    return pairs[~np.isnan(pairs[:, 0])]
-
-
-# -- Error metrics ----------------------------------------------------------------------------
-
-
-def zone_distance(zones, reference):
-    """Distance [m] between two sets of stick zones, each an array of ``(start, end)`` rows.
-
-    The largest distance an end moves when the ends of `zones` are matched in order to those of
-    `reference` (starts to starts, ends to ends), where a zone that one side lacks, a stick zone
-    or the slip zone between two stick zones, may instead close up, at half its width: a zone
-    that nucleates or vanishes between two discretisations counts by its size, not by its
-    distance from the other zones. The smallest such largest distance, by dynamic programming.
-    """
-    u, v = (np.sort(np.asarray(z, dtype=float).reshape(-1, 2), axis=0).ravel() for z in (zones, reference))
-    cost = np.full((u.size + 1, v.size + 1), math.inf)
-    cost[0, 0] = 0.0
-    for i, j in itertools.product(range(u.size + 1), range(v.size + 1)):
-        here = cost[i, j]
-        if here == math.inf:
-            continue
-        if i < u.size and j < v.size and (i - j) % 2 == 0:
-            cost[i + 1, j + 1] = min(cost[i + 1, j + 1], max(here, abs(u[i] - v[j])))
-        if i + 1 < u.size:
-            cost[i + 2, j] = min(cost[i + 2, j], max(here, (u[i + 1] - u[i]) / 2))
-        if j + 1 < v.size:
-            cost[i, j + 2] = min(cost[i, j + 2], max(here, (v[j + 1] - v[j]) / 2))
-    return float(cost[-1, -1])
-
-
-def energy_error(W, W_ref):
-    """Largest ``|W / W_ref - 1|`` over the cycles; ``W_ref`` > 0 [J/m]."""
-    W, W_ref = np.asarray(W, dtype=float), np.asarray(W_ref, dtype=float)
-    if W.shape != W_ref.shape or np.any(W_ref <= 0):
-        raise ValueError(f"need as many cycles, each with positive reference energy, found {W.shape}, {W_ref.shape}")
-    return float(np.max(np.abs(W / W_ref - 1), initial=0.0))
-
-
-def traction_error(x, q, q_ref, exclude, width):
-    """Largest ``|q - q_ref|`` [Pa] at the positions ``x`` [m] farther than `width` [m] from all of `exclude` [m].
-
-    Positions where `q` is NaN (a run without a value there) are skipped.
-    """
-    x = np.asarray(x, dtype=float)
-    far = np.all(np.abs(np.subtract.outer(x, np.asarray(exclude, dtype=float).ravel())) > width, axis=-1)
-    far &= ~np.isnan(np.asarray(q, dtype=float))
-    return float(np.max(np.abs(np.asarray(q) - np.asarray(q_ref))[far], initial=0.0))
-
-
-def score(result, reference):
-    """Errors of a run against a reference: stick ends [a], energy per cycle [-], traction [f p0].
-
-    Every recorded step after the first counts; positions are the run's own.
-    """
-    attrs = result.attrs
-    a, centre, fp0 = attrs["a"], attrs.get("centre", 0.0), attrs["f"] * attrs["p0"]
-    x, q = result.x.values, result.q.values
-    edges = [centre - a, centre + a]
-    stick, traction = 0.0, 0.0
-    for k, step in enumerate(result.step.values.tolist()):
-        if step == 0:
-            continue
-        stick = max(stick, zone_distance(_run_zones(result, k), reference.zones[step]))
-        exclude = np.concatenate([reference.kinks[step], edges])
-        traction = max(traction, traction_error(x, q[k], reference.tractions(step, x), exclude, BAND * a))
-    energy = energy_error(result.cycle_dissipation.values, reference.cycle_energy)
-    return {"stick_ends_a": stick / a, "energy_rel": energy, "traction_fp0": traction / fp0}
+#: Profiles whose pressure vanishes at the contact ends (all but the sharp flat punch).
+SMOOTH = ["hertz", "rounded_flat", "asymmetric"]
 
 
 # -- Baseline: the dense active-set solver written by hand -----------------------------------
@@ -717,7 +378,7 @@ def baseline_simulate(contact, history, nodes):
     went against its direction, release the stuck nodes whose traction exceeds the friction
     limit, until nothing moves. Independent of `fretting.models.solver`; the same discretisation, so
     its increments equal the engine's Chebyshev model's. Stick-zone ends are the engine's own
-    sub-grid estimate (`fretting.engine.simulation.stick_zones`), so that the two are compared as solvers,
+    sub-grid estimate (`fretting.models.method4.stick_zones`), so that the two are compared as solvers,
     not as post-processing.
 
     Returns
@@ -856,24 +517,23 @@ def measure_scene(scene, repeats, quick, log):
     every = np.arange(len(scene.history))
     simulate = lambda kwargs: lambda: fr.simulate(scene.contact, scene.history, record=every, **kwargs)  # noqa: E731
     if scene.closed_form:
-        reference = masing_reference(scene.contact, scene.history)
+        reference = accuracy.masing_reference(scene.contact, scene.history)
     else:
         label, kwargs = reference_configuration(quick, scene.baseline)
         result, seconds, peak = measure(simulate(kwargs), 1)
-        reference = run_reference(result, label)
+        reference = accuracy.run_reference(result, label)
         rows.append(_row(scene, "reference", label, kwargs, result, seconds, peak, 1, None, label))
         log(f"{scene.name}: reference {label}: {rows[-1]['ms_per_step']:.3g} ms per step")
     for role, (label, kwargs) in [("default", DEFAULT)] + [("engine", c) for c in configurations(quick)]:
         result, seconds, peak = measure(simulate(kwargs), repeats)
-        rows.append(
-            _row(scene, role, label, kwargs, result, seconds, peak, repeats, score(result, reference), reference.label)
-        )
+        errors = accuracy.score(result, reference)
+        rows.append(_row(scene, role, label, kwargs, result, seconds, peak, repeats, errors, reference.label))
         log(_describe(rows[-1]))
     if scene.baseline:
         for label, nodes in baseline_configurations(quick):
             compute = lambda nodes=nodes: baseline_simulate(scene.contact, scene.history, nodes)  # noqa: E731
             result, seconds, peak = measure(compute, repeats)
-            errors = score(result, reference)
+            errors = accuracy.score(result, reference)
             rows.append(
                 _row(
                     scene, "baseline", label, {"nodes": nodes}, result, seconds, peak, repeats, errors, reference.label
@@ -988,7 +648,7 @@ def _long_child(spec):
 def _run_long_child(target, cycles, kwargs, quick, timeout):
     """Seconds, peak resident memory [bytes] and cycle energies of a child run; None if it timed out."""
     spec = json.dumps({"target": target.name, "cycles": cycles, "kwargs": kwargs, "quick": quick})
-    code = "import sys; from fretting import bench; bench._long_child(sys.argv[1])"
+    code = f"import sys; sys.path.insert(0, {str(HERE)!r}); import harness; harness._long_child(sys.argv[1])"
     try:
         done = subprocess.run(
             [sys.executable, "-c", code, spec], capture_output=True, text=True, timeout=timeout, check=True
@@ -1007,7 +667,7 @@ def long_reference_energies(target, references, cycles):
     loads; later cycles repeat the last cycle known (constant amplitude: the state is periodic).
     """
     if target.scene is None:
-        known = masing_reference(target.contact, target.history(3)).cycle_energy
+        known = accuracy.masing_reference(target.contact, target.history(3)).cycle_energy
     else:
         known = references[target.scene].cycle_energy
     return np.concatenate([known[:cycles], np.full(max(cycles - known.size, 0), known[-1])])
@@ -1066,7 +726,7 @@ def _long_row(target, references, last, timeout, stopped=False):
     if last is None:
         return row | {"status": f"misses (stopped after {timeout:g} s)", "seconds": math.nan, "run_cycles": 0}
     cycles, outcome = last
-    energy = energy_error(outcome["cycle_energy"], long_reference_energies(target, references, cycles))
+    energy = accuracy.energy_error(outcome["cycle_energy"], long_reference_energies(target, references, cycles))
     whole = cycles == target.cycles
     seconds = outcome["seconds"] * (1 if whole else target.cycles / cycles)
     meets = seconds <= target.seconds and (target.energy is None or energy <= target.energy)
@@ -1141,244 +801,57 @@ def _meta(quick, repeats, seconds):
     }
 
 
-# -- Writers ------------------------------------------------------------------------------------
-
-CSV_COLUMNS = (
-    "scene", "role", "label", "model", "kwargs", "points", "steps", "repeats", "total_s", "ms_per_step", "peak_MB",
-    *ERRORS, "reference",
-)  # fmt: skip
+# -- The Galerkin mesh's adaptive loop, by hand ------------------------------------------------
 
 
-def write_csv(rows, path):
-    """One row per scene and configuration."""
-    with open(path, "w", newline="") as file:
-        writer = csv.DictWriter(file, CSV_COLUMNS, extrasaction="ignore")
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: f"{v:.6g}" if isinstance(v, float) else v for k, v in row.items()})
-    return path
+def increments(scene, Q, sigma=None):
+    """Increments of the path ``Q[k], sigma[k]`` from the virgin contact: slip increments and ``g``."""
+    sigma = np.zeros_like(Q) if sigma is None else sigma
+    slip = np.zeros(scene.x.size)
+    ds, g = [], []
+    for k in range(1, len(Q)):
+        increment = solve_increment(scene.G, scene.g_stuck(Q[k], sigma[k]) - scene.G @ slip, scene.limit)
+        slip = slip + increment.ds
+        ds.append(increment.ds)
+        g.append(increment.g)
+    return np.array(ds), np.array(g)
 
 
-def write_png(rows, path):
-    """Error against time per step, log-log, one panel per error; lines join one model's configurations."""
-    import matplotlib
+def adapt(contact, Q, sigma=None, rtol=gk.DEFAULT_RTOL, theta=None, passes=30):
+    """Refine until the mesh stays: the scene, its increments ``ds`` and ``g``, and the number of passes.
 
-    matplotlib.use("Agg")
-    from matplotlib.figure import Figure
-    from matplotlib.ticker import NullFormatter
-
-    figure = Figure(figsize=(14, 4.6), layout="constrained")
-    axes = figure.subplots(1, len(ERRORS))
-    names = list(dict.fromkeys(r["scene"] for r in rows))
-    colours = dict(zip(names, matplotlib.colormaps["tab10"].colors, strict=False))
-    for ax, error in zip(axes, ERRORS, strict=True):
-        for (name, model), group in itertools.groupby(
-            sorted(
-                (r for r in rows if r["role"] in ("engine", "baseline")),
-                key=lambda r: (r["scene"], r["model"], r["points"]),
-            ),
-            key=lambda r: (r["scene"], r["model"]),
-        ):
-            group = [r for r in group if r[error] > 0]
-            style = (
-                {"ls": "--", "marker": "x", "mfc": "none"}
-                if model == "baseline"
-                else {"ls": "-", "marker": "o", "ms": 4}
-            )
-            label = f"{name} ({model})" if model != "chebyshev" else name
-            ax.plot(
-                [r["ms_per_step"] for r in group], [r[error] for r in group], color=colours[name], label=label, **style
-            )
-        for r in rows:
-            if r["role"] == "default" and r[error] > 0:
-                ax.plot(r["ms_per_step"], r[error], "*", color=colours[r["scene"]], ms=13, mec="k", mew=0.6)
-        ax.set(xscale="log", yscale="log", xlabel="wall time per step [ms], one core", title=ERROR_TITLES[error])
-        ax.xaxis.set_minor_formatter(NullFormatter())
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0].legend(fontsize=7, title="lines: configurations; star: default", title_fontsize=7)
-    figure.savefig(path, dpi=130)
-    return path
-
-
-def _fmt(value, spec=".2e"):
-    if value is None or (isinstance(value, float) and math.isnan(value)):
-        return "-"
-    return format(value, spec)
-
-
-def _table(header, lines):
-    out = [
-        "| " + " | ".join(header) + " |",
-        "|" + "|".join(" ---: " if i else " --- " for i in range(len(header))) + "|",
-    ]
-    return out + ["| " + " | ".join(str(cell) for cell in line) + " |" for line in lines]
-
-
-def _field_table(rows, columns):
-    """`_table` of the dicts `rows`; `columns` are ``(header, key, format)``, format None: the value as it is.
-
-    A key a row lacks (a measurement not made) shows as ``-``.
+    The loop of the Galerkin issue, by hand: run the path ``Q[k], sigma[k]`` [N/m, Pa], reduce
+    the element targets of every increment, refine, from `theta` (default
+    `fretting.models.galerkin.initial_theta`).
     """
-    header = tuple(title for title, _, _ in columns)
-    cells = [[_fmt(row.get(key), spec or "") for _, key, spec in columns] for row in rows]
-    return _table(header, cells)
+    theta = gk.initial_theta() if theta is None else theta
+    for count in range(1, passes + 1):
+        scene = gk.Mesh(theta=theta).build(contact)
+        ds, g = increments(scene, Q, sigma)
+        refined = gk.refine(theta, gk.element_targets(theta, ds, rtol, scene.breakpoints))
+        if refined is theta:
+            return scene, ds, g, count
+        theta = refined
+    raise RuntimeError("the mesh did not settle")
 
 
-def markdown(report, png_name):
-    """The short report: how it was measured, one table per scene, the baseline, scaling, long runs."""
-    meta, ratio = report["meta"], report["ratio"]
-    lines = [
-        "# Speed against error",
-        "",
-        f"`fretting bench{' --quick' if meta['quick'] else ''}`, {meta['date']}, {meta['cpu']} "
-        f"({meta['cores']} cores), one core ({meta['threads']}); {meta['versions']}. "
-        f"Times are medians of {meta['repeats']} runs "
-        f"(references: one run); peak memory is what tracemalloc saw in a separate run. The benchmark took "
-        f"{meta['seconds']:.0f} s; load average at the end {meta['load']} (other processes share the cores).",
-        "",
-        "Errors are the largest over the steps (cycles) of a run: **stick ends** `/a`, distance between the "
-        "stick-zone ends and the reference's (a zone, stick or slip, that only one of them has counts by half "
-        "its width); **energy**, `|W/W_ref - 1|` per cycle; **traction** `/(f p0)`, "
-        f"`|q - q_ref|` at the run's own points, leaving out {BAND} a around each stick/slip boundary of the "
-        "reference, those of the step and those its memory keeps (square-root kinks of the traction), and "
-        "inside each contact edge. References of runs are interpolated linearly to the run's points.",
-        "",
-        f"![error against time per step]({png_name})",
-        "",
-        *_table(("scene", "history", "steps", "reference"), report["scenes"]),
-    ]
-    for name in dict.fromkeys(r["scene"] for r in report["rows"]):
-        lines += ["", f"## {name}", ""]
-        scene_rows = [r for r in report["rows"] if r["scene"] == name]
-        lines += _table(
-            ("configuration", "points", "ms/step", "total s", "peak MB", "stick ends /a", "energy", "traction /fp0"),
-            [
-                (
-                    f"**{r['label']}**"
-                    if r["role"] == "default"
-                    else f"{r['label']}{' (reference)' if r['role'] == 'reference' else ''}",
-                    r["points"],
-                    _fmt(r["ms_per_step"], ".3g"),
-                    _fmt(r["total_s"], ".3g"),
-                    _fmt(r["peak_MB"], ".3g"),
-                    *(_fmt(r[e]) for e in ERRORS),
-                )
-                for r in scene_rows
-            ],
-        )
-    lines += ["", "## Baseline", "", _ratio_text(ratio), "", "## Cost against resolution", ""]
-    lines += _field_table(
-        report["resolution"],
-        [("model", "model", None), ("configuration", "label", None), ("points", "points", None),
-         ("ms/step", "ms_per_step", ".3g"), ("exponent d ln t / d ln N", "exponent", ".2f"),
-         ("peak MB", "peak_MB", ".3g")],
-    )  # fmt: skip
-    lines += ["", "## Cost against steps (default, Hertz Q cycling, last step recorded)", ""]
-    lines += _field_table(
-        report["steps"],
-        [("cycles", "cycles", None), ("steps", "steps", None), ("total s", "total_s", ".3g"),
-         ("ms/step", "ms_per_step", ".3g"), ("peak MB", "peak_MB", ".3g")],
-    )  # fmt: skip
-    lines += ["", "## Long runs (default settings, fresh process each)", ""]
-    lines += _field_table(
-        report["long"],
-        [("target", "target", None), ("history", "title", None), ("cycles", "cycles", None),
-         ("steps", "steps", None), ("time s", "seconds", ".3g"), ("limit s", "limit_s", "g"),
-         ("energy", "energy_rel", ".2e"), ("limit", "energy_limit", "g"), ("peak RSS GB", "peak_rss_GB", ".3g"),
-         ("status", "status", None)],
-    )  # fmt: skip
-    lines += [
-        "",
-        "Projected times are linear in the cycles from the longest run made; its energy error and peak memory are "
-        "those of that run. Reference energies: the Masing closed form, or (out of phase) the reference run of the "
-        "first three cycles, whose last cycle repeats.",
-    ]
-    return "\n".join(lines) + "\n"
+def cycles(Q_star, steps):
+    """``0 -> Q* -> -Q* -> Q* -> -Q* -> Q*``, `steps` increments a segment; the second cycle is the last 2 segments."""
+    vertices = [0.0, Q_star, -Q_star, Q_star, -Q_star, Q_star]
+    segments = (np.linspace(u, v, steps + 1)[1:] for u, v in zip(vertices[:-1], vertices[1:], strict=True))
+    return np.concatenate([[0.0], *segments])
 
 
-def _ratio_text(ratio):
-    parts = [f"On `{ratio['scene']}` the default takes {ratio['default_ms']:.3g} ms per step."]
-    if ratio["low"]:
-        label, value = ratio["low"]
-        parts.append(
-            f"The most resolved baseline it equals or beats on every error, {label}, takes **{value:.3g} x** as long."
-        )
-    else:
-        parts.append("The default is less accurate than every baseline measured on some error.")
-    if ratio["high"]:
-        label, value = ratio["high"]
-        parts.append(
-            f"The cheapest baseline that equals or beats it on every error, {label}, takes {value:.3g} x as long."
-        )
-    else:
-        parts.append("No baseline measured reaches the default's errors: the ratio at equal error is larger still.")
-    return " ".join(parts)
+def cycle_energy(scene, ds, steps):
+    """Energy [J/m] dissipated in the second cycle of `cycles` (its last ``2 steps`` increments ``ds``)."""
+    return sum(scene.dissipation(row) for row in ds[3 * steps :])
 
 
-def write_md(report, path, png_name):
-    path.write_text(markdown(report, png_name))
-    return path
+def monotonic(Q_end, steps=4, sigma_end=0.0):
+    """``Q`` [N/m] and ``sigma`` [Pa] from zero to `Q_end` and `sigma_end` in `steps` equal increments."""
+    return np.linspace(0, Q_end, steps + 1), np.linspace(0, sigma_end, steps + 1)
 
 
-# -- Command line -------------------------------------------------------------------------------
-
-
-def add_arguments(parser):
-    """Options of ``fretting bench``."""
-    parser.add_argument("--out", default="results", metavar="DIR", help="directory of the outputs (default: results)")
-    parser.add_argument("--quick", action="store_true", help="small scenes and few configurations: a smoke test")
-    parser.add_argument(
-        "--repeats", type=int, default=None, help="timed runs per configuration (default 3; 1 with --quick)"
-    )
-    parser.add_argument(
-        "--long-timeout",
-        type=float,
-        default=None,
-        metavar="SECONDS",
-        help="longest long run (default 60; 20 with --quick)",
-    )
-    parser.add_argument(
-        "--any-threads",
-        action="store_true",
-        help="time with the BLAS threads as they are (default: rerun with one thread)",
-    )
-    return parser
-
-
-def run(args):
-    """Run the benchmark as `args` say; write the CSV, PNG and MD; return the exit code."""
-    if not args.any_threads and any(os.environ.get(name) != "1" for name in ONE_THREAD):
-        command = [sys.executable, "-m", "fretting.bench", *_argv(args)]
-        return subprocess.call(command, env=os.environ | ONE_THREAD)
-    repeats = args.repeats if args.repeats is not None else (1 if args.quick else 3)
-    timeout = args.long_timeout if args.long_timeout is not None else (20.0 if args.quick else 60.0)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    log = lambda message: print(message, file=sys.stderr, flush=True)  # noqa: E731
-    report = benchmark(args.quick, repeats, timeout, timeout / 3, log)
-    stem = out / "speed_vs_error"
-    written = [
-        write_csv(report["rows"], stem.with_suffix(".csv")),
-        write_png(report["rows"], stem.with_suffix(".png")),
-        write_md(report, stem.with_suffix(".md"), stem.with_suffix(".png").name),
-    ]
-    for path in written:
-        print(path)
-    return 0
-
-
-def _argv(args):
-    argv = ["--out", str(args.out), "--any-threads"]
-    argv += ["--quick"] if args.quick else []
-    argv += [] if args.repeats is None else ["--repeats", str(args.repeats)]
-    return argv + ([] if args.long_timeout is None else ["--long-timeout", str(args.long_timeout)])
-
-
-def main(argv=None):
-    """``python -m fretting.bench``."""
-    parser = add_arguments(argparse.ArgumentParser(prog="fretting bench", description=__doc__.splitlines()[0]))
-    return run(parser.parse_args(argv))
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+def ends(scene, slip):
+    """Stick zones ``(start, end)`` [m] from the slip of an episode (zero where it stuck)."""
+    return scene.contact.centre + scene.contact.a * np.array(stick_zones(scene.t, slip))
