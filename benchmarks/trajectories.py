@@ -84,7 +84,7 @@ def asymmetric_gap_flat():
 
 
 def walk(contact, seed, steps, vertices=10, Q_max=0.8, sigma_max=1.0, Q_mean=0.0, sigma_mean=0.0):
-    """Random vertices ``Q/(f P)`` in ``Q_mean +- Q_max``, ``sigma/(f p0)`` in ``sigma_mean +- sigma_max``, from zero."""
+    """Random vertices from zero: ``Q/(f P)`` in ``Q_mean +- Q_max``, ``sigma/(f p0)`` in ``sigma_mean +- sigma_max``."""
     rng = np.random.default_rng(seed)
     fP, fp0 = contact.f * contact.P, contact.f * contact.p0
     Q = (Q_mean + rng.uniform(-Q_max, Q_max, vertices)) * fP
@@ -231,7 +231,8 @@ def table(rows, title):
     print(header)
     for row in rows:
         cells = " ".join(_cell(*row["worst"][n], TARGETS[n]) for n in names)
-        print(f"{row['name']:28} {row['model']:8} {row['nodes']:5d} {row['seconds']:6.2f} {row['ms_step']:7.1f} {cells}")
+        timing = f"{row['nodes']:5d} {row['seconds']:6.2f} {row['ms_step']:7.1f}"
+        print(f"{row['name']:28} {row['model']:8} {timing} {cells}")
     print(f"{'targets':60} " + " ".join(f"{TARGETS[n]:>15.0e}" for n in names))
     for n in names:
         values = np.array([row["worst"][n][0] for row in rows])

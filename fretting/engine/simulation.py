@@ -16,6 +16,7 @@ from fretting.models.galerkin import (
     element_targets,
     extrapolated_end,
     initial_theta,
+    located_end,
     refine,
 )
 from fretting.loading.history import History
@@ -656,7 +657,8 @@ class _Run:
         self.fields["stick"][k] = outcome.ds == 0
         self.fields["dissipation"][k] = outcome.dissipation
         exact = outcome.zones is not None
-        self.zones[k] = outcome.zones if exact else stick_zones(scene.t, state.slip - state.episode_start)
+        end = located_end if isinstance(scene, GalerkinScene) else extrapolated_end
+        self.zones[k] = outcome.zones if exact else stick_zones(scene.t, state.slip - state.episode_start, end)
         self.fields["delta_Q"][k] = outcome.delta_Q if exact else scene.delta_Q(state.slip)
         self.fields["delta_sigma"][k] = 0.0 if exact else scene.delta_sigma(state.slip)  # even slip: zero
 
@@ -727,15 +729,16 @@ def _zone_ends(scene, zones):
     return {"stick_start": ends[..., 0], "stick_end": ends[..., 1]}
 
 
-def stick_zones(t, ds):
+def stick_zones(t, ds, end=extrapolated_end):
     """Stick intervals ``(start, end)`` in normalised position, from the episode slip `ds`.
 
     `ds` is each node's slip since its current episode of slip in one direction began, zero
     where the node stuck in the last increment. Near a stick/slip boundary it grows like
     ``d^(3/2)`` with the distance ``d`` (eq 19; Masing for reversed zones), so ``|ds|^(2/3)`` is
-    extrapolated linearly from the two nearest slipping nodes: 0.05 to 0.1 of the node spacing
-    at the centre on the closed forms (benchmarks/accuracy_vs_nodes.py). A run of stuck nodes
-    that reaches the end of the grid ends at the contact edge.
+    extrapolated linearly by `end`: `extrapolated_end`, from the two nearest slipping nodes (0.05
+    to 0.1 of the node spacing at the centre on the closed forms, benchmarks/accuracy_vs_nodes.py),
+    or on a Galerkin mesh `fretting.models.galerkin.located_end`. A run of stuck nodes that
+    reaches the end of the grid ends at the contact edge.
 
     One interval per run of stuck nodes, in order: each lies between the slipping nodes around
     its run and holds the run's middle, so ``start <= end`` and intervals do not overlap.
@@ -743,16 +746,16 @@ def stick_zones(t, ds):
     stuck = ds == 0
     edges = np.flatnonzero(np.diff(np.concatenate([[0], stuck.astype(np.int8), [0]])))
     runs = edges.reshape(-1, 2)  # [first stuck node, one past the last]
-    return [_zone(t, ds, first, last - 1) for first, last in runs]
+    return [_zone(t, ds, first, last - 1, end) for first, last in runs]
 
 
-def _zone(t, ds, first, last):
+def _zone(t, ds, first, last, end):
     """Stick interval of the run of stuck nodes `first` .. `last`."""
     middle = (t[first] + t[last]) / 2
-    return _boundary(t, ds, first, -1, middle), _boundary(t, ds, last, +1, middle)
+    return _boundary(t, ds, first, -1, middle, end), _boundary(t, ds, last, +1, middle, end)
 
 
-def _boundary(t, ds, inner, side, middle):
+def _boundary(t, ds, inner, side, middle, end):
     """Stick/slip boundary beyond the stuck node `inner` on `side` (-1 below, +1 above).
 
     The discrete stick zone may overshoot the true one by part of a node spacing, so the
@@ -765,7 +768,7 @@ def _boundary(t, ds, inner, side, middle):
     outer = inner + side
     if outer < 0 or outer >= t.size:
         return float(side)
-    estimate = extrapolated_end(t, ds, outer, outer + side)
+    estimate = end(t, ds, outer, outer + side)
     if estimate is None:
         return float((t[inner] + t[outer]) / 2)
     deepest = t[inner] - side * min(abs(t[outer] - t[inner]), abs(t[inner] - middle))
