@@ -45,18 +45,23 @@ class Method4Model(Model):
         return Outcome(solved.g, solved.ds, solved.slip, self.dissipation(solved.ds))
 
     def stick_zones(self, outcome, state):
-        return stick_zones(self.t, state.slip - state.episode_start)
+        return stick_zones(self.t, state.slip - state.episode_start, self.locate_end)
+
+    def locate_end(self, position, d, slipping, beyond):
+        """Where the slip `d` of a slip zone reaches zero between the nodes (`extrapolated_end`)."""
+        return extrapolated_end(position, d, slipping, beyond)
 
 
-def stick_zones(t, ds):
+def stick_zones(t, ds, end=None):
     """Stick intervals ``(start, end)`` in normalised position, from the episode slip `ds`.
 
     `ds` is each node's slip since its current episode of slip in one direction began, zero
     where the node stuck in the last increment. Near a stick/slip boundary it grows like
     ``d^(3/2)`` with the distance ``d`` (eq 19; Masing for reversed zones), so ``|ds|^(2/3)`` is
-    extrapolated linearly from the two nearest slipping nodes (accuracy: the validation pages,
-    benchmarks/accuracy_vs_nodes.py). A run of stuck nodes that reaches the end of the grid ends
-    at the contact edge.
+    extrapolated linearly by `end` (default `extrapolated_end`, from the two nearest slipping
+    nodes; on a Galerkin mesh `fretting.models.galerkin.located_end`; accuracy:
+    benchmarks/accuracy_vs_nodes.py and benchmarks/trajectories.py). A run of stuck nodes that
+    reaches the end of the grid ends at the contact edge.
 
     One interval per run of stuck nodes, in order: each lies between the slipping nodes around
     its run and holds the run's middle, so ``start <= end`` and intervals do not overlap.
@@ -64,16 +69,17 @@ def stick_zones(t, ds):
     stuck = ds == 0
     edges = np.flatnonzero(np.diff(np.concatenate([[0], stuck.astype(np.int8), [0]])))
     runs = edges.reshape(-1, 2)  # [first stuck node, one past the last]
-    return [_zone(t, ds, first, last - 1) for first, last in runs]
+    end = extrapolated_end if end is None else end
+    return [_zone(t, ds, first, last - 1, end) for first, last in runs]
 
 
-def _zone(t, ds, first, last):
+def _zone(t, ds, first, last, end):
     """Stick interval of the run of stuck nodes `first` .. `last`."""
     middle = (t[first] + t[last]) / 2
-    return _boundary(t, ds, first, -1, middle), _boundary(t, ds, last, +1, middle)
+    return _boundary(t, ds, first, -1, middle, end), _boundary(t, ds, last, +1, middle, end)
 
 
-def _boundary(t, ds, inner, side, middle):
+def _boundary(t, ds, inner, side, middle, end):
     """Stick/slip boundary beyond the stuck node `inner` on `side` (-1 below, +1 above).
 
     The discrete stick zone may overshoot the true one by part of a node spacing, so the
@@ -86,7 +92,7 @@ def _boundary(t, ds, inner, side, middle):
     outer = inner + side
     if outer < 0 or outer >= t.size:
         return float(side)
-    estimate = extrapolated_end(t, ds, outer, outer + side)
+    estimate = end(t, ds, outer, outer + side)
     if estimate is None:
         return float((t[inner] + t[outer]) / 2)
     deepest = t[inner] - side * min(abs(t[outer] - t[inner]), abs(t[inner] - middle))
