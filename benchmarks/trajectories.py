@@ -33,8 +33,8 @@ import numpy as np
 
 import fretting as fr
 from fretting.analysis.accuracy import BAND, memory_kinks, traction_error, zone_distance
-from fretting.models.method4 import stick_zones
 from fretting.models.galerkin import located_end
+from fretting.models.method4 import stick_zones
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from test_hard_cases import asymmetric_flat  # noqa: E402
@@ -272,9 +272,8 @@ def table(rows, title):
 
 
 def _label(attrs):
-    if "exact" in attrs["model"].lower() or "masing" in attrs["model"].lower():
-        return "exact"
-    return "mesh" if "Galerkin" in attrs["model"] else "grid"
+    """The model a result ran (its ``model`` attribute), marked ``capped`` where the default fell back."""
+    return attrs["model"] + (" capped" if "model_fallback" in attrs else "")
 
 
 def main(argv=None):

@@ -2,6 +2,7 @@
 
 import itertools
 import sys
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -290,3 +291,35 @@ def test_the_engine_runs_blas_on_one_thread_and_gives_the_threads_back(hertz, mo
         after = blas_threads()
     assert set(before.values()) == {2} and after == before
     assert seen and all(set(threads.values()) == {BLAS_THREADS} for threads in seen)
+
+
+@pytest.mark.parametrize("sigma", [0.0, 0.3])
+@pytest.mark.parametrize("model", [{}, {"rtol": 1e-4}, {"nodes": 384}])
+def test_a_load_one_ulp_below_sliding_gives_a_result_or_gross_slip(hertz, sigma, model):
+    """Q = nextafter(f P, 0): a result, or GrossSlipError where the discrete friction force is
+    smaller than f P by rounding; never a solver failure (issue 18)."""
+    Q = np.nextafter(hertz.f * hertz.P, 0)
+    history = fr.History.piecewise_linear([0, Q], [0, sigma * hertz.f * hertz.p0], 4)
+    try:
+        result = fr.simulate(hertz, history, **model)
+    except fr.GrossSlipError as error:
+        assert error.step == 4 and error.limit <= hertz.f * hertz.P
+    else:
+        assert result.stick.values[-1].any()
+
+
+def test_a_state_is_checked_before_it_is_continued(hertz):
+    """A hand-made state holding NaN, or one with another number of nodes, is refused (issue 18)."""
+    history = fr.History.piecewise_linear([0, 0.3 * hertz.f * hertz.P], None, 4)
+    state = fr.final_state(fr.simulate(hertz, history, nodes=64))
+    more = fr.History.piecewise_linear([0.3 * hertz.f * hertz.P, 0.0], None, 4)
+    with pytest.raises(fr.HistoryError, match="state.slip is not finite at node 3"):
+        fr.simulate(hertz, more, state=replace(state, slip=np.where(np.arange(64) == 3, np.nan, state.slip)))
+    with pytest.raises(fr.HistoryError, match=r"state.slip has shape \(32,\), expected \(64,\)"):
+        fr.simulate(hertz, more, state=replace(state, slip=state.slip[:32]))
+
+
+def test_a_mesh_with_nan_is_refused(hertz):
+    history = fr.History.piecewise_linear([0, 0.3 * hertz.f * hertz.P], None, 4)
+    with pytest.raises(ValueError, match="theta must increase strictly from 0 to pi"):
+        fr.simulate(hertz, history, mesh=[0, np.nan, np.pi])

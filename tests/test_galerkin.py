@@ -35,6 +35,7 @@ def slipped(slip):
     """An outcome that left the slip `slip` [m] (rows of a 2-D `slip`), for the model's delta_Q and delta_sigma."""
     return Outcome(None, None, slip, 0.0)
 
+
 BOUNDARY_BAND = 0.02  # [a]: the traction has a square-root kink at a stick/slip boundary
 
 
@@ -502,22 +503,23 @@ def test_many_steps_per_cycle_at_the_default_rtol(hertz, psi):
     np.testing.assert_allclose(steady, cf.mindlin_deresiewicz_energy(hertz, Q_star), rtol=1e-4)
 
 
-def test_default_runs_the_grid_where_the_mesh_would_be_too_large():
+def test_default_runs_its_last_mesh_where_the_adapted_mesh_would_be_too_large():
     """Out-of-phase Q = 0.47 fP, sigma = 1.19 f p0 (103 degrees) on a rounded flat: at rtol 1e-4
     the mesh would take more than MAX_DEFAULT_MESH nodes; the default stops adapting as soon as
-    that is certain and runs the grid, the same run as nodes=DEFAULT_NODES, saying so in a warning
-    and in the dataset."""
+    that is certain and runs the last mesh within the bound, the same run as that mesh asked for,
+    saying so in a warning and in the dataset."""
     contact = fr.Contact(fr.RoundedFlat(1e-3, 0.02), 115e9, 0.3, 3e4)
     history = fr.History.sinusoidal(
         0.474 * contact.f * contact.P, 1.187 * contact.f * contact.p0, 103.6, cycles=3, steps_per_cycle=32
     )
     assert fr.adapted_mesh(contact, history, max_nodes=fr.MAX_DEFAULT_MESH) is None
-    with pytest.warns(fr.ModelFallbackWarning, match="falls back to 384 Gauss-Chebyshev nodes"):
+    with pytest.warns(fr.ModelFallbackWarning, match="runs the last mesh within it"):
         result = fr.simulate(contact, history)
-    grid = fr.simulate(contact, history, nodes=fr.DEFAULT_NODES)
-    assert "rtol" not in result.attrs and "theta" not in result
+    assert result.attrs["model"] == "mesh" and result.sizes["x"] <= fr.MAX_DEFAULT_MESH
     assert "over the default's bound of 768" in result.attrs.pop("model_fallback")
-    xr.testing.assert_identical(result, grid)
+    given = fr.simulate(contact, history, mesh=result.theta.values[::-1])
+    assert result.attrs.pop("rtol") == fr.DEFAULT_RTOL
+    xr.testing.assert_identical(result, given)
 
 
 @pytest.mark.parametrize(("Q", "sigma"), [(0.6, 0.0), (0.0, 0.9)])

@@ -25,7 +25,7 @@ from fretting._validate import positive
 from fretting.engine.follow import follow
 from fretting.engine.state import State
 from fretting.engine.threads import one_blas_thread
-from fretting.errors import SolverError
+from fretting.errors import GrossSlipError, SolverError
 from fretting.models.galerkin import DEFAULT_RTOL, Mesh, element_targets, initial_theta, refine
 
 __all__ = ["MAX_TURN", "REFINEMENTS", "MeshTooLarge", "adapted_mesh", "adapted_model"]
@@ -43,11 +43,16 @@ MAX_TURN = np.pi / 4
 
 
 class MeshTooLarge(Exception):
-    """The adapted mesh would exceed its bound of nodes: raised as soon as that is certain."""
+    """The adapted mesh would exceed its bound of nodes: raised as soon as that is certain.
 
-    def __init__(self, nodes, step):
+    Attributes: ``nodes`` it would need at least, ``step`` of the turning points where that
+    became certain, ``model`` the `GalerkinModel` of the last mesh within the bound (that of the
+    pass under way).
+    """
+
+    def __init__(self, nodes, step, model):
         super().__init__(f"the adapted mesh would need {nodes} nodes or more (at step {step} of the turning points)")
-        self.nodes, self.step = nodes, step
+        self.nodes, self.step, self.model = nodes, step, model
 
 
 def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
@@ -62,8 +67,7 @@ def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
 
 def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
     """The `GalerkinModel` (built once, for the run to use) whose mesh ``theta`` [rad] resolves the
-    stick and slip zones of `history` to `rtol`,
-    and its built model (`GalerkinModel`, assembled once, for the run to use).
+    stick and slip zones of `history` to `rtol`.
 
     Raises `MeshTooLarge` as soon as a refinement is certain to give more than `max_nodes` nodes:
     the targets only shrink within a pass, so the mesh they ask for only grows.
@@ -84,12 +88,16 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
             np.minimum(targets, element_targets(model.theta, ds, rtol, model.breakpoints), out=targets)
             found[step] = np.sign(ds).astype(np.int8), model.x
             if max_nodes is not None and (size := refine(model.theta, targets).size) > max_nodes:
-                raise MeshTooLarge(size, step)
+                raise MeshTooLarge(size, step, model)
 
         def guess(step, known=known, x=model.x):
             return _interpolated_directions(*known[step], x) if step in known else None
 
-        follow(model, turning, State.virgin(model), observe=observe, guess=guess)
+        try:
+            follow(model, turning, State.virgin(model), observe=observe, guess=guess)
+        except GrossSlipError as error:  # named by the step of `history` whose loads reached it
+            step = int(np.flatnonzero((history.Q == error.Q) & (history.sigma == error.sigma))[0])
+            raise GrossSlipError(step, error.Q, error.sigma, error.limit) from None
         refined = refine(theta, np.minimum(targets, targets[::-1]) if mirrored else targets)
         if mirrored:  # Q alone or sigma alone: the zones are even or odd in x, and so is the mesh, exactly
             lower = refined[refined <= np.pi / 2]
@@ -97,7 +105,7 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
         if np.array_equal(refined, theta):
             return model
         if max_nodes is not None and refined.size > max_nodes:
-            raise MeshTooLarge(refined.size, len(turning) - 1)
+            raise MeshTooLarge(refined.size, len(turning) - 1, model)
         theta = refined
     raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
 

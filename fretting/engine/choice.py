@@ -6,12 +6,14 @@ The default for a contact and a history (`choose_model`):
    symmetric profile (`Exact.holds_for`); where the answer is known in closed form it is not
    solved for;
 2. else method 4 on the Galerkin mesh adapted to the history (`Mesh()`, `DEFAULT_RTOL`);
-3. where that mesh would need more than `MAX_DEFAULT_MESH` nodes, method 4 on the grid of
-   `DEFAULT_NODES` Gauss-Chebyshev points, with the reason recorded in the spec
-   (`Grid.fallback`, the dataset's ``model_fallback``) and a `ModelFallbackWarning`.
+3. where that mesh would need more than `MAX_DEFAULT_MESH` nodes, the mesh of the last pass
+   of the adaptation within the bound, with the reason recorded in the spec (`Mesh.fallback`,
+   the dataset's ``model_fallback``) and a `ModelFallbackWarning`; the adaptation stops as soon
+   as the bound is certain.
 """
 
 import warnings
+from dataclasses import replace
 
 from fretting.engine.adaptation import MeshTooLarge, adapted_model
 from fretting.errors import HistoryError
@@ -25,19 +27,19 @@ __all__ = [
     "SPECS",
     "ModelFallbackWarning",
     "check",
+    "built_model",
     "choose_model",
     "could_be_default",
     "recorded_spec",
-    "resolve",
     "spec_from",
 ]
 
 #: Every kind of model, by the name the dataset records: a new model adds its spec here.
 SPECS = {spec.name: spec for spec in (Exact, Mesh, Grid)}
 
-#: Nodes beyond which the default gives up the adapted mesh for the grid of `DEFAULT_NODES`: a
-#: mesh's passes cost ``N^3`` per turning point, and the non-periodic turning points of out-of-phase
-#: cycles can drive it past 1000 nodes (benchmarks/default_out_of_phase.py).
+#: Nodes at which the default's mesh adaptation stops: a mesh's passes cost ``N^3`` per turning
+#: point, and the non-periodic turning points of out-of-phase cycles can drive it past 1000 nodes
+#: (benchmarks/default_out_of_phase.py); the last mesh within the bound then runs.
 MAX_DEFAULT_MESH = 2 * DEFAULT_NODES
 
 
@@ -51,21 +53,24 @@ def choose_model(contact, history):
     Returns
     -------
     ModelSpec
-        `Exact`, `Mesh` or `Grid`, with its nodes fixed.
+        `Exact` or `Mesh`, with its nodes fixed.
     """
+    return _default_model(contact, history).spec
+
+
+def _default_model(contact, history):
+    """The built model of `choose_model` (a mesh's stiffness is assembled once, by its adaptation)."""
     exact = Exact()
     if exact.holds_for(contact, history) is None:
-        return exact.resolved_for(contact, history)
+        return exact.resolved_for(contact, history).build(contact)
     try:
-        return adapted_model(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH).spec
+        return adapted_model(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH)
     except MeshTooLarge as error:
-        reason = f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
-    warnings.warn(
-        f"the default model falls back to {DEFAULT_NODES} Gauss-Chebyshev nodes: {reason}",
-        ModelFallbackWarning,
-        stacklevel=2,
-    )
-    return Grid(DEFAULT_NODES, fallback=reason)
+        model, reason = error.model, f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
+    reason += f": runs the last mesh within it, {model.theta.size} nodes, coarser than rtol = {DEFAULT_RTOL:g} asks"
+    warnings.warn(f"the default model falls back: {reason}", ModelFallbackWarning, stacklevel=3)
+    model.spec = replace(model.spec, fallback=reason)
+    return model
 
 
 def check(spec, contact, history):
@@ -77,24 +82,22 @@ def check(spec, contact, history):
 
 def could_be_default(spec):
     """True if `choose_model` can give the resolved `spec` (one read from a result, say)."""
-    if isinstance(spec, Grid):
-        return spec.fallback is not None and spec.nodes == DEFAULT_NODES
     return isinstance(spec, Exact) or (isinstance(spec, Mesh) and spec.rtol == DEFAULT_RTOL)
 
 
-def resolve(spec, contact, history):
-    """`spec` with its nodes fixed for `history` (a resolved spec as it is); None: the default.
+def built_model(spec, contact, history):
+    """The model of `spec` for `history`, its nodes fixed and built; None: the default's.
 
-    Raises ValueError where the model cannot run the history (`ModelSpec.holds_for`).
+    Raises HistoryError where the model cannot run the history (`ModelSpec.holds_for`).
     """
     if spec is None:
-        return choose_model(contact, history)
+        return _default_model(contact, history)
     check(spec, contact, history)
     if spec.resolved:
-        return spec
+        return spec.build(contact)
     if isinstance(spec, Mesh):
-        return adapted_model(contact, history, spec.rtol).spec
-    return spec.resolved_for(contact, history)
+        return adapted_model(contact, history, spec.rtol)
+    return spec.resolved_for(contact, history).build(contact)
 
 
 def spec_from(model=None, nodes=None, rtol=None, mesh=None):

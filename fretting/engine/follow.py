@@ -30,7 +30,10 @@ def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False):
         raise GrossSlipError(step, Q, sigma, sliding)
     if at_rest:
         return model.at_rest(state), state
-    outcome = model.increment(state, Q, sigma, guess)
+    try:
+        outcome = model.increment(state, Q, sigma, guess)
+    except GrossSlipError:  # within rounding of the friction force: the increment found no stick zone
+        raise GrossSlipError(step, Q, sigma, sliding) from None
     if not outcome.dissipation >= 0:
         raise SolverError(f"the increment to Q = {Q!r}, sigma = {sigma!r} dissipated {outcome.dissipation!r} J/m")
     w = model.dissipation_density(outcome.ds) if state.tally.number else None

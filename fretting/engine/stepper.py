@@ -58,7 +58,7 @@ class Stepper:
         self._state = state
         self._fresh = state is None  # the contact just formed: a history may start at any loads
         if self._model is None and self._spec is not None and self._spec.resolved:
-            self._build(self._spec)
+            self._built(self._spec.build(contact))
         elif self._model is not None:
             self._build_state()
 
@@ -119,16 +119,16 @@ class Stepper:
 
     def resolve(self, history):
         """Fix the model for `history` without stepping: choose the default, or adapt the spec's
-        nodes to it (`fretting.engine.choice.resolve`); with a model built already, check that it
+        nodes to it (`fretting.engine.choice.built_model`); with a model built already, check that it
         can run `history`."""
         if self._model is None:
             with one_blas_thread():
-                self._build(choice.resolve(self._spec, self.contact, history))
+                self._built(choice.built_model(self._spec, self.contact, history))
         else:
             choice.check(self._spec, self.contact, history)
 
-    def _build(self, spec):
-        self._spec, self._model = spec, spec.build(self.contact)
+    def _built(self, model):
+        self._spec, self._model = model.spec, model
         self._build_state()
 
     def _build_state(self):

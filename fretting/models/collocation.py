@@ -30,12 +30,9 @@ class Grid(ModelSpec):
     ----------
     nodes : int
         Collocation points, at least 4.
-    fallback : str, optional
-        Why a default chose this grid instead of its first choice (None: asked for).
     """
 
     nodes: int = DEFAULT_NODES
-    fallback: str | None = None
 
     name: ClassVar[str] = "grid"
     description: ClassVar[str] = (
@@ -54,13 +51,11 @@ class Grid(ModelSpec):
         return CollocationModel(contact, self)
 
     def attributes(self):
-        return {"model": self.name, "nodes": int(self.nodes)} | (
-            {} if self.fallback is None else {"model_fallback": self.fallback}
-        )
+        return {"model": self.name, "nodes": int(self.nodes)}
 
     @classmethod
     def from_record(cls, attrs, theta):
-        return cls(int(attrs["nodes"]), attrs.get("model_fallback"))
+        return cls(int(attrs["nodes"]))
 
 
 class CollocationModel(Method4Model):

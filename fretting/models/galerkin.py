@@ -626,10 +626,14 @@ class Mesh(ModelSpec):
         Relative accuracy asked of the energy (`DEFAULT_RTOL` when neither is given).
     theta : array_like, optional
         Mesh nodes [rad], strictly increasing from 0 to pi.
+    fallback : str, optional
+        Why the mesh is coarser than `rtol` asks: the adaptation of a default stopped at its bound
+        of nodes (`fretting.engine.choice.MAX_DEFAULT_MESH`). None: the mesh is the one asked for.
     """
 
     rtol: float | None = None
     theta: np.ndarray | None = None
+    fallback: str | None = None
 
     name: ClassVar[str] = "mesh"
     description: ClassVar[str] = "method 4: dislocation correction to the fully adhered solution, P1 Galerkin in theta"
@@ -650,11 +654,12 @@ class Mesh(ModelSpec):
         return GalerkinModel(contact, self, previous)
 
     def attributes(self):
-        return {"model": self.name} | ({} if self.rtol is None else {"rtol": self.rtol})
+        attributes = {"model": self.name} | ({} if self.rtol is None else {"rtol": self.rtol})
+        return attributes | ({} if self.fallback is None else {"model_fallback": self.fallback})
 
     @classmethod
     def from_record(cls, attrs, theta):
-        return cls(attrs.get("rtol"), theta)
+        return cls(attrs.get("rtol"), theta, attrs.get("model_fallback"))
 
 
 class GalerkinModel(Method4Model):

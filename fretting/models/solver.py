@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import linalg
 
-from fretting.errors import SolverError
+from fretting.errors import GrossSlipError, SolverError
 
 __all__ = ["ChebyshevGrid", "Increment", "chebyshev_angles", "solve_increment"]
 
@@ -184,12 +184,13 @@ def _rigid_shift(g_stuck, limit, slip, new, direction):
     and ``J`` falls at the rate ``|sum_k (g_stuck_k - direction_k limit_k)|`` (``sum_k g_k`` is
     the same for every slip). The nodes slipping against the shift stop one after the other;
     the first whose increment reaches zero sticks (`direction` is updated in place). None
-    slipping against it: ``J`` is unbounded, the contact slides.
+    slipping against it: ``J`` is unbounded, the contact slides (`GrossSlipError`: the loads are
+    within rounding of the friction force, though below it).
     """
     shift = np.sign(np.sum(g_stuck) - np.sum(direction * limit))
     against = np.flatnonzero(direction == -shift)
-    if shift == 0 or against.size == 0:
-        raise SolverError("every node would slip one way although |Q| < f P")
+    if shift == 0 or against.size == 0:  # |Q| is within rounding of the friction force: the contact slides
+        raise GrossSlipError(None, float(np.sum(g_stuck)), 0.0, float(np.sum(limit)))
     ds = new - slip
     alpha = np.abs(ds[against]).min()
     stops = against[np.abs(ds[against]) <= alpha]
