@@ -70,7 +70,7 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
     stick and slip zones of `history` to `rtol`.
 
     Raises `MeshTooLarge` as soon as a refinement is certain to give more than `max_nodes` nodes:
-    the targets only shrink within a pass, so the mesh they ask for only grows.
+    the targets only shrink within a pass, so the mesh they ask for only grows (`_bisected_size`).
     """
     sliding = np.flatnonzero(np.abs(history.Q) >= contact.f * contact.P)
     if sliding.size:  # the run will stop there: adapt to the steps before
@@ -87,7 +87,7 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
         def observe(step, ds, model=model, targets=targets, found=directions):
             np.minimum(targets, element_targets(model.theta, ds, rtol, model.breakpoints), out=targets)
             found[step] = np.sign(ds).astype(np.int8), model.x
-            if max_nodes is not None and (size := refine(model.theta, targets).size) > max_nodes:
+            if max_nodes is not None and (size := _bisected_size(model.theta, targets)) > max_nodes:
                 raise MeshTooLarge(size, step, model)
 
         def guess(step, known=known, x=model.x):
@@ -108,6 +108,13 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
             raise MeshTooLarge(refined.size, len(turning) - 1, model)
         theta = refined
     raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
+
+
+def _bisected_size(theta, targets):
+    """Nodes of `theta` [rad] once every element is bisected down to its target size [rad]: a lower
+    bound of `refine`'s, which grades the mesh after (so a bound passed here is passed for certain)."""
+    halvings = np.ceil(np.log2(np.maximum(np.diff(theta) / targets, 1.0)))
+    return 1 + int(np.sum(2.0**halvings))
 
 
 def _interpolated_directions(directions, x, at):

@@ -58,7 +58,8 @@ class Stepper:
         self._state = state
         self._fresh = state is None  # the contact just formed: a history may start at any loads
         if self._model is None and self._spec is not None and self._spec.resolved:
-            self._built(self._spec.build(contact))
+            with one_blas_thread():
+                self._built(self._spec.build(contact))
         elif self._model is not None:
             self._build_state()
 
