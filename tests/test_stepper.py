@@ -1,0 +1,90 @@
+"""The model contract, the one choice of the default, and the stepper (issue 17).
+
+The stepper stepped one increment at a time gives what `simulate` gives over the same history,
+bit for bit, for each model; the choice of the default and the spec recorded in a result are
+those the model contract says.
+"""
+
+import numpy as np
+import pytest
+
+import fretting as fr
+from fretting import cli
+from fretting.engine.choice import recorded_spec
+
+
+def _walk(contact, sigma=True, steps=4):
+    """A random walk of Q (and sigma) with reversals, from the contact just formed."""
+    rng = np.random.default_rng(7)
+    Q = np.concatenate([[0.0], rng.uniform(-0.6, 0.6, 6)]) * contact.f * contact.P
+    s = np.concatenate([[0.0], rng.uniform(-0.6, 0.6, 6)]) * contact.f * contact.p0 if sigma else None
+    return fr.History.piecewise_linear(Q, s, steps)
+
+
+@pytest.mark.parametrize(
+    ("model", "sigma"),
+    [(fr.models.Grid(48), True), (fr.models.Mesh(theta=np.linspace(0, np.pi, 65)), True), (None, False)],
+    ids=["grid", "mesh", "exact"],
+)
+def test_stepping_one_increment_at_a_time_equals_simulate(hertz, model, sigma):
+    history = _walk(hertz, sigma)
+    whole = fr.simulate(hertz, history, model=model)
+    stepper = fr.Stepper(hertz, recorded_spec(whole))
+    slips, energy = [], []
+    for Q, s in zip(history.Q, history.sigma, strict=True):
+        outcome = stepper.step(Q, s)
+        slips.append(stepper.state.slip)
+        energy.append(outcome.dissipation)
+    np.testing.assert_array_equal(np.array(slips), whole.slip.values)
+    np.testing.assert_array_equal(np.array(energy), whole.dissipation.values)
+    assert stepper.state.dissipated == float(whole.total_dissipation)
+
+
+def test_a_stepper_run_in_parts_equals_one_run(hertz):
+    """The runner's use: one stepper, the history run chunk by chunk (a chunk's step 0 is the end
+    of the one before): the same final state, bit for bit."""
+    history = _walk(hertz)
+    whole = fr.Stepper(hertz, fr.models.Grid(48))
+    whole.run(history)
+    parts = fr.Stepper(hertz, fr.models.Grid(48))
+    for start, stop in ((0, 5), (5, 17), (17, len(history) - 1)):
+        parts.run(history[start : stop + 1])
+    assert parts.state.repeats(whole.state) and parts.state.dissipated == whole.state.dissipated
+
+
+def test_the_default_is_chosen_once_and_recorded(hertz):
+    """Q alone on a symmetric profile: the exact model; with sigma: method 4 on an adapted mesh.
+    The result records the resolved spec, and a run continued from its state keeps it."""
+    shear, walk = _walk(hertz, sigma=False), _walk(hertz)
+    assert isinstance(fr.choose_model(hertz, shear), fr.models.Exact)
+    chosen = fr.choose_model(hertz, walk)
+    assert isinstance(chosen, fr.models.Mesh) and chosen.rtol == fr.DEFAULT_RTOL and chosen.fallback is None
+    result = fr.simulate(hertz, walk)
+    assert result.attrs["model"] == "mesh" and "model_fallback" not in result.attrs
+    assert recorded_spec(result) == chosen == fr.final_state(result).model
+
+
+def test_a_step_before_any_model_is_refused(hertz):
+    with pytest.raises(ValueError, match="no model yet"):
+        fr.Stepper(hertz).step(0.1 * hertz.f * hertz.P)
+
+
+def test_a_state_keeps_its_model(hertz):
+    state = fr.final_state(fr.simulate(hertz, _walk(hertz), nodes=48))
+    with pytest.raises(ValueError, match="the state has its own model"):
+        fr.Stepper(hertz, fr.models.Grid(64), state)
+
+
+def test_the_command_line_says_when_the_default_falls_back(tmp_path, capsys, monkeypatch):
+    """The rounded flat out of phase whose adapted mesh passes MAX_DEFAULT_MESH: exit 0, one note
+    on stderr, and the result records why (issue 19 item 7)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "oop.toml").write_text(
+        '[contact]\nprofile = "rounded_flat"\nb = 1e-3\nR = 0.02\nE_star = 115e9\nf = 0.3\nP = 3e4\n\n'
+        '[[loading]]\nkind = "sine"\nQ_amplitude = 4266\nsigma_amplitude = 8.0e7\nphase_deg = 103.6\n'
+        "cycles = 3\nsteps_per_cycle = 32\n"
+    )
+    assert cli.main(["run", "oop.toml", "-o", "oop.h5"]) == 0
+    notes = [line for line in capsys.readouterr().err.splitlines() if line.startswith("fretting: note:")]
+    assert len(notes) == 1 and "falls back" in notes[0] and "over the default's bound of 768" in notes[0]
+    assert fr.load(tmp_path / "oop.h5").attrs["model_fallback"] in notes[0]
