@@ -5,6 +5,7 @@ from fretting.analysis.methods import partial_slip
 from fretting.engine.adaptation import adapted_mesh
 from fretting.engine.choice import MAX_DEFAULT_MESH, ModelFallbackWarning, choose_model
 from fretting.engine.recorder import final_state
+from fretting.engine.runner import run_file
 from fretting.engine.simulation import simulate
 from fretting.engine.state import State
 from fretting.engine.stepper import Stepper
@@ -47,6 +48,7 @@ __all__ = [
     "partial_slip",
     "plane_strain_modulus",
     "read_history",
+    "run_file",
     "save",
     "simulate",
     "sweep",
