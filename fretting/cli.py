@@ -1,4 +1,4 @@
-"""The command line: ``fretting run | validate | info | plot`` (also ``python -m fretting``).
+"""The command line: ``fretting run | validate | info | plot | examples`` (also ``python -m fretting``).
 
 Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
 failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
@@ -18,6 +18,7 @@ from fretting._validate import positive
 from fretting.bench import add_arguments as add_bench_arguments
 from fretting.bench import run as run_bench
 from fretting.errors import FrettingError, GrossSlipError, HistoryError
+from fretting.loading.examples import examples, resolve_history
 from fretting.loading.history_file import read_history_source
 from fretting.results.io import Joiner, ResultError, load, save, source_attributes
 from fretting.models.exact import MODEL as MASING_MODEL
@@ -97,7 +98,7 @@ def _parser():
     common.add_argument("--debug", action="store_true", help="show the traceback of an error")
 
     run = commands.add_parser("run", parents=[common], help="run a history file and write its result")
-    run.add_argument("file", metavar="HISTORY", help="history file (TOML)")
+    run.add_argument("file", metavar="HISTORY", help="history file (TOML), or the name of a shipped example")
     run.add_argument("-o", "--output", metavar="OUT", help="result file (default: results/<history stem>.h5)")
     run.add_argument("--resume", action="store_true", help="continue an interrupted run from its checkpoint")
     model = run.add_mutually_exclusive_group()
@@ -130,7 +131,7 @@ def _parser():
     run.set_defaults(command=_run)
 
     validate = commands.add_parser("validate", parents=[common], help="check a history file without running it")
-    validate.add_argument("file", metavar="HISTORY", help="history file (TOML)")
+    validate.add_argument("file", metavar="HISTORY", help="history file (TOML), or the name of a shipped example")
     validate.set_defaults(command=_validate)
 
     info = commands.add_parser("info", parents=[common], help="describe a result file")
@@ -141,6 +142,9 @@ def _parser():
     plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
     plot.add_argument("-o", "--output", metavar="DIR", help="directory of the figures (default: the result's)")
     plot.set_defaults(command=_plot)
+
+    listing = commands.add_parser("examples", parents=[common], help="list the shipped example histories")
+    listing.set_defaults(command=_examples, file="examples")
 
     bench = commands.add_parser(
         "bench", parents=[common], help="measure speed against error and write results/speed_vs_error.*"
@@ -211,8 +215,13 @@ def _model(contact, history, asked):
     return ({"nodes": DEFAULT_NODES} if "nodes" in model else {"rtol": DEFAULT_RTOL}), model
 
 
+def _examples(args):
+    for name, description in examples().items():
+        print(f"{name:<32} {description}")
+
+
 def _run(args):
-    source = read_history_source(args.file)
+    source = read_history_source(resolve_history(args.file))
     output = Path(args.output) if args.output else Path("results") / f"{source.path.stem}.h5"
     checkpoint = output.with_name(f"{output.name}.checkpoint")
     if checkpoint.exists() and not args.resume:
@@ -322,7 +331,7 @@ def _resumable(checkpoint, source, asked):
 
 
 def _validate(args):
-    source = read_history_source(args.file)
+    source = read_history_source(resolve_history(args.file))
     contact, history = source.contact, source.history
     print(f"{source.path}: {contact.profile!r}, a = {contact.a:.4g} m, p0 = {contact.p0:.4g} Pa")
     print(f"  {len(history) - 1} steps, {history.vertex_step.size} vertices, {history.cycle_count} cycles")

@@ -1,7 +1,5 @@
 """Sweeps on a real dask.distributed cluster: every case equals a direct simulate, resume, errors, command line."""
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import xarray as xr
@@ -10,10 +8,10 @@ from distributed import LocalCluster
 
 import fretting as fr
 from fretting import cli
+from fretting.loading.examples import EXAMPLES
 from fretting.loading.history_file import HistoryFileError
 from fretting.studies.sweeps import REGIMES, VARIABLES, read_sweep, save_map, summarize
 
-ROOT = Path(__file__).resolve().parents[1]
 
 #: A short cyclic history: f P = 70 kN/m, so Q = 75 kN/m slides and Q = sigma = 0 sticks.
 BASE = (
@@ -187,7 +185,7 @@ def test_inline_base_and_keys_inside_repeated_blocks(tmp_path):
 
 
 def test_shipped_fretting_map(swept, tmp_path):
-    plan = read_sweep(ROOT / "histories" / "sweeps" / "hertz_fretting_map.toml")
+    plan = read_sweep(EXAMPLES / "sweeps" / "hertz_fretting_map.toml")
     assert plan.base.path.name == "hertz_fretting_fatigue.toml"
     assert [len(values) for values in plan.grid.values()] == [8, 8]
     assert save_map(swept[2], tmp_path / "map.png").stat().st_size > 0
