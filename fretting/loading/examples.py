@@ -62,21 +62,10 @@ def example_path(name):
 
 
 def resolve_history(file):
-    """The history file that `file` names: itself where such a file exists, else the shipped example of that name.
+    """The history file that `file` (a path, or an example's name) names, as a `pathlib.Path`.
 
-    Parameters
-    ----------
-    file : str or os.PathLike
-        A path, or an example's name (`examples`).
-
-    Returns
-    -------
-    pathlib.Path
-
-    Raises
-    ------
-    FileNotFoundError
-        When `file` is neither an existing file nor an example's name.
+    A file that exists wins over an example of the same name; neither raises
+    `FileNotFoundError` as `example_path` does.
     """
     path = Path(file)
     return path if path.exists() else example_path(str(file))
