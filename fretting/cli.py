@@ -1,4 +1,4 @@
-"""The command line: ``fretting run | validate | info | plot`` (also ``python -m fretting``).
+"""The command line: ``fretting run | validate | info | plot | examples`` (also ``python -m fretting``).
 
 Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
 failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
@@ -18,6 +18,7 @@ from fretting.engine.choice import MAX_DEFAULT_MESH
 from fretting.engine.recorder import RECORD_ALL_STEPS, RECORDED_ENDS
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
+from fretting.loading.examples import examples, resolve_history
 from fretting.loading.history_file import read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
@@ -73,7 +74,7 @@ def _parser():
     common.add_argument("--debug", action="store_true", help="show the traceback of an error")
 
     run = commands.add_parser("run", parents=[common], help="run a history file and write its result")
-    run.add_argument("file", metavar="HISTORY", help="history file (TOML)")
+    run.add_argument("file", metavar="HISTORY", help="history file (TOML), or the name of a shipped example")
     run.add_argument("-o", "--output", metavar="OUT", help="result file (default: results/<history stem>.h5)")
     run.add_argument("--resume", action="store_true", help="continue an interrupted run from its checkpoint")
     model = run.add_mutually_exclusive_group()
@@ -106,7 +107,7 @@ def _parser():
     run.set_defaults(command=_run)
 
     validate = commands.add_parser("validate", parents=[common], help="check a history file without running it")
-    validate.add_argument("file", metavar="HISTORY", help="history file (TOML)")
+    validate.add_argument("file", metavar="HISTORY", help="history file (TOML), or the name of a shipped example")
     validate.set_defaults(command=_validate)
 
     info = commands.add_parser("info", parents=[common], help="describe a result file")
@@ -123,6 +124,9 @@ def _parser():
         help="body of the surface-stress figure: 1 (traction q) or 2 (-q) (default: the specimen, with its bulk stress)",
     )
     plot.set_defaults(command=_plot)
+
+    listing = commands.add_parser("examples", parents=[common], help="list the shipped example histories")
+    listing.set_defaults(command=_examples, file="examples")
 
     sweep = commands.add_parser("sweep", parents=[common], help="run a sweep file on dask.distributed")
     add_sweep_arguments(sweep)
@@ -160,8 +164,14 @@ def _model(args):
     return None if args.rtol is None else Mesh(rtol=args.rtol)
 
 
+def _examples(args):
+    for name, description in examples().items():
+        print(f"{name:<32} {description}")
+
+
 def _run(args):
-    output = Path(args.output) if args.output else Path("results") / f"{Path(args.file).stem}.h5"
+    history = resolve_history(args.file)
+    output = Path(args.output) if args.output else Path("results") / f"{history.stem}.h5"
     record = None if args.record == "default" else args.record
     with tqdm(unit="step", delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
 
@@ -170,7 +180,7 @@ def _run(args):
             bar.refresh()
 
         run = run_file(
-            args.file,
+            history,
             output,
             _model(args),
             record=record,
@@ -185,7 +195,7 @@ def _run(args):
 
 
 def _validate(args):
-    source = read_history_source(args.file)
+    source = read_history_source(resolve_history(args.file))
     contact, history = source.contact, source.history
     print(f"{source.path}: {contact.profile!r}, a = {contact.a:.4g} m, p0 = {contact.p0:.4g} Pa")
     print(f"  {len(history) - 1} steps, {history.vertex_step.size} vertices, {history.cycle_count} cycles")

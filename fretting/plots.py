@@ -37,8 +37,8 @@ INNER = 0.95
 #: its steady state then share one figure.
 LOG_CYCLES = 100
 
-#: Axis label of ``delta_Q``: the slip part of the displacement conjugate to Q (formulation.md
-#: section 5); the elastic part, linear in Q and defined in plane strain only up to a datum, is left out.
+#: Axis label of ``delta_Q``: the slip part of the displacement conjugate to Q
+#: (docs/theory/conventions.md#energy); the elastic part, linear in Q and defined in plane strain only up to a datum, is left out.
 DELTA_Q_LABEL = "slip part of the displacement, $\\delta_Q$ [µm]"
 
 #: Cycles drawn by default in the figures that show one curve per cycle: enough to see a

@@ -9,7 +9,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 
 # One BLAS thread, set before NumPy loads OpenBLAS: on 2 cores its two threads make the dense
-# solves of a few hundred nodes up to ten times slower (README, known limits).
+# solves of a few hundred nodes up to ten times slower (benchmarks/blas_threads.py).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402

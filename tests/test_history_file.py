@@ -1,17 +1,16 @@
 """History files: the examples, every block kind, and a message naming file, line and key for each bad input."""
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 from conftest import HERTZ_TOML as CONTACT
 
 import fretting as fr
 from fretting.cli import main
+from fretting.loading import examples
 from fretting.loading.history import RAMP_STEPS
 from fretting.loading.history_file import HistoryFileError, read_history, read_history_source
 
-EXAMPLES = sorted((Path(__file__).parents[1] / "histories").glob("*.toml"))
+EXAMPLES = sorted(examples.EXAMPLES.glob("*.toml"))  # the installed package's, not a checkout's
 
 
 SHEAR = """

@@ -13,10 +13,10 @@ from distributed import LocalCluster
 
 import fretting as fr
 from fretting import cli
+from fretting.loading.examples import EXAMPLES
 from fretting.loading.history_file import HistoryFileError
 from fretting.studies.sweeps import REGIMES, VARIABLES, read_sweep, save_map, summarize
 
-ROOT = Path(__file__).resolve().parents[1]
 
 #: A short cyclic history: f P = 70 kN/m, so Q = 75 kN/m slides and Q = sigma = 0 sticks.
 BASE = (
@@ -197,7 +197,7 @@ def test_without_dask_distributed_a_sweep_names_the_extra(tmp_path, capsys, monk
     assert message.count("\n") == 1
     loaded = subprocess.run(
         [sys.executable, "-c", "import sys, fretting; print(sorted({m.split('.')[0] for m in sys.modules}))"],
-        capture_output=True, text=True, check=True, env=os.environ | {"PYTHONPATH": str(ROOT)},
+        capture_output=True, text=True, check=True, env=os.environ | {"PYTHONPATH": str(Path(fr.__file__).resolve().parents[1])},
     ).stdout  # fmt: skip
     assert "'dask'" not in loaded and "'distributed'" not in loaded and "'matplotlib'" not in loaded
 
@@ -211,7 +211,7 @@ def test_inline_base_and_keys_inside_repeated_blocks(tmp_path):
 
 
 def test_shipped_fretting_map(swept, tmp_path):
-    plan = read_sweep(ROOT / "histories" / "sweeps" / "hertz_fretting_map.toml")
+    plan = read_sweep(EXAMPLES / "sweeps" / "hertz_fretting_map.toml")
     assert plan.base.path.name == "hertz_fretting_fatigue.toml"
     assert [len(values) for values in plan.grid.values()] == [8, 8]
     assert save_map(swept[2], tmp_path / "map.png").stat().st_size > 0

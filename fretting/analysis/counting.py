@@ -27,8 +27,9 @@ symmetric profiles; the engine obeys them to rounding on asymmetric ones too, se
 tests/test_counting.py). Every full cycle of range ``DeltaQ`` then dissipates exactly the
 energy of constant-amplitude cycling of that range, whatever its mean and whatever surrounds
 it, and the decomposition is exact. With sigma it is an approximation: the state at a reversal
-then depends on more than the counted load (in regimes B and C of literature-notes.md loops
-are not scaled virgin curves), and on non-proportional paths the reversals of Q and sigma
+then depends on more than the counted load (beyond the Nowell-Hills regime
+``|sigma| / (f p0) <= 2 |Q| / (f P)``, where slip reverses at one end, loops are not scaled
+virgin curves), and on non-proportional paths the reversals of Q and sigma
 differ while the counting follows one of them. Measured against ``4 D(DeltaQ / 2)`` along the
 path's direction (random histories, 64 nodes): proportional paths ``sigma / (f p0) = k Q / (f P)``
 keep the rule to 5e-9 for ``|k| <= 2`` (regime A) and to 0.5 % for ``|k| <= 3``; with a sigma

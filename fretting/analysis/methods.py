@@ -9,7 +9,7 @@ routes of Table A reach the same state:
 3. corrective dislocations on the sliding solution (section 5, eqs 26-28, kernel B.2);
 4. corrective dislocations on the adhered solution: the engine, `fretting.engine.simulation`.
 
-Conventions of formulation.md: the slip ``s`` is what ``q`` drives, ``Q > 0`` gives ``s > 0``, and
+Conventions of docs/theory/conventions.md: the slip ``s`` is what ``q`` drives, ``Q > 0`` gives ``s > 0``, and
 the slip gradient (dislocation density) of a traction is
 ``B = ds/dx = -(2 / (pi E_star)) PV int q(xi) / (xi - x) dxi`` (eq A.1 with ``s = -u``).
 

@@ -3,7 +3,7 @@
 Pure functions of a result of `fretting.engine.simulation`. Each returns DataArrays or Datasets whose
 variables carry ``units``, ``long_name`` and ``definition`` (the formula and its source).
 
-Conventions (those of formulation.md): the shear traction ``q`` acts on **body 1** (its
+Conventions (those of docs/theory/conventions.md): the shear traction ``q`` acts on **body 1** (its
 resultant is ``Q``) and ``-q`` on **body 2**; the slip ``s`` is that of body 2 relative to
 body 1, so that ``q`` drives it. Eq (20) of the seed, with the surface strain of a half-plane,
 then fixes the meaning of the differential bulk tension: ``sigma = sigma_b2 - sigma_b1``, the
@@ -62,7 +62,7 @@ STEADY_RTOL = 1e-3
 
 W_DEFINITION = (
     "w_k(x) = sum over the increments of cycle k of f p(x) |ds(x)|: energy dissipated per unit area "
-    "of the interface in load cycle k (formulation.md section 5; the local form of the energy "
+    "of the interface in load cycle k (docs/theory/conventions.md#energy; the local form of the energy "
     "approach of Fouvry, Kapsa & Vincent, Wear 200 (1996) 186-205)"
 )
 DELTA_DEFINITION = (
@@ -129,7 +129,7 @@ def complete_cycles(result):
 def dissipation_density(result):
     """Energy dissipated per unit area in each load cycle, ``w(x)`` [J/m^2].
 
-    ``w_k(x) = sum_{increments of cycle k} f p(x) |ds(x)|`` (formulation.md section 5), whose
+    ``w_k(x) = sum_{increments of cycle k} f p(x) |ds(x)|`` (docs/theory/conventions.md#energy), whose
     integral over the contact is `cycle_dissipation`.
 
     Parameters
@@ -240,7 +240,7 @@ def fouvry(result):
     """Quantities of the accumulated dissipated energy approach, per cycle (Fouvry et al. [5]_, [6]_).
 
     The energy ratio ``A = E_d / (4 delta* Q*)`` of [5] is left out: in plane strain the
-    displacement ``delta*`` needs a datum (formulation.md section 5), so ``A`` depends on it.
+    displacement ``delta*`` needs a datum (docs/theory/conventions.md#energy), so ``A`` depends on it.
 
     Returns
     -------
@@ -283,7 +283,7 @@ def _hilbert_matrix(t):
     + (A + B t) int dtau / (sqrt(1 - tau^2) (tau - t))``, and with ``tau = cos(theta)``,
     ``t = cos(phi)``, ``int dtheta / (cos(theta) - cos(phi)) = ln|sin((theta + phi)/2) /
     sin((theta - phi)/2)| / sin(phi)``. Writing ``A + B t = g(t) + (A + B t - g(t))``, the first
-    part integrates to ``g(t) U_{-1}(t) = 0`` over (-1, 1) (formulation.md section 4) and the second
+    part integrates to ``g(t) U_{-1}(t) = 0`` over (-1, 1) (docs/theory/method4.md#chebyshev) and the second
     vanishes on the two pieces that meet at ``t``, so no principal value is left to take.
 
     A node at ``t = 1`` or ``-1`` (a Galerkin mesh has both) is its own end knot, and its row is
@@ -568,7 +568,7 @@ def loop_work(result):
     """Work of the loads around each cycle's hysteresis loops and its mismatch with the dissipation.
 
     ``W = loop Q d(delta_Q) + loop sigma d(delta_sigma)`` by the trapezoidal rule over the
-    recorded steps of the cycle, its starting state included (formulation.md section 5). Over a
+    recorded steps of the cycle, its starting state included (docs/theory/conventions.md#energy). Over a
     closed cycle of a periodic state the loads do no net work on the elastic fields, so ``W``
     equals `cycle_dissipation` to the trapezoidal error (second order in the load step); in a
     transient cycle (e.g. the first one from the virgin state) the stored elastic energy

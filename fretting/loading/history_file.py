@@ -1,4 +1,4 @@
-"""History files: a contact and a load history written in TOML (format in the README, "History files").
+"""History files: a contact and a load history written in TOML (format: docs/guide/histories.md).
 
 Every value is checked here, at the boundary, and every problem raises `HistoryFileError`
 naming the file, the line where it can be found, the key, what was found and what was expected.

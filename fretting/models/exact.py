@@ -4,9 +4,9 @@ Under the constant normal load ``P`` and a shear force ``Q`` rising from the con
 formed, on a symmetric profile, the traction is ``q = f (p(x; P) - p(x; P_c))`` with
 ``|Q| = f (P - P_c)`` (Ciavarella 1998, Jaeger 1998; section 2 of the seed): the stick zone is
 the contact ``[-c, c]`` of the corrective load ``P_c``, and the slip is ``f`` times that
-contact's gap, ``s = f g_c(x)`` (literature-notes.md, rounded flat; for Hertz it is eq 19
+contact's gap, ``s = f g_c(x)`` (docs/theory/exact-model.md; for Hertz it is eq 19
 integrated, `fretting.physics.closed_forms.cattaneo_mindlin_slip`). Masing's rule gives any history of
-``Q`` from it (Mindlin & Deresiewicz 1953 for Hertz; literature-notes.md, in-phase cycling):
+``Q`` from it (Mindlin & Deresiewicz 1953 for Hertz; docs/theory/exact-model.md):
 from the last turning point ``Q_k`` the change is twice the monotonic solution of half the
 change, ``P_c = P - |Q - Q_k| / (2f)``, until ``|Q - Q_k|`` reaches the range of the branch
 before; that loop then closes and the older branch goes on (return-point memory). The memory is

@@ -5,7 +5,7 @@ Positions in the contact are ``x = centre + a cos(theta)``, ``theta`` in ``[0, p
 ``s = sum_k s_k phi_k`` with hat functions ``phi_k``; both edge nodes are unknowns.
 
 Elastic energy. With ``s = sum_n s_n cos(n theta)`` the dislocation traction of eq (A.4) does the
-work ``int q_d s dx = -(pi E_star / 4) sum_n n s_n^2`` (formulation.md section 4), so the elastic
+work ``int q_d s dx = -(pi E_star / 4) sum_n n s_n^2`` (docs/theory/method4.md#chebyshev), so the elastic
 bilinear form is ``B(u, v) = (pi E_star / 4) sum_n n u_n v_n``. Since
 ``Cl1(theta - phi) - Cl1(theta + phi) = 2 sum_m sin(m theta) sin(m phi) / m`` with the Clausen
 function ``Cl1(x) = -ln|2 sin(x/2)| = sum_m cos(m x) / m``,
@@ -28,7 +28,7 @@ assembles it).
 
 Loads. The fully stuck traction of eqs (9) and (20) does the work
 ``F_k = int q_st phi_k dx = int (Q / pi + sigma a cos(theta) / 4) phi_k dtheta``, that is
-``Q dQ_k + sigma dsig_k``, in closed form; by reciprocity (formulation.md section 5)
+``Q dQ_k + sigma dsig_k``, in closed form; by reciprocity (docs/theory/conventions.md#energy)
 ``delta_Q = dQ . s`` and ``delta_sigma = dsig . s`` exactly. The friction term
 ``int f p |ds| dx`` is lumped to ``sum_k L_k |ds_k|``, ``L_k = int f p phi_k dx`` (exact while
 ``ds`` keeps its sign on each element). An increment is then the problem that

@@ -3,7 +3,7 @@
 The slip ``s`` is interpolated by a polynomial of degree ``N - 1`` through its values at the
 Gauss-Chebyshev points ``t_k = cos((2k - 1) pi / (2N))`` of ``x = centre + a t``. Writing
 ``s = a sum_n c_n T_n(t)``, the dislocation traction of eq (A.4) is diagonal in this basis
-(formulation.md section 4), ``sqrt(1 - t^2) q_d = -(E_star / 2) sum_n n c_n T_n(t)``, and at the
+(docs/theory/method4.md#chebyshev), ``sqrt(1 - t^2) q_d = -(E_star / 2) sum_n n c_n T_n(t)``, and at the
 nodes, by the discrete orthogonality of ``T_n``,
 
     sqrt(1 - t_j^2) q_d(t_j) = -sum_k G_jk s_k,   G = (E_star / (a N)) sum_n n T_n(t_j) T_n(t_k),
@@ -11,7 +11,7 @@ nodes, by the discrete orthogonality of ``T_n``,
 a symmetric positive semi-definite matrix whose null space is the rigid shift. The fully
 stuck traction (eqs 9, 20) is ``sqrt(1 - t^2) q_st = (Q / pi + sigma a t / 4) / a``.
 
-One increment is the convex problem of formulation.md section 3 restricted to the nodes,
+One increment is the convex problem of docs/theory/method4.md#increment restricted to the nodes,
 
     min_ds  J(ds) = 1/2 ds^T G ds - g_trial^T ds + sum_k limit_k |ds_k|,
 

@@ -1,6 +1,6 @@
 """Published closed-form partial-slip solutions, used as references.
 
-Conventions of formulation.md: positive Q gives positive slip; positive Q and sigma together
+Conventions of docs/theory/conventions.md: positive Q gives positive slip; positive Q and sigma together
 move the stick zone toward negative x.
 """
 
@@ -99,7 +99,7 @@ def nowell_hills_traction(contact, Q, sigma, x):
     """Traction [Pa] of a Hertz contact under proportional ``Q`` [N/m] and ``sigma`` [Pa] from zero.
 
     Nowell & Hills (1987): ``q = f p0 [sqrt(1 - x^2/a^2) - (b/a) sqrt(1 - (x - e)^2/b^2)]`` with
-    ``b = a sqrt(1 - Q/(f P))``, ``e = -sigma a / (4 f p0)`` (signs of formulation.md); valid while
+    ``b = a sqrt(1 - Q/(f P))``, ``e = -sigma a / (4 f p0)`` (signs of docs/theory/conventions.md); valid while
     ``|sigma| <= 2 f p0 Q / (f P)`` and ``|e| + b <= a``. For ``Q < 0`` the signs of ``q`` and ``e`` flip.
     """
     b = stick_half_width(contact, Q)

@@ -14,7 +14,7 @@ again, interrupted or extended, only runs the cases it has no file for.
 
 A sweep file (TOML) names its base history, ``history = "FILE"`` (relative to the sweep file),
 or holds it (``[contact]`` and ``[[loading]]`` tables), and lists the values in a ``[grid]``
-table (format in the README, "Sweeps").
+table (format: docs/guide/sweeps.md).
 """
 
 import contextlib
@@ -121,7 +121,7 @@ UNITS = {
     "phase_deg": "degree",
 }
 
-#: Loads drawn relative to what slides the contact (README, notation): psi = Q / (f P), tau = sigma / (f p0).
+#: Loads drawn relative to what slides the contact (docs/theory/conventions.md): psi = Q / (f P), tau = sigma / (f p0).
 SCALES = {"Q": ("f P", lambda cases: cases.f * cases.P), "sigma": ("f p0", lambda cases: cases.f * cases.p0)}
 
 #: Colours of the regimes on a fretting map: stuck, partial slip, gross slip.
@@ -220,7 +220,7 @@ def sweep(path, grid, scheduler=None, *, output=None):
 
 
 def read_sweep(path):
-    """The base history and grid of a sweep file (format in the README, "Sweeps").
+    """The base history and grid of a sweep file (format: docs/guide/sweeps.md).
 
     Raises
     ------
