@@ -39,23 +39,17 @@ turns them into nodal values keeping Coulomb's law exactly at the nodes.
 
 Mesh. `element_targets` reads the stick and slip zones of an increment and asks for element
 sizes; `refine` bisects (old nodes stay nodes, so a P1 slip field carries over exactly) and
-grades neighbours to a size ratio of at most 2. A driver (`fretting.engine.simulation.adapted_mesh`)
+grades neighbours to a size ratio of at most 2. A driver (`fretting.engine.adaptation.adapted_model`)
 runs the turning points of its history (curved stretches between them cut where the path has
-turned by `fretting.engine.simulation.MAX_TURN`), reduces the targets of every increment with
+turned by `fretting.engine.adaptation.MAX_TURN`), reduces the targets of every increment with
 ``np.minimum``, refines, and runs again until `refine` returns the same mesh, starting from
 `initial_theta` (pass `GalerkinModel.breakpoints` on: the profile's, where the pressure has a
 singular derivative). ``rtol`` is the relative accuracy asked of the energy dissipated in each
 increment; the stick/slip boundaries of the increments asked about are then located to about
 ``10 rtol a``. An increment from one turning point (or cut) to the next slips where the
 boundaries of the steps between have swept, so its slip zones get elements of
-``BOUNDARY_SPAN rtol a`` in x too: those boundaries are then located to 1.3e-3 a at rtol 1e-4
-on the proportional Hertz scenes of results/speed_vs_error.md (2.6e-3 a on the bench's
-90-degree scene, where a slip zone recedes by 0.19 a in one step).
-Measured at the default 1e-4 (``python benchmarks/galerkin_convergence.py --rtol 1e-4
---no-chebyshev``): energy per cycle of a Hertz contact under ``+-Q*`` within 3.0e-5 for Q*/fP
-in [0.05, 0.95] and 1.2e-5 down to 1e-6, stick ends within 2.2e-4 a, tractions within 3.5e-4
-f p0 and slips within 3.2e-4 of their maximum, on 268 to 765 nodes (765 at Q/fP = 0.999999,
-just under `fretting.engine.simulation.MAX_DEFAULT_MESH`).
+``BOUNDARY_SPAN rtol a`` in x too. Accuracy on closed forms: benchmarks/galerkin_convergence.py;
+at every step of general histories: benchmarks/trajectories.py.
 """
 
 from dataclasses import dataclass
@@ -264,9 +258,8 @@ def _series_coefficients(sizes):
     ``h_e <= h_f`` and mirrored: symmetric, and each entry a function of its two sizes alone, bit
     for bit, whatever other sizes there are. A mesh of bisected elements has few distinct sizes
     (48 among the 763 elements of the bench's baseline scene), so this table is cheap; one of
-    ``M`` distinct sizes (random nodes) costs ``~ 64 M^2`` operations here: 67 ms of the 89 ms
-    that `stiffness` takes on 764 uniformly random nodes, against 13 ms in all on `uniform_theta`
-    (763) (``timeit``, one core, 2026-11-21).
+    ``M`` distinct sizes (random nodes) costs ``~ 64 M^2`` operations here, most of `stiffness`'s
+    time on such a mesh.
 
     Returns
     -------
