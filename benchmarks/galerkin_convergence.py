@@ -77,7 +77,11 @@ def scenes(contact, Q, sigma, rtol, chebyshev):
 
 def traction(scene, g, ds):
     """Nodal traction [Pa]: the Galerkin scene keeps Coulomb exactly where `ds` slipped."""
-    return g / (scene.pressure_scale * np.sqrt(1 - scene.t**2)) if isinstance(scene, _ChebyshevScene) else scene.nodal_traction(g, ds)
+    return (
+        g / (scene.pressure_scale * np.sqrt(1 - scene.t**2))
+        if isinstance(scene, _ChebyshevScene)
+        else scene.nodal_traction(g, ds)
+    )
 
 
 def stick_ends(scene, slip):

@@ -121,7 +121,8 @@ def _parser():
         "--body",
         type=int,
         choices=(1, 2),
-        help="body of the surface-stress figure: 1 (traction q) or 2 (-q) (default: the specimen, with its bulk stress)",
+        help="body of the surface-stress figure: 1 (traction q) or 2 (-q) "
+        "(default: the specimen, with its bulk stress)",
     )
     plot.set_defaults(command=_plot)
 

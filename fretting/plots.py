@@ -38,7 +38,8 @@ INNER = 0.95
 LOG_CYCLES = 100
 
 #: Axis label of ``delta_Q``: the slip part of the displacement conjugate to Q
-#: (docs/theory/conventions.md#energy); the elastic part, linear in Q and defined in plane strain only up to a datum, is left out.
+#: (docs/theory/conventions.md#energy); the elastic part, linear in Q and defined in plane strain
+#: only up to a datum, is left out.
 DELTA_Q_LABEL = "slip part of the displacement, $\\delta_Q$ [µm]"
 
 #: Cycles drawn by default in the figures that show one curve per cycle: enough to see a
@@ -316,7 +317,9 @@ def _loops(result, cycles, ax, displacement, scale, load):
             raise ValueError(f"cycle {number} was not recorded whole; cycles recorded whole: {whole}")
         ax.plot(values[rows[int(number)]], load[rows[int(number)]], linewidth=1, label=f"cycle {number}")
     ax.legend(fontsize="small")
-    both = any(np.ptp(result.Q.values[rows[int(n)]]) > 0 and np.ptp(result.sigma.values[rows[int(n)]]) > 0 for n in chosen)
+    both = any(
+        np.ptp(result.Q.values[rows[int(n)]]) > 0 and np.ptp(result.sigma.values[rows[int(n)]]) > 0 for n in chosen
+    )
     return ax, both
 
 
@@ -345,7 +348,9 @@ def _rows(result, steps):
     """Rows of the recorded step numbers `steps` (`snapshot_steps` when None)."""
     steps = snapshot_steps(result) if steps is None else np.asarray(steps, dtype=np.int64)
     rows = np.searchsorted(result.step.values, steps)
-    missing = steps[(rows >= result.sizes["step"]) | (result.step.values[np.minimum(rows, result.sizes["step"] - 1)] != steps)]
+    missing = steps[
+        (rows >= result.sizes["step"]) | (result.step.values[np.minimum(rows, result.sizes["step"] - 1)] != steps)
+    ]
     if missing.size:
         raise ValueError(f"steps {missing.tolist()} are not recorded in the result")
     return rows

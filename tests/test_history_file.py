@@ -102,7 +102,9 @@ def test_tabulated_gap_must_cover_the_contact(tmp_path):
     write(tmp_path, "x,h0\n" + "\n".join(f"{a:.17g},{a * a / 0.1:.17g}" for a in x), "gap.csv")
     text = CONTACT.replace('profile = "hertz"\nR = 0.05', 'profile = "gap"\ntable = "gap.csv"')
     error = error_of(tmp_path, text + SHEAR)
-    assert error.line == 3 and error.key == "contact.table" and "leaves the table's x in [-0.0001, 0.0001] m" in str(error)
+    assert (
+        error.line == 3 and error.key == "contact.table" and "leaves the table's x in [-0.0001, 0.0001] m" in str(error)
+    )
 
 
 @pytest.mark.parametrize(
@@ -287,7 +289,9 @@ def test_a_gap_that_is_not_convex_where_it_touches_is_refused(tmp_path):
     wear_scar(tmp_path / "gap.csv")
     E_star = fr.plane_strain_modulus(74e9, 0.33)
     a = 0.1 * 157e6 / E_star
-    contact = f'[contact]\nprofile = "gap"\ntable = "gap.csv"\nE = 74e9\nnu = 0.33\nf = 0.75\nP = {np.pi * a * 157e6 / 2!r}\n'
+    contact = (
+        f'[contact]\nprofile = "gap"\ntable = "gap.csv"\nE = 74e9\nnu = 0.33\nf = 0.75\nP = {np.pi * a * 157e6 / 2!r}\n'
+    )
     error = error_of(tmp_path, contact + SHEAR)
     assert error.line == 3 and error.key == "contact.table"
     assert "curvature is first negative at x = -9.5e-05 m, so the pressure is negative at x = -9.7" in str(error)
@@ -299,7 +303,9 @@ def test_a_gap_that_is_not_convex_where_it_touches_is_refused(tmp_path):
 def test_a_concave_table_names_its_curvature(tmp_path):
     x = np.linspace(-1e-3, 1e-3, 41)
     write(tmp_path, "x,h0\n" + "\n".join(f"{u:.17g},{1e-5 - u * u / 0.1:.17g}" for u in x), "gap.csv")
-    error = error_of(tmp_path, CONTACT.replace('profile = "hertz"\nR = 0.05', 'profile = "gap"\ntable = "gap.csv"') + SHEAR)
+    error = error_of(
+        tmp_path, CONTACT.replace('profile = "hertz"\nR = 0.05', 'profile = "gap"\ntable = "gap.csv"') + SHEAR
+    )
     assert error.key == "contact.table" and "the table's curvature is first negative at x = -0.001 m" in str(error)
 
 

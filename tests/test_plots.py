@@ -122,7 +122,9 @@ def test_legends_name_the_step_not_the_row(contact):
     steps = plots.snapshot_steps(result)
     assert set(steps) <= set(result.step.values) and steps[-1] == result.step.values[-1]
     for draw in (plots.traction, plots.slip, plots.surface_stress):
-        labels = [line.get_label() for line in draw(result, ax=axes()).get_lines() if line.get_label().startswith("step")]
+        labels = [
+            line.get_label() for line in draw(result, ax=axes()).get_lines() if line.get_label().startswith("step")
+        ]
         assert [int(label.split(":")[0].split()[1]) for label in labels] == list(steps)
     with pytest.raises(ValueError, match=r"steps \[1\] are not recorded"):
         plots.traction(result, steps=[1], ax=axes())

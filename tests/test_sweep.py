@@ -17,7 +17,6 @@ from fretting.loading.examples import EXAMPLES
 from fretting.loading.history_file import HistoryFileError
 from fretting.studies.sweeps import REGIMES, VARIABLES, read_sweep, save_map, summarize
 
-
 #: A short cyclic history: f P = 70 kN/m, so Q = 75 kN/m slides and Q = sigma = 0 sticks.
 BASE = (
     HERTZ_TOML
@@ -123,7 +122,8 @@ def test_resume_runs_only_the_cases_without_a_file(swept, cluster):
         ({}, "grid: found {}, expected keys and lists of their values"),
         (
             {"contact.profile": ["flat"]},
-            "contact.R: unknown key, expected one of: profile, E_star, E, nu, f, P, specimen, a (in the case contact.profile",
+            "contact.R: unknown key, expected one of: profile, E_star, E, nu, f, P, specimen, a "
+            "(in the case contact.profile",
         ),
     ],
 )
@@ -195,9 +195,10 @@ def test_without_dask_distributed_a_sweep_names_the_extra(tmp_path, capsys, monk
     message = capsys.readouterr().err
     assert message.startswith("fretting: error: ") and "pip install 'fretting[sweep]'" in message
     assert message.count("\n") == 1
+    here = str(Path(fr.__file__).resolve().parents[1])  # the fretting this test imports
     loaded = subprocess.run(
         [sys.executable, "-c", "import sys, fretting; print(sorted({m.split('.')[0] for m in sys.modules}))"],
-        capture_output=True, text=True, check=True, env=os.environ | {"PYTHONPATH": str(Path(fr.__file__).resolve().parents[1])},
+        capture_output=True, text=True, check=True, env=os.environ | {"PYTHONPATH": here},
     ).stdout  # fmt: skip
     assert "'dask'" not in loaded and "'distributed'" not in loaded and "'matplotlib'" not in loaded
 

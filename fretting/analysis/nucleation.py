@@ -17,8 +17,11 @@ it (`SPECIMEN`: a specimen in bulk tension ``sigma`` under an unstressed pad). B
 specimen carries the bulk stress and the pad none: body 2 ``sigma``, or body 1 ``-sigma``.
 
 Per-cycle quantities follow the load cycles of the history (`cycle_number`). The engine tallies
-``w`` and ``slip_amplitude`` over every step, so they exist when only some steps are recorded;
-results written before it did are served by the recorded steps, for the cycles recorded whole.
+``w``, ``slip_amplitude`` and, at each node, the peaks over the cycle's steps of the specimen's
+``sigma_xx``, of ``|q|`` and of their product (``sigma_xx_peak``, ``q_peak``,
+``sigma_xx_q_peak``) over every step, so they exist when only some steps are recorded; results
+written before it did, and the surface stress of the pad or of another bulk stress, are served
+by the recorded steps, for the cycles recorded whole.
 
 References
 ----------
@@ -39,6 +42,8 @@ import numpy as np
 import xarray as xr
 
 from fretting.physics.contact import SPECIMEN
+from fretting.physics.surface import SurfaceStress, bulk_stress
+from fretting.results.variables import CYCLE_PEAKS
 
 __all__ = [
     "accumulated_dissipation_density",
@@ -185,14 +190,17 @@ def slip_amplitude(result):
     return delta.rename("slip_amplitude").assign_attrs(attrs)
 
 
-def _peak(field, name, units, long_name, definition):
-    """Largest value over x of each row of `field` and its position, as a Dataset."""
-    values = field.values
+def _largest(values, x):
+    """Largest of each row of `values` (cycles, N) and its node `x` [m]; NaN for rows of NaN only."""
     valid = ~np.all(np.isnan(values), axis=1)
     at = np.zeros(values.shape[0], dtype=np.int64)
     at[valid] = np.nanargmax(values[valid], axis=1)
-    peak = np.where(valid, values[np.arange(values.shape[0]), at], np.nan)
-    x = np.where(valid, field.x.values[at], np.nan)
+    return np.where(valid, values[np.arange(values.shape[0]), at], np.nan), np.where(valid, x[at], np.nan)
+
+
+def _peak(field, name, units, long_name, definition):
+    """Largest value over x of each row of `field` and its position, as a Dataset."""
+    peak, x = _largest(field.values, field.x.values)
     coords = {"cycle_number": field.cycle_number}
     return xr.Dataset(
         {
@@ -273,59 +281,6 @@ def fouvry(result):
     return xr.Dataset(data, coords={"cycle_number": result.cycle_number}).merge(peak)
 
 
-def _hilbert_matrix(t):
-    """Matrix ``H`` with ``(1/pi) PV int_{-1}^{1} g(tau) / (sqrt(1 - tau^2) (tau - t_j)) dtau = (H @ g)_j``.
-
-    ``g`` is interpolated linearly between the nodes `t` (ascending, in [-1, 1]) and extrapolated
-    linearly from the two outermost nodes to ``+-1`` where no node lies there; each piece
-    ``A + B tau`` is integrated exactly (product integration):
-    ``int (A + B tau) dtau / (sqrt(1 - tau^2) (tau - t)) = B int dtau / sqrt(1 - tau^2)
-    + (A + B t) int dtau / (sqrt(1 - tau^2) (tau - t))``, and with ``tau = cos(theta)``,
-    ``t = cos(phi)``, ``int dtheta / (cos(theta) - cos(phi)) = ln|sin((theta + phi)/2) /
-    sin((theta - phi)/2)| / sin(phi)``. Writing ``A + B t = g(t) + (A + B t - g(t))``, the first
-    part integrates to ``g(t) U_{-1}(t) = 0`` over (-1, 1) (docs/theory/method4.md#chebyshev) and the second
-    vanishes on the two pieces that meet at ``t``, so no principal value is left to take.
-
-    A node at ``t = 1`` or ``-1`` (a Galerkin mesh has both) is its own end knot, and its row is
-    the limit there, finite where ``g`` vanishes at that end as ``g = q sqrt(1 - t^2)`` does: the
-    piece that meets it drops out and the others integrate to differences of ``cot(theta/2)`` at
-    ``t = 1`` and of ``tan(theta/2)`` at ``t = -1`` (``dtau / (sqrt(1 - tau^2) (tau -+ 1))`` in ``theta``).
-    """
-    N = t.size
-    lower, upper = int(t[0] > -1.0), int(t[-1] < 1.0)  # end knots to add
-    knots = np.concatenate([[-1.0] * lower, t, [1.0] * upper])
-    at = np.arange(N) + lower  # knot of each node
-    extend = np.zeros((knots.size, N))  # knot values from node values
-    extend[at, np.arange(N)] = 1.0
-    for add, end, (inner, outer) in ((lower, 0, (0, 1)), (upper, knots.size - 1, (N - 1, N - 2))):
-        if add:
-            u = (knots[end] - t[inner]) / (t[outer] - t[inner])
-            extend[end, inner], extend[end, outer] = 1 - u, u
-    theta = np.arccos(knots)
-    cauchy = np.zeros((N, knots.size - 1))  # int over piece k of dtau / (sqrt(1 - tau^2) (tau - t_j))
-    inside = np.abs(t) < 1
-    phi = np.arccos(t[inside])[:, None]
-    with np.errstate(divide="ignore"):
-        log = np.log(np.abs(np.sin((theta + phi) / 2) / np.sin((theta - phi) / 2))) / np.sin(phi)
-        ends = {1.0: 1 / np.tan(theta / 2), -1.0: np.tan(theta / 2)}
-    cauchy[inside] = log[:, :-1] - log[:, 1:]
-    for j in np.flatnonzero(~inside):
-        cauchy[j] = ends[t[j]][:-1] - ends[t[j]][1:]
-    pieces = np.stack([at - 1, at], axis=1)  # the two pieces that meet at each node
-    valid = (pieces >= 0) & (pieces < knots.size - 1)
-    cauchy[np.nonzero(valid)[0], pieces[valid]] = 0.0
-    low, high = knots[:-1], knots[1:]
-    width = high - low
-    arc = (theta[:-1] - theta[1:]) / width  # B_k times this is the arcsine part
-    below = (high - t[:, None]) / width * cauchy  # weight of the piece's lower knot in (A + B t_j) cauchy
-    above = (t[:, None] - low) / width * cauchy
-    H = np.zeros((N, knots.size))
-    H[:, :-1] += below - arc
-    H[:, 1:] += above + arc
-    H[np.flatnonzero(inside), at[inside]] -= cauchy[inside].sum(axis=1)  # the - g(t_j) sum_k cauchy_jk part
-    return H @ extend / np.pi
-
-
 def specimen(result):
     """The body [1 or 2] that is the specimen: the result's ``specimen`` attribute, else `SPECIMEN` (body 2)."""
     return int(result.attrs.get("specimen", SPECIMEN))
@@ -340,15 +295,10 @@ def _body(result, body):
 
 
 def _bulk(result, body, bulk):
-    """Bulk direct stress [Pa] of `body` at each recorded step, from body 1's `bulk`.
-
-    `bulk` None: the specimen carries the bulk stress and the pad none, so body 1 carries
-    ``-sigma`` when it is the specimen, else nothing.
-    """
-    if bulk is None:
-        bulk = -result.sigma.values if specimen(result) == 1 else 0.0
-    bulk1 = np.broadcast_to(np.asarray(bulk, dtype=float), result.sizes["step"])
-    return bulk1 if body == 1 else bulk1 + result.sigma.values
+    """Bulk direct stress [Pa] of `body` at each recorded step, from body 1's `bulk` (`bulk_stress`)."""
+    sigma = result.sigma.values
+    bulk1 = None if bulk is None else np.broadcast_to(np.asarray(bulk, dtype=float), sigma.shape)
+    return np.broadcast_to(bulk_stress(sigma, body, bulk1, specimen(result)), sigma.shape)
 
 
 def surface_stress(result, body=None, bulk=None):
@@ -357,14 +307,16 @@ def surface_stress(result, body=None, bulk=None):
     ``sigma_xx(x) = -(2/pi) PV int t_x(xi) / (x - xi) dxi - p(x) + sigma_b`` for a half-plane whose
     surface carries the shear traction ``t_x`` and the pressure ``p`` (Johnson 1985 [2]_, section
     2.3; plane strain), with ``t_x = q`` on body 1 and ``-q`` on body 2, and ``sigma_b`` the body's
-    bulk stress. Check: a sliding Hertz contact, ``q = f p``, gives ``-p - 2 f p0 x / a`` in body 1,
-    a tension ``2 f p0`` at the trailing edge ``x = -a`` (McEwen 1949 [3]_).
+    bulk stress (`fretting.physics.surface.SurfaceStress`, the formula the engine tallies the
+    per-cycle peaks with). Check: a sliding Hertz contact, ``q = f p``, gives ``-p - 2 f p0 x / a``
+    in body 1, a tension ``2 f p0`` at the trailing edge ``x = -a`` (McEwen 1949 [3]_).
 
     The principal value is integrated exactly for ``sqrt(1 - t^2) q`` interpolated linearly
-    between the nodes (`_hilbert_matrix`). Against Cattaneo-Mindlin at 128 nodes the error is
-    below 2e-3 f p0 farther than 0.05 a from the stick/slip boundaries and 7e-3 f p0 beyond
-    0.02 a (measured, Q/(f P) = 0.05 to 0.95); at a boundary the stress has a square-root
-    profile with a vertical tangent that no fixed grid resolves (errors up to 0.08 f p0 there).
+    between the nodes (`fretting.physics.surface.hilbert_matrix`). Against Cattaneo-Mindlin at
+    128 nodes the error is below 2e-3 f p0 farther than 0.05 a from the stick/slip boundaries and
+    7e-3 f p0 beyond 0.02 a (measured, Q/(f P) = 0.05 to 0.95); at a boundary the stress has a
+    square-root profile with a vertical tangent that no fixed grid resolves (errors up to 0.08 f
+    p0 there).
 
     Parameters
     ----------
@@ -386,11 +338,8 @@ def surface_stress(result, body=None, bulk=None):
         (``"specimen"`` or ``"pad"``).
     """
     body, role = _body(result, body)
-    sign = 1.0 if body == 1 else -1.0
-    sigma_b = _bulk(result, body, bulk)
     t = (result.x.values - result.attrs["centre"]) / result.attrs["a"]
-    g = result.q.values * np.sqrt(1 - t**2)
-    stress = sign * 2 * g @ _hilbert_matrix(t).T - result.p.values + sigma_b[:, None]
+    stress = SurfaceStress(t)(result.q.values, result.p.values, _bulk(result, body, bulk)[:, None], body)
     definition = (
         f"sigma_xx = -(2/pi) PV int t_x(xi)/(x - xi) dxi - p(x) + sigma_b, t_x = {'+q' if body == 1 else '-q'} "
         f"(body {body}), sigma_b its bulk stress (half-plane surface stress, Johnson 1985 section 2.3; "
@@ -402,37 +351,36 @@ def surface_stress(result, body=None, bulk=None):
     )
 
 
-def _extremes(loads, first, last):
-    """Rows from `first` to `last` (inclusive) where a load of `loads`, if it varies there, is largest or least."""
-    if last < first:
-        return np.zeros(0, dtype=np.int64)
-    parts = [load[first : last + 1] for load in loads]
-    rows = [first + f(part) for part in parts if np.ptp(part) > 0 for f in (np.argmax, np.argmin)]
-    return np.unique(rows or [last]).astype(np.int64)
+def _recorded_peaks(result, body, bulk):
+    """`_cycle_peaks` from the recorded steps: NaN for the cycles not recorded whole (`complete_cycles`)."""
+    peaks = np.full((len(CYCLE_PEAKS), result.sizes["cycle_number"], result.sizes["x"]), np.nan)
+    stress, shear = surface_stress(result, body, bulk).values, np.abs(result.q.values)
+    for k, rows in enumerate(complete_cycles(result)):
+        if rows is not None:
+            steps = slice(rows.start + 1, rows.stop)  # the steps of the cycle, not its starting state
+            s, q = stress[steps], shear[steps]
+            peaks[:, k] = s.max(axis=0), q.max(axis=0), (s * q).max(axis=0)
+    return dict(zip(CYCLE_PEAKS, peaks, strict=True))
 
 
-def _at_load_extremes(result, body, bulk):
-    """The recorded steps where Q or sigma are largest or least within each cycle, and the fields there.
+def _cycle_peaks(result, body, bulk):
+    """Per cycle and node, the largest ``sigma_xx`` [Pa] of `body`, ``|q|`` [Pa] and ``sigma_xx |q|``
+    [Pa^2] over the steps of the cycle (its increments, not its starting state).
 
-    A load that does not vary in the cycle has no extremes; when neither varies, the cycle's last
-    recorded step stands for them.
+    The engine's tallies over every step when the result has them (``sigma_xx`` only for the
+    specimen with its bulk stress, which it tallies); otherwise, for results written without
+    them or another body or bulk stress, from the recorded steps of the cycles recorded whole
+    (NaN for the others).
 
     Returns
     -------
-    rows : list of ndarray of int
-        Per cycle, indices into `shear` and `stress` (empty for a cycle without recorded steps).
-    steps : ndarray of int
-        The steps those indices stand for.
-    shear, stress : ndarray
-        ``|q|`` and ``sigma_xx`` of `body` [Pa] at those steps, dims (step, x).
+    dict
+        ``sigma_xx_peak``, ``q_peak``, ``sigma_xx_q_peak``: ndarray, shape (cycles, N).
     """
-    groups, loads = _recorded_rows(result), (result.Q.values, result.sigma.values)
-    extremes = [_extremes(loads, *groups.get(int(number), (0, -1))) for number in result.cycle_number.values]
-    picked = np.unique(np.concatenate([np.zeros(0, dtype=np.int64), *extremes]))
-    bulk = None if bulk is None else np.broadcast_to(np.asarray(bulk, dtype=float), result.sizes["step"])[picked]
-    stress = surface_stress(result.isel(step=picked), body, bulk).values
-    rows = [np.searchsorted(picked, e) for e in extremes]
-    return rows, result.step.values[picked], np.abs(result.q.values[picked]), stress
+    tallied = {name: result[name].values.astype(np.float64) for name in CYCLE_PEAKS if name in result}
+    if len(tallied) == len(CYCLE_PEAKS) and body == specimen(result) and bulk is None:
+        return tallied
+    return _recorded_peaks(result, body, bulk) | {name: tallied[name] for name in ("q_peak",) if name in tallied}
 
 
 def ruiz(result, body=None, bulk=None):
@@ -440,10 +388,14 @@ def ruiz(result, body=None, bulk=None):
 
     Ruiz, Boddington & Chen (1984) [4]_: ``tau`` the surface shear traction, ``sigma_T`` the surface
     direct stress along the slip, ``delta`` the slip amplitude. Convention here: ``delta`` is the
-    cycle's `slip_amplitude`; ``|q|`` and ``sigma_xx`` (of `body`, see `surface_stress`) are taken
-    at the load extremes of the cycle (the recorded steps where Q, or sigma, if it varies, is
-    largest or least in it), and the maximum is over those steps and the nodes. ``F2`` is negative when the
-    surface is in compression wherever it slips.
+    cycle's `slip_amplitude` at each node; ``|q|`` and ``sigma_xx`` (of `body`, see
+    `surface_stress`) are those of each step of the cycle, and the maximum is over all its steps
+    and the nodes: ``F1 = max_x delta(x) max_steps |q(x)|`` and ``F2 = max_x delta(x) max_steps
+    sigma_xx(x) |q(x)|``, since ``delta >= 0``. The steps are every step of the run, from the
+    engine's tally, when the result has it (``q_peak``, ``sigma_xx_q_peak``; ``sigma_xx`` of the
+    specimen with its bulk stress only); otherwise, for results written without it or another
+    body or bulk stress, the recorded steps of the cycles recorded whole (NaN for the others).
+    ``F2`` is negative when the surface is in compression wherever it slips.
 
     Parameters
     ----------
@@ -456,25 +408,15 @@ def ruiz(result, body=None, bulk=None):
     Returns
     -------
     xarray.Dataset
-        Dims (cycle_number,): ``F1`` [J/m^2], ``F2`` [Pa J/m^2], their positions ``x_F1``,
-        ``x_F2`` [m] and steps ``step_F1``, ``step_F2``; NaN (-1 for steps) for cycles without a
-        recorded step.
+        Dims (cycle_number,): ``F1`` [J/m^2], ``F2`` [Pa J/m^2] and their positions ``x_F1``,
+        ``x_F2`` [m]; NaN where the cycle's peaks are not known.
     """
     _require_cycles(result)
     body, role = _body(result, body)
-    delta = slip_amplitude(result).values
-    rows, steps, shear, stress = _at_load_extremes(result, body, bulk)
-    n = result.sizes["cycle_number"]
-    out = {name: np.full(n, np.nan) for name in ("F1", "F2", "x_F1", "x_F2")}
-    out |= {name: np.full(n, -1, dtype=np.int64) for name in ("step_F1", "step_F2")}
-    x = result.x.values
-    for k, cycle in enumerate(rows):
-        if not cycle.size:
-            continue
-        for name, field in (("F1", shear[cycle] * delta[k]), ("F2", stress[cycle] * shear[cycle] * delta[k])):
-            i, j = np.unravel_index(np.argmax(field), field.shape)
-            out[name][k], out[f"x_{name}"][k], out[f"step_{name}"][k] = field[i, j], x[j], steps[cycle[i]]
-    convention = "at the load extremes of the cycle, delta its slip amplitude"
+    delta, peaks, x = slip_amplitude(result).values, _cycle_peaks(result, body, bulk), result.x.values
+    F1, x_F1 = _largest(peaks["q_peak"] * delta, x)
+    F2, x_F2 = _largest(peaks["sigma_xx_q_peak"] * delta, x)
+    convention = "over every step of the cycle and the nodes, delta(x) its slip amplitude"
     attrs = {
         "F1": _attrs("J/m2", "Ruiz parameter F1", f"F1 = max |q| delta {convention} (Ruiz et al. 1984)"),
         "F2": _attrs(
@@ -484,9 +426,8 @@ def ruiz(result, body=None, bulk=None):
         ),
         "x_F1": _attrs("m", "position of F1", "node of the maximum F1"),
         "x_F2": _attrs("m", "position of F2", "node of the maximum F2"),
-        "step_F1": _attrs("1", "step of F1", "recorded step of the maximum F1 (-1: none)"),
-        "step_F2": _attrs("1", "step of F2", "recorded step of the maximum F2 (-1: none)"),
     }
+    out = {"F1": F1, "F2": F2, "x_F1": x_F1, "x_F2": x_F2}
     data = {name: ("cycle_number", values, attrs[name]) for name, values in out.items()}
     return xr.Dataset(data, coords={"cycle_number": result.cycle_number}, attrs={"body": body, "role": role})
 
@@ -613,9 +554,11 @@ def per_cycle(result, body=None, bulk=None):
 
     ``E_d``, ``E_d_accumulated``, ``w_max``, ``x_w_max``, ``w_accumulated_max``,
     ``x_w_accumulated_max``, ``slip_amplitude_max`` (the largest slip amplitude, at the node
-    ``x_slip_amplitude_max``), ``F1``, ``F2`` with positions and steps (`ruiz`), and the peak
-    surface tension ``sigma_xx_max`` at the cycle's load extremes (`surface_stress` of `body`,
-    by default the specimen with its bulk stress).
+    ``x_slip_amplitude_max``), ``F1``, ``F2`` with their positions (`ruiz`), and the peak surface
+    direct stress ``sigma_xx_max`` over every step of the cycle and the nodes, at the node
+    ``x_sigma_xx_max`` (`surface_stress` of `body`, by default the specimen with its bulk stress;
+    over every step from the engine's tally ``sigma_xx_peak`` for the specimen with its bulk
+    stress, else over the recorded steps of the cycles recorded whole, as `ruiz`).
     """
     body, role = _body(result, body)
     ruiz_ = ruiz(result, body, bulk)
@@ -626,12 +569,11 @@ def per_cycle(result, body=None, bulk=None):
         "largest slip amplitude of the cycle",
         "max over x of the slip amplitude delta_k(x)",
     )
-    rows, _, _, stress = _at_load_extremes(result, body, bulk)
-    tension = np.array([stress[cycle].max() if cycle.size else np.nan for cycle in rows])
-    definition = f"max over x of sigma_xx of the {role} (body {body}) at the load extremes of the cycle"
-    peak_tension = xr.Dataset(
-        {"sigma_xx_max": ("cycle_number", tension, _attrs("Pa", "peak surface direct stress", definition))},
-        coords={"cycle_number": result.cycle_number},
+    stress = xr.DataArray(
+        _cycle_peaks(result, body, bulk)["sigma_xx_peak"],
+        coords={"cycle_number": result.cycle_number, "x": result.x},
     )
-    parts = [fouvry(result), peak_dissipation_density(result), delta, ruiz_, peak_tension]
+    definition = f"max over every step of the cycle and over x of sigma_xx of the {role} (body {body})"
+    peak_stress = _peak(stress, "sigma_xx_max", "Pa", "peak surface direct stress of the cycle", definition)
+    parts = [fouvry(result), peak_dissipation_density(result), delta, ruiz_, peak_stress]
     return xr.merge(parts, combine_attrs="drop_conflicts").assign_attrs(body=body, role=role)

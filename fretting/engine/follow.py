@@ -7,12 +7,14 @@ depends on the loads and the state only); such cycles are copied instead of solv
 recorder is told so (`Recorder.copied`).
 """
 
+import weakref
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from fretting.engine.state import State, Tally
 from fretting.errors import GrossSlipError, SolverError
+from fretting.physics.surface import SurfaceStress, bulk_stress
 
 __all__ = ["advance", "follow"]
 
@@ -36,8 +38,29 @@ def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False):
         raise GrossSlipError(step, Q, sigma, sliding) from None
     if not outcome.dissipation >= 0:
         raise SolverError(f"the increment to Q = {Q!r}, sigma = {sigma!r} dissipated {outcome.dissipation!r} J/m")
-    w = model.dissipation_density(outcome.ds) if state.tally.number else None
-    return outcome, state.advance(outcome, Q, sigma, w)
+    if not state.tally.number:
+        return outcome, state.advance(outcome, Q, sigma, None, None, None)
+    stress, shear = specimen_surface(model, outcome, sigma)
+    return outcome, state.advance(outcome, Q, sigma, model.dissipation_density(outcome.ds), stress, shear)
+
+
+#: The surface stress operator and the pressure at the nodes of each model in use, built at its first increment.
+_SURFACES = weakref.WeakKeyDictionary()
+
+
+def specimen_surface(model, outcome, sigma):
+    """The specimen's surface direct stress [Pa], with its bulk stress, and ``|q|`` [Pa] at the nodes after `outcome`.
+
+    `sigma` [Pa] is the differential bulk tension after the increment; the specimen is the
+    contact's (`Contact.specimen`). One product with the model's precomputed Hilbert matrix
+    (`fretting.physics.surface.SurfaceStress`), the formula `fretting.analysis.nucleation.surface_stress`
+    evaluates at the recorded steps.
+    """
+    if model not in _SURFACES:
+        _SURFACES[model] = (SurfaceStress(model.t), model.contact.pressure(model.x))
+    surface, p = _SURFACES[model]
+    body, q = model.contact.specimen, model.traction(outcome)
+    return surface(q, p, bulk_stress(sigma, body, specimen=body), body), np.abs(q)
 
 
 def follow(model, history, state, recorder=None, observe=None, guess=None):

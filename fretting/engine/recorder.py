@@ -12,7 +12,7 @@ import numpy as np
 
 from fretting.engine.choice import recorded_spec
 from fretting.engine.state import State, Tally
-from fretting.results.variables import build_dataset
+from fretting.results.variables import CYCLE_PEAKS, build_dataset
 
 __all__ = ["RECORDED_ENDS", "RECORD_ALL_STEPS", "Recorder", "final_state", "recorded_steps"]
 
@@ -121,6 +121,7 @@ class Recorder:
                 "state_slip_max": tally.slip_max,
                 "total_dissipation": state.dissipated,
             }
+            | {f"state_{name}": getattr(tally, name) for name in CYCLE_PEAKS}
             | ({} if model.theta is None else {"theta": model.theta[::-1]})
             | ({} if model.memory_variable is None else {model.memory_variable: np.array(state.memory, dtype=float)})
         )
@@ -152,6 +153,7 @@ def final_state(result):
         result.state_w.values.copy(),
         result.state_slip_min.values.copy(),
         result.state_slip_max.values.copy(),
+        *(_state_peak(result, name) for name in CYCLE_PEAKS),
     )
     return State(
         float(result.state_Q),
@@ -163,6 +165,12 @@ def final_state(result):
         float(result.total_dissipation),
         tuple(result.state_turning.values.tolist()) if "state_turning" in result else (),
     )
+
+
+def _state_peak(result, name):
+    """The tally's peak `name` of the cycle in progress in `result` (NaN, unknown, in results written without it)."""
+    variable = f"state_{name}"
+    return result[variable].values.copy() if variable in result else np.full(result.sizes["x"], np.nan)
 
 
 def _cycle_rows(cycles, N):
@@ -187,7 +195,7 @@ def _cycle_rows(cycles, N):
         "cycle_copied": repeated,
         "w": rows([t.w for t in distinct], np.float32, N),
         "slip_amplitude": rows([t.slip_amplitude for t in distinct], np.float32, N),
-    }
+    } | {name: rows([getattr(t, name) for t in distinct], np.float32, N) for name in CYCLE_PEAKS}
 
 
 def _zone_ends(contact, zones):

@@ -10,6 +10,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from fretting.errors import HistoryError
+from fretting.results.variables import CYCLE_PEAKS
 
 __all__ = ["State", "Tally"]
 
@@ -28,6 +29,16 @@ class Tally:
         Energy dissipated per unit area [J/m^2] at the nodes.
     slip_min, slip_max : ndarray, shape (N,)
         Extremes of the slip [m] over the cycle, its starting state included.
+    sigma_xx_peak : ndarray, shape (N,)
+        Largest surface direct stress ``sigma_xx`` [Pa] of the specimen, with its bulk stress,
+        over the steps of the cycle (`fretting.physics.surface.SurfaceStress`).
+    q_peak : ndarray, shape (N,)
+        Largest ``|q|`` [Pa] over the steps of the cycle.
+    sigma_xx_q_peak : ndarray, shape (N,)
+        Largest ``sigma_xx |q|`` [Pa^2] over the steps of the cycle.
+
+    The three peaks are ``-inf`` before the cycle's first increment, and NaN where they are not
+    known (a state read from a result written without them): a NaN stays NaN.
     """
 
     number: int
@@ -35,20 +46,28 @@ class Tally:
     w: np.ndarray
     slip_min: np.ndarray
     slip_max: np.ndarray
+    sigma_xx_peak: np.ndarray
+    q_peak: np.ndarray
+    sigma_xx_q_peak: np.ndarray
 
     @classmethod
     def begin(cls, number, slip):
         """Nothing done yet in cycle `number`, which starts from `slip` [m]."""
-        return cls(number, 0.0, np.zeros(slip.size), slip, slip)
+        nothing = np.full(slip.size, -np.inf)
+        return cls(number, 0.0, np.zeros(slip.size), slip, slip, nothing, nothing, nothing)
 
-    def add(self, dissipation, w, slip):
-        """The tally after an increment that dissipated `dissipation` [J/m], `w` [J/m^2] and left `slip` [m]."""
+    def add(self, dissipation, w, slip, stress, shear):
+        """The tally after an increment that dissipated `dissipation` [J/m], `w` [J/m^2] and left `slip` [m],
+        the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]."""
         return Tally(
             self.number,
             self.dissipation + dissipation,
             self.w + w,
             np.minimum(self.slip_min, slip),
             np.maximum(self.slip_max, slip),
+            np.maximum(self.sigma_xx_peak, stress),
+            np.maximum(self.q_peak, shear),
+            np.maximum(self.sigma_xx_q_peak, stress * shear),
         )
 
     @property
@@ -99,13 +118,15 @@ class State:
         slip = np.zeros(model.x.size)
         return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip), model.spec)
 
-    def advance(self, outcome, Q, sigma, w):
-        """The state after the increment `outcome` to the loads `Q`, `sigma`, which dissipated `w` [J/m^2]."""
+    def advance(self, outcome, Q, sigma, w, stress, shear):
+        """The state after the increment `outcome` to the loads `Q`, `sigma`, which dissipated `w` [J/m^2]
+        and left the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]
+        (the three None outside a load cycle, where nothing is tallied)."""
         slip, ds = outcome.slip, outcome.ds
         episode = self.slip - self.episode_start
         reversed_ = np.sign(ds) * np.sign(episode) < 0
         episode_start = np.where(ds == 0, slip, np.where(reversed_, self.slip, self.episode_start))
-        tally = self.tally.add(outcome.dissipation, w, slip) if self.tally.number else self.tally
+        tally = self.tally.add(outcome.dissipation, w, slip, stress, shear) if self.tally.number else self.tally
         return replace(
             self,
             Q=Q,
@@ -130,13 +151,14 @@ class State:
         N = model.x.size
         fields = {"slip": self.slip, "episode_start": self.episode_start, "tally.w": self.tally.w}
         fields |= {"tally.slip_min": self.tally.slip_min, "tally.slip_max": self.tally.slip_max}
-        for name, values in fields.items():
+        peaks = {f"tally.{name}": getattr(self.tally, name) for name in CYCLE_PEAKS}
+        for name, values in (fields | peaks).items():
             values = np.asarray(values)
             if values.shape != (N,):
                 raise HistoryError(
                     f"state.{name} has shape {values.shape}, expected ({N},): the nodes of {model.spec.name}"
                 )
-            if not np.all(np.isfinite(values)):
+            if name not in peaks and not np.all(np.isfinite(values)):
                 raise HistoryError(f"state.{name} is not finite at node {int(np.argmin(np.isfinite(values)))}")
         numbers = {
             "Q": self.Q,

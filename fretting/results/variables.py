@@ -3,7 +3,11 @@
 import numpy as np
 import xarray as xr
 
-__all__ = ["VARIABLES", "build_dataset"]
+__all__ = ["CYCLE_PEAKS", "VARIABLES", "build_dataset"]
+
+#: Per-node peaks over every step of each load cycle that the engine tallies (`fretting.engine.state.Tally`);
+#: each is also recorded as ``state_<name>`` for the cycle in progress at the last step.
+CYCLE_PEAKS = ("sigma_xx_peak", "q_peak", "sigma_xx_q_peak")
 
 #: name -> (dims, units, long_name). Units assume SI inputs; any consistent set works.
 VARIABLES = {
@@ -30,6 +34,21 @@ VARIABLES = {
     ),
     "w": (("cycle_number", "x"), "J/m2", "energy dissipated per unit area in each load cycle"),
     "slip_amplitude": (("cycle_number", "x"), "m", "half the range of the slip over each load cycle"),
+    "sigma_xx_peak": (
+        ("cycle_number", "x"),
+        "Pa",
+        "largest surface direct stress of the specimen, with its bulk stress, over the steps of each load cycle",
+    ),
+    "q_peak": (
+        ("cycle_number", "x"),
+        "Pa",
+        "largest magnitude of the shear traction over the steps of each load cycle",
+    ),
+    "sigma_xx_q_peak": (
+        ("cycle_number", "x"),
+        "Pa2",
+        "largest product of the specimen's surface direct stress and |q| over the steps of each load cycle",
+    ),
     "state_Q": ((), "N/m", "shear force at the last step"),
     "state_sigma": ((), "Pa", "bulk tension at the last step"),
     "state_slip": (("x",), "m", "slip at the last step"),
@@ -39,6 +58,13 @@ VARIABLES = {
     "state_w": (("x",), "J/m2", "energy dissipated per unit area so far in the cycle in progress"),
     "state_slip_min": (("x",), "m", "least slip so far in the cycle in progress"),
     "state_slip_max": (("x",), "m", "greatest slip so far in the cycle in progress"),
+    "state_sigma_xx_peak": (
+        ("x",),
+        "Pa",
+        "largest surface direct stress of the specimen so far in the cycle in progress",
+    ),
+    "state_q_peak": (("x",), "Pa", "largest |q| so far in the cycle in progress"),
+    "state_sigma_xx_q_peak": (("x",), "Pa2", "largest sigma_xx |q| of the specimen so far in the cycle in progress"),
     "state_turning": (
         ("turning",),
         "N/m",

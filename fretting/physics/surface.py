@@ -1,0 +1,128 @@
+"""Direct stress along the surface of a half-plane that carries the contact's tractions.
+
+One formula for the engine, which tallies the specimen's peak stress over every step of a load
+cycle, and for `fretting.analysis.nucleation`, which evaluates it at the recorded steps.
+
+Conventions (docs/theory/conventions.md): the shear traction ``q`` acts on body 1 (its resultant is ``Q``)
+and ``-q`` on body 2, and ``sigma = sigma_b2 - sigma_b1`` is the difference of the bodies' bulk
+direct stresses; by default the specimen (`fretting.physics.contact.SPECIMEN`, or the body a
+`Contact` names) carries the bulk stress and the pad none.
+
+References
+----------
+.. [1] Johnson, Contact Mechanics, Cambridge University Press 1985, section 2.3 (surface
+   stresses of a half-plane under distributed tractions).
+.. [2] McEwen, Stresses in elastic cylinders in contact along a generatrix, Phil. Mag. 40
+   (1949) 454-459.
+"""
+
+import numpy as np
+
+from fretting.physics.contact import SPECIMEN
+
+__all__ = ["SurfaceStress", "bulk_stress", "hilbert_matrix"]
+
+
+def bulk_stress(sigma, body, bulk=None, specimen=SPECIMEN):
+    """Bulk direct stress [Pa] of `body` (1 or 2) from the differential tension `sigma` [Pa].
+
+    `bulk` is body 1's [Pa] and body 2's is ``bulk + sigma``, since only ``sigma = sigma_b2 -
+    sigma_b1`` enters the contact. `bulk` None: the `specimen` carries the bulk stress and the pad
+    none, so body 1 carries ``-sigma`` when it is the specimen, else nothing. Arrays broadcast.
+    """
+    if bulk is None:
+        bulk = -sigma if specimen == 1 else 0.0
+    return bulk if body == 1 else bulk + sigma
+
+
+class SurfaceStress:
+    """``sigma_xx`` [Pa] along the surface of either body at the nodes `t`, the Hilbert matrix precomputed.
+
+    ``sigma_xx(x) = -(2/pi) PV int t_x(xi) / (x - xi) dxi - p(x) + sigma_b`` for a half-plane whose
+    surface carries the shear traction ``t_x`` and the pressure ``p`` (Johnson 1985 [1]_, section
+    2.3; plane strain), with ``t_x = q`` on body 1 and ``-q`` on body 2, and ``sigma_b`` the body's
+    bulk stress. Check: a sliding Hertz contact, ``q = f p``, gives ``-p - 2 f p0 x / a`` in body 1,
+    a tension ``2 f p0`` at the trailing edge ``x = -a`` (McEwen 1949 [2]_).
+
+    The principal value is integrated exactly for ``sqrt(1 - t^2) q`` interpolated linearly
+    between the nodes (`hilbert_matrix`): one product with an ``N x N`` matrix per step.
+
+    Parameters
+    ----------
+    t : ndarray, shape (N,)
+        Nodes ``(x - centre) / a`` [-], ascending, in [-1, 1].
+    """
+
+    def __init__(self, t):
+        self._root = np.sqrt(1 - np.asarray(t) ** 2)
+        self._kernel = 2 * hilbert_matrix(np.asarray(t)).T  # (g @ kernel)_j = (2/pi) PV int ... at t_j
+
+    def __call__(self, q, p, bulk, body):
+        """``sigma_xx`` [Pa] of `body` (1 or 2) at the nodes.
+
+        Parameters
+        ----------
+        q : ndarray, shape (N,) or (steps, N)
+            Shear traction on body 1 [Pa].
+        p : ndarray, shape (N,)
+            Contact pressure [Pa].
+        bulk : float or ndarray
+            The body's bulk direct stress [Pa] (`bulk_stress`), one value or one per row of `q`
+            (shape (steps, 1)).
+        body : {1, 2}
+        """
+        sign = 1.0 if body == 1 else -1.0
+        return sign * ((q * self._root) @ self._kernel) - p + bulk
+
+
+def hilbert_matrix(t):
+    """Matrix ``H`` with ``(1/pi) PV int_{-1}^{1} g(tau) / (sqrt(1 - tau^2) (tau - t_j)) dtau = (H @ g)_j``.
+
+    ``g`` is interpolated linearly between the nodes `t` (ascending, in [-1, 1]) and extrapolated
+    linearly from the two outermost nodes to ``+-1`` where no node lies there; each piece
+    ``A + B tau`` is integrated exactly (product integration):
+    ``int (A + B tau) dtau / (sqrt(1 - tau^2) (tau - t)) = B int dtau / sqrt(1 - tau^2)
+    + (A + B t) int dtau / (sqrt(1 - tau^2) (tau - t))``, and with ``tau = cos(theta)``,
+    ``t = cos(phi)``, ``int dtheta / (cos(theta) - cos(phi)) = ln|sin((theta + phi)/2) /
+    sin((theta - phi)/2)| / sin(phi)``. Writing ``A + B t = g(t) + (A + B t - g(t))``, the first
+    part integrates to ``g(t) U_{-1}(t) = 0`` over (-1, 1) (docs/theory/method4.md#chebyshev) and the second
+    vanishes on the two pieces that meet at ``t``, so no principal value is left to take.
+
+    A node at ``t = 1`` or ``-1`` (a Galerkin mesh has both) is its own end knot, and its row is
+    the limit there, finite where ``g`` vanishes at that end as ``g = q sqrt(1 - t^2)`` does: the
+    piece that meets it drops out and the others integrate to differences of ``cot(theta/2)`` at
+    ``t = 1`` and of ``tan(theta/2)`` at ``t = -1`` (``dtau / (sqrt(1 - tau^2) (tau -+ 1))`` in ``theta``).
+    """
+    N = t.size
+    lower, upper = int(t[0] > -1.0), int(t[-1] < 1.0)  # end knots to add
+    knots = np.concatenate([[-1.0] * lower, t, [1.0] * upper])
+    at = np.arange(N) + lower  # knot of each node
+    extend = np.zeros((knots.size, N))  # knot values from node values
+    extend[at, np.arange(N)] = 1.0
+    for add, end, (inner, outer) in ((lower, 0, (0, 1)), (upper, knots.size - 1, (N - 1, N - 2))):
+        if add:
+            u = (knots[end] - t[inner]) / (t[outer] - t[inner])
+            extend[end, inner], extend[end, outer] = 1 - u, u
+    theta = np.arccos(knots)
+    cauchy = np.zeros((N, knots.size - 1))  # int over piece k of dtau / (sqrt(1 - tau^2) (tau - t_j))
+    inside = np.abs(t) < 1
+    phi = np.arccos(t[inside])[:, None]
+    with np.errstate(divide="ignore"):
+        log = np.log(np.abs(np.sin((theta + phi) / 2) / np.sin((theta - phi) / 2))) / np.sin(phi)
+        ends = {1.0: 1 / np.tan(theta / 2), -1.0: np.tan(theta / 2)}
+    cauchy[inside] = log[:, :-1] - log[:, 1:]
+    for j in np.flatnonzero(~inside):
+        cauchy[j] = ends[t[j]][:-1] - ends[t[j]][1:]
+    pieces = np.stack([at - 1, at], axis=1)  # the two pieces that meet at each node
+    valid = (pieces >= 0) & (pieces < knots.size - 1)
+    cauchy[np.nonzero(valid)[0], pieces[valid]] = 0.0
+    low, high = knots[:-1], knots[1:]
+    width = high - low
+    arc = (theta[:-1] - theta[1:]) / width  # B_k times this is the arcsine part
+    below = (high - t[:, None]) / width * cauchy  # weight of the piece's lower knot in (A + B t_j) cauchy
+    above = (t[:, None] - low) / width * cauchy
+    H = np.zeros((N, knots.size))
+    H[:, :-1] += below - arc
+    H[:, 1:] += above + arc
+    H[np.flatnonzero(inside), at[inside]] -= cauchy[inside].sum(axis=1)  # the - g(t_j) sum_k cauchy_jk part
+    return H @ extend / np.pi
