@@ -74,7 +74,9 @@ def _parser():
 
     run = commands.add_parser("run", parents=[common], help="run a history file and write its result")
     run.add_argument("file", metavar="HISTORY", help="history file (TOML)")
-    run.add_argument("-o", "--output", metavar="OUT", help="result file (default: results/<history stem>.h5)")
+    run.add_argument(
+        "-o", "--output", metavar="OUT", help="result file (default: <history stem>.h5 in the current folder)"
+    )
     run.add_argument("--resume", action="store_true", help="continue an interrupted run from its checkpoint")
     model = run.add_mutually_exclusive_group()
     model.add_argument(
@@ -161,7 +163,7 @@ def _model(args):
 
 
 def _run(args):
-    output = Path(args.output) if args.output else Path("results") / f"{Path(args.file).stem}.h5"
+    output = Path(args.output or f"{Path(args.file).stem}.h5")
     record = None if args.record == "default" else args.record
     with tqdm(unit="step", delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
 
