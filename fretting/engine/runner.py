@@ -82,10 +82,11 @@ def holding(output):
     releases when the process ends, killed or not, so a killed run never blocks the next. It is
     taken without waiting: a run whose output another run is writing is refused.
 
-    On release filelock's Unix lock keeps its file (so that processes waiting on one name never
-    lock different files). A run does not wait, so the file is deleted here, while it is still
-    held: a run that opened it just before then finds it deleted once it gets the lock
-    (filelock 3.21 and later check for that), and refuses as if it were held.
+    filelock's Unix lock keeps its file on release in some versions (so that processes waiting on
+    one name never lock two files), so it is deleted here, while still held: no lock file is left
+    after a run. That is safe because no run waits for the lock and because filelock, from 3.21 on
+    (the version required), refuses a lock it got on a file deleted since it opened it: a run
+    that opened the file just before the deletion is refused as if the lock were held.
 
     Raises
     ------
