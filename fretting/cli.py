@@ -75,7 +75,9 @@ def _parser():
 
     run = commands.add_parser("run", parents=[common], help="run a history file and write its result")
     run.add_argument("file", metavar="HISTORY", help="history file (TOML), or the name of a shipped example")
-    run.add_argument("-o", "--output", metavar="OUT", help="result file (default: results/<history stem>.h5)")
+    run.add_argument(
+        "-o", "--output", metavar="OUT", help="result file (default: <history stem>.h5 in the current folder)"
+    )
     run.add_argument("--resume", action="store_true", help="continue an interrupted run from its checkpoint")
     model = run.add_mutually_exclusive_group()
     model.add_argument(
@@ -172,7 +174,7 @@ def _examples(args):
 
 def _run(args):
     history = resolve_history(args.file)
-    output = Path(args.output) if args.output else Path("results") / f"{history.stem}.h5"
+    output = Path(args.output or f"{history.stem}.h5")
     record = None if args.record == "default" else args.record
     with tqdm(unit="step", delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
 

@@ -61,8 +61,8 @@ def test_run_writes_a_self_describing_result(workdir, capsys):
     history = write(workdir / "shear.toml", CONTACT + SHEAR)
     assert run("run", "shear.toml", "--nodes", NODES) == 0
     out, err = capsys.readouterr()
-    assert out.startswith(f"{os.path.join('results', 'shear.h5')}: 82 steps, 3 cycles") and err == ""
-    result = load(workdir / "results" / "shear.h5")
+    assert out.startswith("shear.h5: 82 steps, 3 cycles") and err == ""
+    result = load(workdir / "shear.h5")
     assert result.attrs["history_toml"] == history.read_text()
     assert result.attrs["history_sha256"] == hashlib.sha256(history.read_bytes()).hexdigest()
     assert result.attrs["history_file"] == "shear.toml" and result.attrs["nodes"] == int(NODES)
@@ -71,7 +71,8 @@ def test_run_writes_a_self_describing_result(workdir, capsys):
     engine = result.copy()
     engine.attrs = {name: result.attrs[name] for name in expected.attrs}
     xr.testing.assert_identical(engine, expected)
-    assert [path.name for path in (workdir / "results").iterdir()] == ["shear.h5"]  # no checkpoint, no temporary
+    # in the current folder, not results/ (shipped results); no checkpoint, temporary or lock file left
+    assert sorted(path.name for path in workdir.iterdir()) == ["shear.h5", "shear.toml"]
 
 
 def test_validate_info_and_plot(workdir, capsys):
@@ -94,8 +95,8 @@ def test_validate_info_and_plot(workdir, capsys):
 def test_plot_without_cycles(workdir, capsys):
     write(workdir / "ramp.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3]\nsigma = [50e6]\n')
     assert run("run", "ramp.toml", "--nodes", NODES) == 0
-    assert run("plot", "results/ramp.h5") == 0
-    assert sorted(path.name for path in (workdir / "results").glob("*.png")) == [
+    assert run("plot", "ramp.h5") == 0
+    assert sorted(path.name for path in workdir.glob("*.png")) == [
         "ramp_hysteresis.png",
         "ramp_slip.png",
         "ramp_surface_stress.png",
@@ -124,20 +125,19 @@ def test_bad_input_is_one_line_and_exit_2(workdir, capsys, command, text, words)
     out, err = capsys.readouterr()
     assert err.startswith("fretting: error: ") and words in err
     assert err.count("\n") == 1 and "Traceback" not in err and out == ""
-    assert not (workdir / "results").exists()
+    assert [path.name for path in workdir.iterdir()] == ([] if text is None else ["bad.toml"])
 
 
 def test_gross_slip_exit_3_leaves_the_old_result(workdir, capsys):
     write(workdir / "slide.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3, -80e3]\nsteps_per_segment = 10\n')
-    (workdir / "results").mkdir()
-    (workdir / "results" / "slide.h5").write_bytes(b"an earlier result")
+    (workdir / "slide.h5").write_bytes(b"an earlier result")
     assert run("validate", "slide.toml") == 3
     assert "gross slip at step 20: Q = -80000" in capsys.readouterr().err
     assert run("run", "slide.toml", "--nodes", NODES) == 3
     err = capsys.readouterr().err
     assert err.startswith("fretting: error: slide.toml: gross slip at step 20") and err.count("\n") == 1
-    assert (workdir / "results" / "slide.h5").read_bytes() == b"an earlier result"
-    assert [path.name for path in (workdir / "results").iterdir()] == ["slide.h5"]
+    assert (workdir / "slide.h5").read_bytes() == b"an earlier result"
+    assert sorted(path.name for path in workdir.iterdir()) == ["slide.h5", "slide.toml"]
 
 
 def test_gross_slip_in_a_later_chunk_names_the_whole_history_step(workdir, capsys, monkeypatch):
@@ -145,7 +145,7 @@ def test_gross_slip_in_a_later_chunk_names_the_whole_history_step(workdir, capsy
     write(workdir / "slide.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3, -80e3]\nsteps_per_segment = 10\n')
     assert run("run", "slide.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 3
     assert "gross slip at step 20: Q = -80000" in capsys.readouterr().err
-    assert not (workdir / "results" / "slide.h5.checkpoint").exists()
+    assert not (workdir / "slide.h5.checkpoint").exists()
 
 
 def test_debug_shows_the_exception(workdir):
@@ -269,3 +269,99 @@ def test_resume_after_a_killed_process_equals_an_uninterrupted_run(workdir):
     resumed, whole = load(workdir / "killed.h5"), load(workdir / "whole.h5")
     xr.testing.assert_identical(data_of(resumed), data_of(whole))
     assert resumed.sizes["step"] == 4017 and np.all(resumed.cycle_dissipation.values > 0)
+
+
+@pytest.fixture
+def not_stepped(monkeypatch):
+    """Make any stepping fail the test: what is checked before a run must be checked before its first step."""
+
+    class Unreachable:
+        def __init__(self, *arguments, **options):
+            raise AssertionError("a run stepped before checking its output")
+
+    monkeypatch.setattr(runner, "Stepper", Unreachable)
+
+
+def read_only_folder(workdir):
+    """A folder this process cannot write in: modes 555, or /sys for root, whom modes do not stop."""
+    if os.geteuid() == 0:
+        return "/sys"
+    folder = workdir / "locked"
+    folder.mkdir()
+    folder.chmod(0o555)
+    return folder
+
+
+@pytest.mark.parametrize(
+    ("output", "why"),
+    [
+        (lambda workdir: (workdir / "out").mkdir() or "out", "it is a folder"),
+        (lambda workdir: write(workdir / "notes.txt", "") and "notes.txt/out.h5", "notes.txt is a file, not a folder"),
+        (lambda workdir: f"{read_only_folder(workdir)}/out.h5", "Permission denied"),
+    ],
+    ids=["a-folder", "under-a-file", "read-only-folder"],
+)
+def test_an_output_that_cannot_be_written_is_refused_before_the_run(workdir, capsys, not_stepped, output, why):
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    path = output(workdir)
+    assert run("run", "shear.toml", "-o", path, "--nodes", NODES) == 2
+    out, err = capsys.readouterr()
+    assert err.startswith(f"fretting: error: {path}: ") and why in err and err.count("\n") == 1 and out == ""
+    assert ".tmp" not in err and "HDF5" not in err and "h5py" not in err
+
+
+#: A process that holds the lock of the output named by its argument until its stdin closes.
+HOLD = """
+import sys
+from fretting.engine.runner import holding
+with holding(sys.argv[1]):
+    print(1, flush=True)
+    sys.stdin.read()
+"""
+
+
+def test_a_second_run_of_the_same_output_is_refused_while_the_first_holds_it(workdir, capsys):
+    """Another process holds the output's lock: the run is refused at once, its checkpoint and the
+    holder's temporaries untouched; once the holder is killed the lock is free again."""
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    temporary = write(workdir / ".shear.h5.0123456789ab.tmp", "the other run's file in the writing")
+    holder = subprocess.Popen([sys.executable, "-c", HOLD, "shear.h5"], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+    try:
+        assert holder.stdout.readline() == b"1\n"
+        assert run("run", "shear.toml", "--nodes", NODES) == 2
+        out, err = capsys.readouterr()
+        assert err == (
+            "fretting: error: shear.h5: another run is writing it (it holds .shear.h5.lock): "
+            "wait for it to end, or write elsewhere\n"
+        )
+        assert temporary.exists() and not (workdir / "shear.h5").exists()
+    finally:
+        holder.kill()  # SIGKILL: the system releases its lock; its lock file stays
+        holder.communicate()
+    assert (workdir / ".shear.h5.lock").exists()
+    assert run("run", "shear.toml", "--nodes", NODES) == 0
+    assert sorted(path.name for path in workdir.iterdir()) == ["shear.h5", "shear.toml"]
+
+
+def test_a_run_removes_the_temporaries_of_a_killed_run_of_its_output(workdir, capsys, monkeypatch):
+    """A SIGKILL while a checkpoint or the result was being saved leaves their temporary files;
+    the next run of that output (resumed or not) deletes them, and no file of another output."""
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 20)
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    monkeypatch.setattr(runner, "Stepper", _interrupt_after(2))
+    assert run("run", "shear.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 130
+    monkeypatch.setattr(runner, "Stepper", fr.Stepper)
+    stale = [".shear.h5.checkpoint.0123456789ab.tmp", ".shear.h5.a1b2c3d4e5f6.tmp"]
+    others = [".shear.h5.bak.0123456789ab.tmp", ".shear.h5.notes.tmp", ".other.h5.0123456789ab.tmp"]
+    for name in stale + others:
+        write(workdir / name, "half a file")
+    assert run("run", "shear.toml", "--nodes", NODES, "--resume") == 0
+    assert sorted(path.name for path in workdir.iterdir()) == sorted(["shear.h5", "shear.toml", *others])
+
+
+def test_resume_without_a_checkpoint_says_so(workdir, capsys):
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    assert run("run", "shear.toml", "--nodes", NODES, "--resume") == 0
+    out, err = capsys.readouterr()
+    assert err == "fretting: note: shear.h5.checkpoint: no checkpoint to resume from: the run starts at step 0\n"
+    assert out.startswith("shear.h5: 82 steps")

@@ -761,7 +761,7 @@ def test_failed_cli_run_leaves_an_earlier_result_intact(tmp_path, monkeypatch, c
     first = int(np.flatnonzero(np.abs(history.Q) >= contact.f * contact.P)[0])
     assert first > 3 * 200  # after several chunks and checkpoints
     earlier = fr.simulate(contact, history[:200])
-    path = tmp_path / "results" / "slide.h5"
+    path = tmp_path / "slide.h5"
     fr.save(earlier, path)
     written, loaded = path.read_bytes(), fr.load(path)
     assert cli.main(["run", "slide.toml", "--checkpoint-interval", "0"]) == 3
@@ -769,7 +769,7 @@ def test_failed_cli_run_leaves_an_earlier_result_intact(tmp_path, monkeypatch, c
     assert err.startswith(f"fretting: error: slide.toml: gross slip at step {first}:") and err.count("\n") == 1
     assert path.read_bytes() == written
     xr.testing.assert_identical(fr.load(path), loaded)
-    assert sorted(p.name for p in path.parent.iterdir()) == ["slide.h5"]
+    assert sorted(p.name for p in path.parent.iterdir()) == ["slide.h5", "slide.toml"]
 
 
 def test_tension_reversed_in_one_step_keeps_a_stick_zone_narrower_than_an_element():

@@ -110,6 +110,8 @@ class Recorder:
                 "x": model.x,
                 "step": steps,
                 "vertex_step": history.vertex_step,
+                "vertex_Q": history.Q[history.vertex_step],
+                "vertex_sigma": history.sigma[history.vertex_step],
                 "state_Q": state.Q,
                 "state_sigma": state.sigma,
                 "state_slip": state.slip,

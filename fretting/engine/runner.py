@@ -5,23 +5,30 @@ stiffness, the exact model's branches) is built once per run. Each chunk's resul
 comes (`fretting.results.io.Joiner`); the joined result is written as a checkpoint every
 `CHECKPOINT_SECONDS` and on an interruption, and a run resumed from its checkpoint goes on from the
 checkpoint's final state, to the same result bit for bit.
+
+Before any stepping a run checks that it can write its output and takes the output's lock
+(`holding`): a second run of the same output is refused at once, and the temporary files of a
+killed run are deleted, since no live run can own them.
 """
 
+import contextlib
+import errno
 import time
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from filelock import FileLock, Timeout
 
 from fretting.engine.choice import ModelFallbackWarning, could_be_default, recorded_spec
 from fretting.engine.recorder import Recorder, final_state, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.errors import GrossSlipError
 from fretting.loading.history_file import read_history_source
-from fretting.results.io import Joiner, ResultError, load, save, source_attributes
+from fretting.results.io import Joiner, ResultError, load, remove_temporaries, save, source_attributes
 
-__all__ = ["CHECKPOINT_SECONDS", "Run", "run_file"]
+__all__ = ["CHECKPOINT_SECONDS", "Run", "holding", "run_file"]
 
 #: Steps of the first chunk run at a time: how often progress is reported and a checkpoint can be
 #: written. A chunk that takes less than CHUNK_SECONDS doubles the next one's steps, so that runs
@@ -61,6 +68,73 @@ def checkpoint_path(output):
     return output.with_name(f"{output.name}.checkpoint")
 
 
+def lock_path(output):
+    """The lock file of the result file `output`: hidden beside it."""
+    output = Path(output)
+    return output.with_name(f".{output.name}.lock")
+
+
+@contextlib.contextmanager
+def holding(output):
+    """Hold the lock of the result file `output` while a run writes it and its checkpoint.
+
+    The lock is `filelock.FileLock` on `lock_path`: an ``flock`` on Unix, which the system
+    releases when the process ends, killed or not, so a killed run never blocks the next. It is
+    taken without waiting: a run whose output another run is writing is refused.
+
+    filelock's Unix lock keeps its file on release in some versions (so that processes waiting on
+    one name never lock two files), so it is deleted here, while still held: no lock file is left
+    after a run. That is safe because no run waits for the lock and because filelock, from 3.21 on
+    (the version required), refuses a lock it got on a file deleted since it opened it: a run
+    that opened the file just before the deletion is refused as if the lock were held.
+
+    Raises
+    ------
+    OSError
+        When another run holds the lock (EBUSY), or the lock file cannot be created (why, and
+        the folder); ``filename`` is `output`.
+    """
+    output, path = Path(output), lock_path(output)
+    lock = FileLock(path)
+    try:
+        lock.acquire(blocking=False)
+    except Timeout:
+        raise OSError(
+            errno.EBUSY,
+            f"another run is writing it (it holds {path.name}): wait for it to end, or write elsewhere",
+            str(output),
+        ) from None
+    except OSError as error:
+        raise OSError(error.errno, f"cannot write in {path.parent}: {error.strerror}", str(output)) from None
+    try:
+        yield
+    finally:
+        with contextlib.suppress(OSError):  # Windows refuses while it is open; its filelock deletes it on release
+            path.unlink()
+        lock.release()
+
+
+def writable(output):
+    """`output` as a Path, once its folder exists; refused if it is a folder or lies under a file.
+
+    Raises
+    ------
+    OSError
+        ``filename`` `output`, ``strerror`` why it cannot be written.
+    """
+    output = Path(output)
+    try:
+        output.parent.mkdir(parents=True, exist_ok=True)
+    except (FileExistsError, NotADirectoryError):
+        blocking = next(parent for parent in reversed(output.parents) if parent.exists() and not parent.is_dir())
+        raise OSError(errno.ENOTDIR, f"cannot write: {blocking} is a file, not a folder", str(output)) from None
+    except OSError as error:
+        raise OSError(error.errno, f"cannot create its folder: {error.strerror}", str(output)) from None
+    if output.is_dir():
+        raise OSError(errno.EISDIR, "cannot write: it is a folder, expected a file name", str(output))
+    return output
+
+
 def run_file(
     history_path,
     output,
@@ -94,52 +168,65 @@ def run_file(
     Returns
     -------
     Run
+
+    Raises
+    ------
+    OSError
+        Before any step, when `output` cannot be written (`writable`) or another run is writing
+        it (`holding`).
     """
     source = read_history_source(history_path)
-    output = Path(output)
-    checkpoint = checkpoint_path(output)
+    output = writable(output)
+    with holding(output):
+        checkpoint = checkpoint_path(output)
+        for path in (output, checkpoint):
+            remove_temporaries(path)
+        joiner, start, state, notes = _started(checkpoint, source, model, resume)
+        history = source.history
+        stepper = Stepper(source.contact, model if state is None else None, state)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", ModelFallbackWarning)
+            stepper.resolve(history)
+        notes += [str(warning.message) for warning in caught if issubclass(warning.category, ModelFallbackWarning)]
+        attributes = source_attributes(source)
+        record = recorded_steps(record, len(history))
+        written = time.monotonic()
+        try:
+            for part in _chunks(stepper, history, record, start):
+                joiner.add(part)
+                if progress is not None:
+                    progress(joiner.steps - 1, len(history) - 1)
+                if time.monotonic() - written >= checkpoint_interval:
+                    save(joiner.result().assign_attrs(attributes), checkpoint)
+                    written = time.monotonic()
+        except KeyboardInterrupt:
+            if len(joiner):
+                save(joiner.result().assign_attrs(attributes), checkpoint)
+                raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
+            raise
+        except GrossSlipError:
+            checkpoint.unlink(missing_ok=True)  # resuming would only reach it again
+            raise
+        del source, history  # the loads of every step: the result holds what it records
+        result = joiner.result().assign_attrs(attributes)
+        save(result, output)
+        checkpoint.unlink(missing_ok=True)
+    return Run(result, output, notes)
+
+
+def _started(checkpoint, source, model, resume):
+    """``(joiner, start, state, notes)`` a run begins with: the checkpoint's when resumed, else empty."""
     if checkpoint.exists() and not resume:
         raise ResultError(
             f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
         )
-    history, notes, joiner = source.history, [], Joiner()
-    start, state = 0, None
+    joiner = Joiner()
     if resume and checkpoint.exists():
         done = _resumable(checkpoint, source, model)
         joiner.add(done)
-        start, state = done.attrs["steps"] - 1, final_state(done)
-        del done  # the joiner holds its cycles
-    elif resume:
-        notes.append(f"{checkpoint}: no checkpoint to resume from: the run starts at step 0")
-    stepper = Stepper(source.contact, model if state is None else None, state)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", ModelFallbackWarning)
-        stepper.resolve(history)
-    notes += [str(warning.message) for warning in caught if issubclass(warning.category, ModelFallbackWarning)]
-    attributes = source_attributes(source)
-    record = recorded_steps(record, len(history))
-    written = time.monotonic()
-    try:
-        for part in _chunks(stepper, history, record, start):
-            joiner.add(part)
-            if progress is not None:
-                progress(joiner.steps - 1, len(history) - 1)
-            if time.monotonic() - written >= checkpoint_interval:
-                save(joiner.result().assign_attrs(attributes), checkpoint)
-                written = time.monotonic()
-    except KeyboardInterrupt:
-        if len(joiner):
-            save(joiner.result().assign_attrs(attributes), checkpoint)
-            raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
-        raise
-    except GrossSlipError:
-        checkpoint.unlink(missing_ok=True)  # resuming would only reach it again
-        raise
-    del source, history  # the loads of every step: the result holds what it records
-    result = joiner.result().assign_attrs(attributes)
-    save(result, output)
-    checkpoint.unlink(missing_ok=True)
-    return Run(result, output, notes)
+        return joiner, done.attrs["steps"] - 1, final_state(done), []  # the joiner holds its cycles
+    notes = [f"{checkpoint}: no checkpoint to resume from: the run starts at step 0"] if resume else []
+    return joiner, 0, None, notes
 
 
 def _chunks(stepper, history, record, start):

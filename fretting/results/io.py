@@ -9,6 +9,7 @@ import importlib.metadata
 import json
 import os
 import platform
+import re
 import secrets
 from pathlib import Path
 
@@ -18,7 +19,17 @@ import xarray as xr
 
 from fretting.errors import FrettingError
 
-__all__ = ["ENGINE", "Joiner", "ResultError", "join_results", "load", "provenance", "save", "source_attributes"]
+__all__ = [
+    "ENGINE",
+    "Joiner",
+    "ResultError",
+    "join_results",
+    "load",
+    "provenance",
+    "remove_temporaries",
+    "save",
+    "source_attributes",
+]
 
 #: The xarray backend, named explicitly so that files never depend on what else is installed.
 ENGINE = "h5netcdf"
@@ -26,6 +37,10 @@ ENGINE = "h5netcdf"
 #: zlib level 4 with byte shuffling. On results/hertz_shear_cycling.h5 level 9 saves 0.7 % of the
 #: bytes (1.99 MB) and takes 1.3 times as long (0.107 s against 0.081 s).
 COMPRESSION = {"zlib": True, "complevel": 4, "shuffle": True}
+
+#: Random bytes in the name of `save`'s temporary file, ``.NAME.<hex>.tmp``: two saves of one
+#: path never share it.
+TOKEN_BYTES = 6
 
 #: Distributions whose versions a result records.
 DEPENDENCIES = ("fretting", "numpy", "scipy", "xarray", "h5netcdf", "h5py")
@@ -54,12 +69,32 @@ def save(result, path):
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    temporary = path.with_name(f".{path.name}.{secrets.token_hex(6)}.tmp")
+    temporary = path.with_name(f".{path.name}.{secrets.token_hex(TOKEN_BYTES)}.tmp")
     try:
         _write(result.assign_attrs(provenance()), temporary, path)
         os.replace(temporary, path)
     finally:
         temporary.unlink(missing_ok=True)
+
+
+def remove_temporaries(path):
+    """Delete the temporary files that `save` left beside `path` when its process was killed.
+
+    Only names ``.NAME.<hex>.tmp`` of `path` itself go, not those of other files whose names start
+    with NAME. The caller must know that no other process is saving to `path` (it holds the run's
+    lock), or it would pull a live temporary from under that process.
+
+    Returns
+    -------
+    list of Path
+        The files deleted.
+    """
+    path = Path(path)
+    pattern = re.compile(rf"\.{re.escape(path.name)}\.[0-9a-f]{{{2 * TOKEN_BYTES}}}\.tmp")
+    stale = [found for found in path.parent.iterdir() if pattern.fullmatch(found.name)]
+    for found in stale:
+        found.unlink(missing_ok=True)
+    return stale
 
 
 def _write(result, temporary, path):
@@ -131,7 +166,7 @@ class Joiner:
     """
 
     def __init__(self):
-        self._pieces, self._vertices, self._end = [], [], 0
+        self._pieces, self._vertices, self._end = [], {}, 0
         self._first_attrs, self._last = None, None
         self._rows, self._count = {}, 0
 
@@ -153,14 +188,23 @@ class Joiner:
         piece = part.isel(step=part.step.values > 0) if later else part
         stepwise = [name for name, variable in part.data_vars.items() if "step" in variable.dims]
         self._pieces.append(piece[stepwise].assign_coords(step=piece.step + self._end))
-        vertex_step = part.vertex_step.values
-        self._vertices.append((vertex_step[vertex_step > 0] if later else vertex_step) + self._end)
+        self._add_vertices(part, later)
         self._end += part.attrs["steps"] - 1
         if self._first_attrs is None:
             self._first_attrs = part.attrs
         if per_cycle:
             self._add_rows({name: part[name].variable for name in per_cycle})
         self._last = part.drop_vars(per_cycle)
+
+    def _add_vertices(self, part, later):
+        """Take the per-vertex variables of `part` (``vertex_step``, the loads) into the run's; a
+        later part's vertex at its step 0 is the previous part's last one, and is dropped."""
+        steps = part.vertex_step.values
+        kept = steps > 0 if later else np.ones(steps.size, dtype=bool)
+        for name, variable in part.data_vars.items():
+            if variable.dims == ("vertex",):
+                values = variable.values[kept]
+                self._vertices.setdefault(name, []).append(values + self._end if name == "vertex_step" else values)
 
     def _add_rows(self, cycles):
         """Take the per-cycle variables `cycles` (name -> xarray.Variable) of a part into the run's rows."""
@@ -190,7 +234,10 @@ class Joiner:
         rest = [name for name, variable in last.data_vars.items() if "step" not in variable.dims]
         joined = joined.assign({name: last[name] for name in rest})
         joined = joined.assign(
-            vertex_step=(last.vertex_step.dims, np.concatenate(self._vertices), last.vertex_step.attrs)
+            {
+                name: (last[name].dims, np.concatenate(values), last[name].attrs)
+                for name, values in self._vertices.items()
+            }
         )
         cycles = {name: rows.variable() for name, rows in self._rows.items()}
         return joined.assign(cycles).assign_attrs(self._first_attrs | {"steps": self._end + 1})

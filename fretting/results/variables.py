@@ -23,6 +23,8 @@ VARIABLES = {
     "delta_Q": (("step",), "m", "slip part of the generalized displacement conjugate to Q"),
     "delta_sigma": (("step",), "m2", "slip part of the generalized displacement conjugate to sigma"),
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
+    "vertex_Q": (("vertex",), "N/m", "shear force at each vertex of the load path"),
+    "vertex_sigma": (("vertex",), "Pa", "bulk tension at each vertex of the load path"),
     "cycle": (("step",), "1", "load cycle of the increment ending at this step (0: outside any cycle)"),
     "cycle_dissipation": (("cycle_number",), "J/m", "energy dissipated in each load cycle"),
     "cycle_number": (("cycle_number",), "1", "load cycle (1, 2, ...)"),

@@ -1,0 +1,44 @@
+"""The runner's result against a run in one piece and against its history."""
+
+import numpy as np
+from conftest import HERTZ_TOML
+
+import fretting as fr
+from fretting.engine import runner
+from fretting.models import Grid
+
+#: A history of many chunks, with vertices where both loads vary.
+LOADS = """
+[[loading]]
+kind = "sine"
+Q_amplitude = 30e3
+sigma_amplitude = 1e8
+phase_deg = 90
+cycles = 4
+steps_per_cycle = 24
+
+[[loading]]
+kind = "linear"
+Q = [10e3, -20e3]
+sigma = [5e7, -3e7]
+steps_per_segment = 7
+"""
+
+
+def test_a_run_in_chunks_keeps_the_loads_at_every_vertex(tmp_path, monkeypatch):
+    """With the loads of every vertex the dataset holds the whole path, recorded steps or not:
+    the same in chunks as in one run, and those of the history."""
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 5)
+    monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)
+    history_file = tmp_path / "path.toml"
+    history_file.write_text(HERTZ_TOML + LOADS)
+    contact, history = fr.read_history(history_file)
+    chunked = runner.run_file(history_file, tmp_path / "path.h5", Grid(32), record=[0, len(history) - 1]).result
+    whole = fr.simulate(contact, history, nodes=32, record=[0, len(history) - 1])
+    assert history.vertex_step.size == 8 and chunked.sizes["step"] == 2
+    assert np.any(history.vertex_step[1:] % 5 == 0)  # a vertex at a chunk's end: in two chunks, kept once
+    for name in ("vertex_step", "vertex_Q", "vertex_sigma"):
+        np.testing.assert_array_equal(chunked[name].values, whole[name].values)
+    np.testing.assert_array_equal(chunked.vertex_Q.values, history.Q[history.vertex_step])
+    np.testing.assert_array_equal(chunked.vertex_sigma.values, history.sigma[history.vertex_step])
+    assert chunked.vertex_Q.attrs["units"] == "N/m" and chunked.vertex_sigma.attrs["units"] == "Pa"
