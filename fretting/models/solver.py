@@ -30,10 +30,10 @@ another, so the Cholesky factor of the slipping nodes' block of ``G`` is kept th
 increment and bordered by the nodes released (`_Factor`); a working set that loses nodes is
 factored anew. Each increment starts a new factor, so what it computes depends on its loads
 and starting state alone, and a repeating state repeats bit for bit. The stuck nodes' traction
-``G held`` is multiplied anew at every solve. Updating it instead by the rows of the nodes that
-join or leave the stuck ones was tried: its rounding depends on the working sets before, the
-states of tests/test_hard_cases.py's `test_periodic_state_does_not_drift_over_1e5_cycles` no
-longer repeated bit for bit, and that test, whose cycles are otherwise copied, ran for minutes.
+``G held`` is multiplied anew at every solve, not updated by the rows of the nodes that join or
+leave the stuck ones: an update's rounding would depend on the working sets before, and a
+periodic state would no longer repeat bit for bit (tests/test_hard_cases.py,
+`test_periodic_state_does_not_drift_over_1e5_cycles`).
 """
 
 from dataclasses import dataclass
