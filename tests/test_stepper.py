@@ -88,3 +88,31 @@ def test_the_command_line_says_when_the_default_falls_back(tmp_path, capsys, mon
     notes = [line for line in capsys.readouterr().err.splitlines() if line.startswith("fretting: note:")]
     assert len(notes) == 1 and "falls back" in notes[0] and "over the default's bound of 768" in notes[0]
     assert fr.load(tmp_path / "oop.h5").attrs["model_fallback"] in notes[0]
+
+
+def test_a_continued_run_refines_the_mesh_its_new_loads_need(hertz):
+    """Small Q/sigma cycles, then larger ones continued from the state (issue 18): the state's
+    mesh, adapted to the small cycles, is refined for the new loads, the slip carried over
+    exactly at the old nodes, and the energy is the whole run's (on the mesh the small cycles
+    left, it is not)."""
+    fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
+    first = fr.History.piecewise_linear(np.array([0, 0.2, -0.2, 0.2]) * fP, np.array([0, 0.1, -0.1, 0.1]) * fp0, 8)
+    second = fr.History.piecewise_linear(
+        np.array([0.2, 0.7, -0.6, 0.7, -0.6]) * fP, np.array([0.1, -0.6, 0.5, -0.6, 0.5]) * fp0, 8
+    )
+    whole = fr.simulate(hertz, fr.History.concatenate([first, second]))
+    head = fr.simulate(hertz, first)
+    state = fr.final_state(head)
+    tail = fr.simulate(hertz, second, state=state)
+    assert tail.sizes["x"] > head.sizes["x"] and tail.attrs["rtol"] == fr.DEFAULT_RTOL
+    old = np.isin(tail.theta.values, head.theta.values)
+    np.testing.assert_array_equal(tail.slip.values[0][old], state.slip)
+    assert abs(float(tail.total_dissipation) / float(whole.total_dissipation) - 1) < 1e-6
+
+
+def test_a_given_mesh_is_continued_as_it_is(hertz):
+    history = _walk(hertz)
+    theta = np.linspace(0, np.pi, 65)
+    state = fr.final_state(fr.simulate(hertz, history[:10], mesh=theta))
+    tail = fr.simulate(hertz, history[9:], state=state)
+    np.testing.assert_array_equal(tail.theta.values[::-1], theta)

@@ -19,6 +19,8 @@ there (`_interpolated_directions`), which the answer does not depend on and whic
 the releases of the passes after the first (benchmarks/adaptation_passes.py).
 """
 
+from dataclasses import replace
+
 import numpy as np
 
 from fretting._validate import positive
@@ -28,7 +30,7 @@ from fretting.engine.threads import one_blas_thread
 from fretting.errors import GrossSlipError, SolverError
 from fretting.models.galerkin import DEFAULT_RTOL, Mesh, element_targets, initial_theta, refine
 
-__all__ = ["MAX_TURN", "REFINEMENTS", "MeshTooLarge", "adapted_mesh", "adapted_model"]
+__all__ = ["MAX_TURN", "REFINEMENTS", "MeshTooLarge", "adapted_mesh", "adapted_model", "refined_for", "remapped"]
 
 #: Refinements of the mesh before `adapted_mesh` gives up: each at least halves an element, and 60
 #: halvings take pi below 1e-17.
@@ -108,6 +110,58 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
             raise MeshTooLarge(refined.size, len(turning) - 1, model)
         theta = refined
     raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
+
+
+def refined_for(contact, state, history):
+    """The model and state to continue `state` along `history` with, on the state's mesh refined
+    where the increments of `history` need it.
+
+    The state's `Mesh` was adapted to ``rtol`` for the history it came from; a history that goes
+    on with larger or other loads may need a finer one. The turning points of `history` (from
+    `state`) are run as the adaptation runs them, the elements that `element_targets` finds too
+    coarse are bisected, and the state is carried over to the new nodes (`remapped`: exact for
+    the slip, which is P1 in ``theta``), until no element is.
+
+    Returns
+    -------
+    model : GalerkinModel or None
+        None where the state's mesh needs nothing more (the caller builds the state's model).
+    state : State
+    """
+    spec = state.model
+    turning = history.turning_points(MAX_TURN, (np.pi * contact.a, 4.0))
+    model, refined = spec.build(contact), False
+    for _ in range(REFINEMENTS):
+        targets = np.full(model.theta.size - 1, np.inf)
+
+        def observe(step, ds, model=model, targets=targets):
+            np.minimum(targets, element_targets(model.theta, ds, spec.rtol, model.breakpoints), out=targets)
+
+        follow(model, turning, state, observe=observe)
+        theta = refine(model.theta, targets)
+        if np.array_equal(theta, model.theta):
+            return (model if refined else None), state
+        state = remapped(state, model.theta, theta)
+        model, refined = state.model.build(contact, previous=model), True
+    raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({model.theta.size} nodes)")
+
+
+def remapped(state, theta, finer):
+    """`state` on the mesh `finer` [rad], which `refine` made from `theta` by bisection.
+
+    Every nodal field is interpolated linearly in ``theta``: exactly for the slip and the
+    episode starts, which are P1 in ``theta`` and whose nodes `finer` keeps; the tally of the
+    cycle in progress (its energy density, slip range and peaks) is interpolated as well, an
+    approximation at the new nodes only.
+    """
+
+    def onto(values):  # per-node arrays are in ascending x, i.e. descending theta
+        return np.interp(finer, theta, np.asarray(values)[::-1])[::-1]
+
+    fields = ("w", "slip_min", "slip_max", "sigma_xx_peak", "q_peak", "sigma_xx_q_peak")
+    tally = replace(state.tally, **{name: onto(getattr(state.tally, name)) for name in fields})
+    model = replace(state.model, theta=finer)
+    return replace(state, slip=onto(state.slip), episode_start=onto(state.episode_start), tally=tally, model=model)
 
 
 def _bisected_size(theta, targets):

@@ -15,7 +15,7 @@ The default for a contact and a history (`choose_model`):
 import warnings
 from dataclasses import replace
 
-from fretting.engine.adaptation import MeshTooLarge, adapted_model
+from fretting.engine.adaptation import MeshTooLarge, adapted_model, refined_for
 from fretting.errors import HistoryError
 from fretting.models.base import ModelSpec
 from fretting.models.collocation import DEFAULT_NODES, Grid
@@ -29,6 +29,7 @@ __all__ = [
     "check",
     "built_model",
     "choose_model",
+    "continued",
     "could_be_default",
     "recorded_spec",
     "spec_from",
@@ -98,6 +99,17 @@ def built_model(spec, contact, history):
     if isinstance(spec, Mesh):
         return adapted_model(contact, history, spec.rtol)
     return spec.resolved_for(contact, history).build(contact)
+
+
+def continued(contact, state, history):
+    """The model (None: the state's own, to build) and the state to continue `state` along `history`.
+
+    A state of a `Mesh` adapted to an ``rtol`` has its mesh refined where the new loads need it
+    (`fretting.engine.adaptation.refined_for`); any other is continued as it is.
+    """
+    if isinstance(state.model, Mesh) and state.model.rtol is not None:
+        return refined_for(contact, state, history)
+    return None, state
 
 
 def spec_from(model=None, nodes=None, rtol=None, mesh=None):

@@ -1,8 +1,9 @@
 """`simulate`: follow a load history with a model and record the contact."""
 
-from fretting.engine.choice import spec_from
+from fretting.engine.choice import continued, spec_from
 from fretting.engine.recorder import Recorder, recorded_steps
 from fretting.engine.stepper import Stepper
+from fretting.engine.threads import one_blas_thread
 from fretting.loading.history import History
 
 __all__ = ["simulate"]
@@ -30,7 +31,8 @@ def simulate(contact, history, model=None, *, nodes=None, rtol=None, mesh=None, 
         Shorthand for ``model=Mesh(theta=mesh)``: the Galerkin mesh ``theta`` [rad] as it is.
     state : State, optional
         State to continue from (`final_state`); its loads must be the history's first, and the
-        run keeps its model.
+        run keeps its model, except that a Galerkin mesh adapted to an ``rtol`` is refined where
+        the new loads need it (the result records the mesh it ran).
     record : array_like of int or "all", optional
         Steps whose fields and loads are stored, increasing (`recorded_steps`); the dataset's
         `step` coordinate holds their numbers. Energy and slip range per cycle and the final
@@ -59,7 +61,11 @@ def simulate(contact, history, model=None, *, nodes=None, rtol=None, mesh=None, 
     """
     if not isinstance(history, History):
         raise ValueError(f"history must be a fretting.History, found {history!r}")
-    stepper = Stepper(contact, spec_from(model, nodes, rtol, mesh), state)
+    asked = spec_from(model, nodes, rtol, mesh)
+    if state is not None and asked is None:  # the state's model: a model on a refined mesh, or None
+        with one_blas_thread():
+            asked, state = continued(contact, state, history)
+    stepper = Stepper(contact, asked, state)
     stepper.resolve(history)
     recorder = Recorder(stepper.model, history, recorded_steps(record, len(history)))
     return recorder.dataset(stepper.run(history, recorder))
