@@ -24,7 +24,7 @@ import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
 
 import fretting as fr  # noqa: E402
-from fretting.analysis.accuracy import BAND, traction_error, zone_distance  # noqa: E402
+from fretting.analysis.accuracy import BAND, monotonic_dissipation, traction_error, zone_distance  # noqa: E402
 from fretting.loading.examples import EXAMPLES, examples  # noqa: E402
 from fretting.physics import closed_forms as cf  # noqa: E402
 
@@ -49,6 +49,9 @@ CATTANEO_MINDLIN = (0.2, 0.5, 0.8, 0.95)
 NOWELL_HILLS = ((0.5, 0.5), (0.4, 0.8), (0.7, -0.3), (0.8, 1.2))
 #: Steps of the straight path from the unloaded contact to each load.
 STEPS = 8
+#: Grid sizes and steps of the speed-against-error scene.
+GRIDS = (64, 128, 256, 384, 768)
+SPEED_STEPS = 128
 #: Gallery figures per example, the most telling of `fretting plot`'s.
 GALLERY = ("loops", "traction", "dissipation_density")
 #: Colours of the gallery's copies of the figures of results/.
@@ -99,12 +102,14 @@ def zones(step):
 
 
 def proportional(contact, psi, tau=0.0):
-    """Last step of the default's straight path to ``Q = psi f P``, ``sigma = tau f p0``, and its model."""
+    """The default's straight path to ``Q = psi f P``, ``sigma = tau f p0``: its last step, its
+    model and nodes, and the energy [J/m] it dissipated on the way."""
     history = fr.History.piecewise_linear(
         [0.0, psi * contact.f * contact.P], [0.0, tau * contact.f * contact.p0], STEPS
     )
     result = fr.simulate(contact, history)
-    return result.isel(step=-1), result.attrs["model"], int(result.attrs["nodes"])
+    energy = float(result.dissipation.sum())
+    return result.isel(step=-1), result.attrs["model"], int(result.attrs["nodes"]), energy
 
 
 def errors(contact, step, expected_zone, q_exact, slip_exact=None):
@@ -135,7 +140,7 @@ def closed_forms_page():
     rows, shown = [], {}
     for psi in CATTANEO_MINDLIN:
         Q = psi * contact.f * contact.P
-        step, model, nodes = proportional(contact, psi)
+        step, model, nodes, _ = proportional(contact, psi)
         x = step.x.values
         b = cf.stick_half_width(contact, Q)
         q, s = cf.cattaneo_mindlin_traction(contact, Q, x), cf.cattaneo_mindlin_slip(contact, Q, x)
@@ -145,16 +150,18 @@ def closed_forms_page():
             shown["cm"] = (step, q, s)
     for psi, tau in NOWELL_HILLS:
         Q, sigma = psi * contact.f * contact.P, tau * fp0
-        step, model, nodes = proportional(contact, psi, tau)
+        step, model, nodes, energy = proportional(contact, psi, tau)
         b, centre = cf.stick_half_width(contact, Q), cf.nowell_hills_offset(contact, sigma)
         q = cf.nowell_hills_traction(contact, Q, sigma, step.x.values)
+        e = errors(contact, step, [centre - b, centre + b], q)
+        e["energy"] = abs(energy / monotonic_dissipation(contact, Q, sigma / Q) - 1)
         rows.append(
             (
                 "Nowell-Hills",
                 f"{psi}",
                 f"{tau}",
                 f"{model} ({nodes})",
-                errors(contact, step, [centre - b, centre + b], q),
+                e,
             )
         )
         if (psi, tau) == (0.5, 0.5):
@@ -169,7 +176,7 @@ def closed_forms_page():
             "stick ends [a]",
             "traction [f p0]",
             "slip [max]",
-            "energy per cycle",
+            "energy",
         ],
         [(*row[:4], *(verdict(row[4][k], targets[k]) if k in row[4] else "-" for k in targets)) for row in rows],
     )
@@ -178,8 +185,9 @@ def closed_forms_page():
 The default model (`fr.simulate` with no model) against published closed forms on a Hertz contact
 (R = 50 mm, E* of steel, f = 0.6, P = 100 N/mm: a = {a * 1e3:.3f} mm, f p0 = {fp0 / 1e6:.0f} MPa),
 each load reached from the unloaded contact in {STEPS} equal steps. Under Q alone the default is
-the exact model (the Ciavarella-Jaeger superposition with Masing's rule), under Q and sigma it is
-method 4 on a Galerkin mesh adapted to the history.
+the exact model (the Ciavarella-Jaeger superposition with Masing's rule), which evaluates these
+closed forms at its nodes, so its errors are rounding; under Q and sigma it is method 4 on a
+Galerkin mesh adapted to the history, and its errors are those of the discretisation.
 
 - **Cattaneo-Mindlin** (Q alone): traction eq (7), stick half-width ``b = a sqrt(1 - Q/(f P))``
   eq (8), slip eq (19) integrated (`fretting.physics.closed_forms.cattaneo_mindlin_traction`,
@@ -187,7 +195,8 @@ method 4 on a Galerkin mesh adapted to the history.
   ``Q*`` (16 steps per reversal) against Mindlin & Deresiewicz (1953), `mindlin_deresiewicz_energy`.
 - **Nowell-Hills** (Q and sigma in phase from zero, Nowell & Hills 1987): the stick zone of
   half-width ``b`` moved by ``e = -sigma a/(4 f p0)`` (`nowell_hills_offset`), traction
-  `nowell_hills_traction`.
+  `nowell_hills_traction`; the energy dissipated on the way, ``int f p |s| dx`` of its slip
+  (`fretting.analysis.accuracy.monotonic_dissipation`, by quadrature).
 
 ## Worst errors
 
@@ -195,7 +204,8 @@ Stick ends: `fretting.analysis.accuracy.zone_distance` from the closed form's zo
 Traction: largest ``|q - q_ref|`` in units of f p0 away from ({BAND} a around) the stick ends and
 the contact edges, where the closed form has a square-root kink
 (`fretting.analysis.accuracy.traction_error`). Slip: largest ``|s - s_ref|`` relative to the
-largest slip. Energy: ``|W/W_ref - 1|``. Targets: 1e-3 a, 1e-3 f p0, 1e-3 and 1e-4; a value marked
+largest slip (no closed form under sigma). Energy: ``|W/W_ref - 1|``, of the steady cycle
+(Cattaneo-Mindlin) or of the path from zero (Nowell-Hills). Targets: 1e-3 a, 1e-3 f p0, 1e-3 and 1e-4; a value marked
 **over** misses its target. "-": no closed form.
 
 {table}
@@ -235,39 +245,46 @@ def closed_forms_figure(contact, shown):
 # -- Trajectories -----------------------------------------------------------------------------------
 
 
-def trajectories_page():
-    selected = trajectories.cases()
-    rows = []
-    for name in trajectories.QUICK:
-        contact, history = selected[name]
-        began = time.perf_counter()
-        ref = trajectories.with_located_ends(
-            trajectories.fine_run(contact, history, trajectories.REFERENCE_ELEMENTS), contact
-        )
-        reference_seconds = time.perf_counter() - began
-        began = time.perf_counter()
-        result = fr.simulate(contact, history)
-        seconds = time.perf_counter() - began
-        worst = trajectories.score(trajectories.fields_of(result), ref, contact, history)
-        rows.append((name, len(history), trajectories._label(result.attrs), int(result.attrs["nodes"]), seconds, worst))
-        print(f"  {name}: default {seconds:.1f} s, reference {reference_seconds:.1f} s", flush=True)
+def scored(contact, history, ref, run):
+    """``(model, nodes, seconds, worst)`` of `run` (a function giving a result) against `ref`."""
+    began = time.perf_counter()
+    result = run()
+    seconds = time.perf_counter() - began
+    worst = trajectories.score(trajectories.fields_of(result), ref, contact, history)
+    return trajectories._label(result.attrs), int(result.attrs["nodes"]), seconds, worst
+
+
+def worst_table(rows):
+    """Markdown table of `trajectories.score`'s worst errors, one row per history, with the targets."""
     targets = trajectories.TARGETS
-    names = list(targets)
-    table = markdown_table(
-        ["history", "steps", "model", "nodes", "s", *names],
+    return markdown_table(
+        ["history", "steps", "model", "nodes", "s", *targets],
         [
-            (
-                name,
-                steps,
-                model,
-                nodes,
-                f"{seconds:.2f}",
-                *(f"{verdict(worst[n][0], targets[n])} @ {worst[n][1]}" for n in names),
-            )
+            (name, steps, model, nodes, f"{seconds:.2f}")
+            + tuple(f"{verdict(worst[n][0], targets[n])} @ {worst[n][1]}" for n in targets)
             for name, steps, model, nodes, seconds, worst in rows
         ]
-        + [("target", "", "", "", "", *(f"{targets[n]:.0e}" for n in names))],
+        + [("target", "", "", "", "", *(f"{targets[n]:.0e}" for n in targets))],
     )
+
+
+def trajectories_page():
+    selected = trajectories.cases()
+    uniform = {"check": trajectories.CHECK_ELEMENTS, "reference": trajectories.REFERENCE_ELEMENTS}
+    rows, checks = [], []
+    for name in trajectories.QUICK:
+        contact, history = selected[name]
+        ref = trajectories.with_located_ends(trajectories.fine_run(contact, history, uniform["reference"]), contact)
+        check = trajectories.with_located_ends(trajectories.fine_run(contact, history, uniform["check"]), contact)
+        worst = trajectories.score(check, ref, contact, history)
+        checks.append((name, len(history), "uniform", uniform["check"] + 1, check["seconds"], worst))
+        rows.append(
+            (name, len(history), *scored(contact, history, ref, lambda c=contact, h=history: fr.simulate(c, h)))
+        )
+        print(f"  {name}: default {rows[-1][4]:.1f} s", flush=True)
+    targets = trajectories.TARGETS
+    names = list(targets)
+    table, check_table = worst_table(rows), worst_table(checks)
     met = [
         f"- `{n}`: met by {sum(w[n][0] <= targets[n] for *_, w in rows)} of {len(rows)} histories; "
         f"worst {max(w[n][0] for *_, w in rows):.1e}"
@@ -277,11 +294,11 @@ def trajectories_page():
 Every step of general Q/sigma histories against a converged reference: the quick subset of
 `benchmarks/trajectories.py` ({", ".join(f"`{n}`" for n in trajectories.QUICK)}), each run with
 the default (`fr.simulate(contact, history)`) and on a uniform Galerkin mesh of
-{trajectories.REFERENCE_ELEMENTS} elements in theta (the reference, cached in benchmarks/.cache;
-its convergence is checked by `python benchmarks/trajectories.py --quick`, not here). The full set
-of about 30 histories is `python benchmarks/trajectories.py`.
+{trajectories.REFERENCE_ELEMENTS} elements in theta (the reference, cached in benchmarks/.cache).
+The full set of about 30 histories is `python benchmarks/trajectories.py`.
 
-Per history, the worst over its steps, with the step where it occurs (`@`):
+Per history ("s": the default's wall time on a shared machine), the worst over its steps, with the
+step where it occurs (`@`):
 
 - `stick_a`: distance of the stick zones from the reference's [a];
 - `slip_history`: ``max |s - s_ref|`` relative to the history's largest slip; `slip_step`: relative
@@ -295,6 +312,16 @@ The targets are those of issue 18 (1e-3 a, 1e-3, 1e-3, 1e-3 f p0, 1e-4); **over*
 {table}
 
 {chr(10).join(met)}
+
+## The reference's own error
+
+The same histories on a uniform mesh of {trajectories.CHECK_ELEMENTS} elements, scored against the
+reference like the default ("s": this run's wall time when it was cached). Where the error falls at
+least in proportion to the element size, the reference's own error is no larger than these
+differences; where one of them is close to the default's above, that table cannot tell the
+default's error from the reference's.
+
+{check_table}
 """
     write_page(
         PAGES / "trajectories.md",
@@ -308,23 +335,28 @@ The targets are those of issue 18 (1e-3 a, 1e-3, 1e-3, 1e-3 f p0, 1e-4); **over*
 
 
 def in_phase_errors(contact, psi, tau, **model):
-    """ms per step, stick-end [a] and traction [f p0] errors of a run against Nowell-Hills."""
+    """CPU ms per step, nodes, model and errors (`errors`) of a straight in-phase path of
+    `SPEED_STEPS` steps to ``Q = psi f P``, ``sigma = tau f p0``, against Nowell-Hills."""
     Q, sigma = psi * contact.f * contact.P, tau * contact.f * contact.p0
-    history = fr.History.piecewise_linear([0.0, Q], [0.0, sigma], 32)
+    history = fr.History.piecewise_linear([0.0, Q], [0.0, sigma], SPEED_STEPS)
     seconds, result = stepping.cpu(lambda: fr.simulate(contact, history, **model), 3)
     step = result.isel(step=-1)
     b, centre = cf.stick_half_width(contact, Q), cf.nowell_hills_offset(contact, sigma)
     e = errors(contact, step, [centre - b, centre + b], cf.nowell_hills_traction(contact, Q, sigma, step.x.values))
-    return 1e3 * seconds / (len(history) - 1), int(result.attrs["nodes"]), result.attrs["model"], e
+    return 1e3 * seconds / SPEED_STEPS, int(result.attrs["nodes"]), result.attrs["model"], e
 
 
 def performance_page():
     contact = trajectories.hertz()
-    speed = []
-    for label, model in (("grid 128", {"nodes": 128}), ("grid 384", {"nodes": 384}), ("default", {})):
-        ms, nodes, name, e = in_phase_errors(contact, 0.5, 0.5, **model)
-        speed.append((label, name, nodes, f"{ms:.2f}", f"{e['stick']:.1e}", f"{e['traction']:.1e}"))
-    speed_table = markdown_table(["run", "model", "nodes", "ms/step", "stick ends [a]", "traction [f p0]"], speed)
+    runs = [(f"grid {n}", {"nodes": n}) for n in GRIDS] + [("default", {}), ("rtol 1e-5", {"rtol": 1e-5})]
+    speed = [(label, *in_phase_errors(contact, 0.5, 0.5, **model)) for label, model in runs]
+    speed_table = markdown_table(
+        ["run", "model", "nodes", "ms/step", "stick ends [a]", "traction [f p0]"],
+        [
+            (label, name, nodes, f"{ms:.2f}", f"{e['stick']:.1e}", f"{e['traction']:.1e}")
+            for label, ms, nodes, name, e in speed
+        ],
+    )
     stepped = []
     for label, history, model in stepping.histories():
         whole_time, whole = stepping.cpu(lambda h=history, m=model: fr.simulate(stepping.CONTACT, h, model=m), 1)
@@ -346,10 +378,12 @@ def performance_page():
 ## Speed against error
 
 A Hertz contact (as on [Closed forms](closed-forms.md)) taken from the unloaded state to
-Q = 0.5 f P, sigma = 0.5 f p0 in 32 equal in-phase steps, scored at the last step against the
-Nowell-Hills closed form (stick ends in a; traction in f p0 away from {BAND} a around the stick ends
-and edges). CPU time per step, best of 3, one core; it includes building the model (and, for the
-default, adapting its mesh to the history), so it is an upper bound on a long run's cost per step.
+Q = 0.5 f P, sigma = 0.5 f p0 in {SPEED_STEPS} equal in-phase steps, scored at the last step against
+the Nowell-Hills closed form (stick ends in a; traction in f p0 away from {BAND} a around the stick
+ends and edges), on Gauss-Chebyshev grids (`nodes=`), with the default (a Galerkin mesh adapted to
+the history) and with a finer adapted mesh (`rtol=1e-5`). CPU time per step, best of 3, one core of
+a shared machine; it includes building the model (and adapting the mesh), so it bounds a long
+run's cost per step from above.
 
 {speed_table}
 
@@ -374,12 +408,18 @@ every step.
 
 
 def speed_figure(speed):
-    fig, ax = plt.subplots(figsize=(5, 3.4))
-    for (label, _, nodes, ms, _, traction), marker in zip(speed, "os^", strict=True):
-        ax.loglog(float(ms), float(traction), marker, label=f"{label} ({nodes} nodes)")
-    ax.set_xlabel("CPU ms per step")
-    ax.set_ylabel("traction error [f p0]")
-    ax.legend(fontsize=8)
+    """Stick-end and traction errors against CPU time per step: the grids as a line, the meshes as points."""
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.4))
+    grids = [row for row in speed if row[0].startswith("grid")]
+    for ax, key, label in ((axes[0], "stick", "stick-end error [a]"), (axes[1], "traction", "traction error [f p0]")):
+        ax.loglog([row[1] for row in grids], [row[4][key] for row in grids], "o-", label="grids")
+        for (name, ms, nodes, _, e), marker in zip(speed[len(grids) :], "s^", strict=True):
+            ax.loglog(ms, e[key], marker, label=f"{name} ({nodes} nodes)")
+        for _, ms, nodes, _, e in grids:
+            ax.annotate(str(nodes), (ms, e[key]), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        ax.set_xlabel("CPU ms per step")
+        ax.set_ylabel(label)
+    axes[0].legend(fontsize=8)
     fig.tight_layout()
     save_figure(fig, "speed_vs_error.png")
 
