@@ -12,7 +12,6 @@ command. The gallery copies the figures of results/ (scripts/make_results.py) th
 import argparse
 import datetime
 import sys
-import textwrap
 import time
 from pathlib import Path
 
@@ -527,7 +526,7 @@ PAGE_BUILDERS = {
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=textwrap.dedent(__doc__).splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", nargs="*", choices=list(PAGE_BUILDERS), help="pages to regenerate (default: all)")
     args = parser.parse_args(argv)
     for name in args.only or PAGE_BUILDERS:
