@@ -25,19 +25,17 @@ Run:  python benchmarks/trajectories.py [--quick] [--models default,rtol,grid] [
 
 import argparse
 import hashlib
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
+from harness import asymmetric_flat
 
 import fretting as fr
 from fretting.analysis.accuracy import BAND, memory_kinks, traction_error, zone_distance
+from fretting.loading.examples import EXAMPLES
 from fretting.models.galerkin import located_end
 from fretting.models.method4 import stick_zones
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from test_hard_cases import asymmetric_flat  # noqa: E402
 
 #: Elements of the uniform reference mesh in theta: 7.9e-4 a apart at the centre.
 REFERENCE_ELEMENTS = 4000
@@ -50,7 +48,7 @@ TARGETS = {"stick_a": 1e-3, "slip_history": 1e-3, "slip_step": 1e-3, "traction_f
 #: Models scored: keywords of `fretting.simulate`.
 MODELS = {"default": {}, "rtol": {"rtol": 1e-4}, "grid": {"nodes": 384}}
 CACHE = Path(__file__).resolve().parent / ".cache" / "trajectories"
-GAP_TABLE = Path(__file__).resolve().parents[1] / "histories" / "asymmetric_pad_gap.csv"
+GAP_TABLE = EXAMPLES / "asymmetric_pad_gap.csv"
 QUICK = ("walk_s0_8", "ellipse_90", "near_sliding_0.999", "flat_0.25_walk", "asym_flat_walk")
 
 
@@ -78,7 +76,7 @@ def asymmetric_gap_table():
 
 
 def asymmetric_gap_flat():
-    """Flat with corners of 10 and 40 mm (tests/test_hard_cases.py), breakpoints at the flat's ends."""
+    """Flat with corners of 10 and 40 mm (harness.asymmetric_flat), breakpoints at the flat's ends."""
     return fr.Contact(fr.Gap(*asymmetric_flat()), 115e9, 0.5, 3e5)
 
 

@@ -39,9 +39,6 @@ RESULTS = ROOT / "results"
 COMMAND = "python scripts/make_validation.py"
 DPI = 100
 
-#: The shipped table of the asymmetric pad (benchmarks/trajectories.py still names its former place).
-trajectories.GAP_TABLE = EXAMPLES / "asymmetric_pad_gap.csv"
-
 #: Cattaneo-Mindlin loads ``Q/(f P)``, and Nowell-Hills loads ``(Q/(f P), sigma/(f p0))`` (inside
 #: the closed form's range ``|sigma|/(f p0) <= 2 Q/(f P)``).
 CATTANEO_MINDLIN = (0.2, 0.5, 0.8, 0.95)
