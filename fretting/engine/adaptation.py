@@ -96,7 +96,7 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
             return _interpolated_directions(*known[step], x) if step in known else None
 
         try:
-            follow(model, turning, State.virgin(model), observe=observe, guess=guess)
+            follow(model, turning, State.virgin(model), observe=observe, guess=guess, tally=False)
         except GrossSlipError as error:  # named by the step of `history` whose loads reached it
             step = int(np.flatnonzero((history.Q == error.Q) & (history.sigma == error.sigma))[0])
             raise GrossSlipError(step, error.Q, error.sigma, error.limit) from None
@@ -137,7 +137,7 @@ def refined_for(contact, state, history):
         def observe(step, ds, model=model, targets=targets):
             np.minimum(targets, element_targets(model.theta, ds, spec.rtol, model.breakpoints), out=targets)
 
-        follow(model, turning, state, observe=observe)
+        follow(model, turning, state, observe=observe, tally=False)
         theta = refine(model.theta, targets)
         if np.array_equal(theta, model.theta):
             return (model if refined else None), state

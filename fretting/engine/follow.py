@@ -7,24 +7,24 @@ depends on the loads and the state only); such cycles are copied instead of solv
 recorder is told so (`Recorder.copied`).
 """
 
-import weakref
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from fretting.engine.state import State, Tally
 from fretting.errors import GrossSlipError, SolverError
-from fretting.physics.surface import SurfaceStress, bulk_stress
+from fretting.physics.surface import bulk_stress
 
 __all__ = ["advance", "follow"]
 
 
-def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False):
+def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=True):
     """(outcome, state after) of the increment of `model` from `state` to `Q` [N/m], `sigma` [Pa].
 
     `at_rest`: no increment, the state as it stands (the starting state of a history). `step`
     names the step in a `GrossSlipError`. An increment that reports negative dissipation is a
-    solver failure (`SolverError`), never a result.
+    solver failure (`SolverError`), never a result. `tally`: add the increment to the cycle in
+    progress (its energy density and peaks); False where only the slip matters (mesh adaptation).
     """
     contact = model.contact
     sliding = min(model.friction_force, contact.f * contact.P)  # no stick zone from here on
@@ -38,14 +38,10 @@ def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False):
         raise GrossSlipError(step, Q, sigma, sliding) from None
     if not outcome.dissipation >= 0:
         raise SolverError(f"the increment to Q = {Q!r}, sigma = {sigma!r} dissipated {outcome.dissipation!r} J/m")
-    if not state.tally.number:
+    if not (tally and state.tally.number):
         return outcome, state.advance(outcome, Q, sigma, None, None, None)
     stress, shear = specimen_surface(model, outcome, sigma)
     return outcome, state.advance(outcome, Q, sigma, model.dissipation_density(outcome.ds), stress, shear)
-
-
-#: The surface stress operator and the pressure at the nodes of each model in use, built at its first increment.
-_SURFACES = weakref.WeakKeyDictionary()
 
 
 def specimen_surface(model, outcome, sigma):
@@ -53,23 +49,22 @@ def specimen_surface(model, outcome, sigma):
 
     `sigma` [Pa] is the differential bulk tension after the increment; the specimen is the
     contact's (`Contact.specimen`). One product with the model's precomputed Hilbert matrix
-    (`fretting.physics.surface.SurfaceStress`), the formula `fretting.analysis.nucleation.surface_stress`
+    (`Model.surface`), the formula `fretting.analysis.nucleation.surface_stress`
     evaluates at the recorded steps.
     """
-    if model not in _SURFACES:
-        _SURFACES[model] = (SurfaceStress(model.t), model.contact.pressure(model.x))
-    surface, p = _SURFACES[model]
+    surface, p = model.surface
     body, q = model.contact.specimen, model.traction(outcome)
     return surface(q, p, bulk_stress(sigma, body, specimen=body), body), np.abs(q)
 
 
-def follow(model, history, state, recorder=None, observe=None, guess=None):
+def follow(model, history, state, recorder=None, observe=None, guess=None, tally=True):
     """Run `history` on `model` from `state` (whose loads are the history's first); return the last state.
 
     `recorder` is told of every step and cycle; ``observe(step, ds)`` sees the slip increment of
-    every step solved; ``guess(step)`` gives the slip directions to start the solver from, or None.
+    every step solved; ``guess(step)`` gives the slip directions to start the solver from, or None;
+    `tally` as for `advance`.
     """
-    return _Run(model, history, recorder, observe, guess).follow(state)
+    return _Run(model, history, recorder, observe, guess, tally).follow(state)
 
 
 @dataclass(frozen=True, eq=False)
@@ -84,9 +79,9 @@ class _Cycle:
 class _Run:
     """One pass over a history: increments, cycles, copies, and what the recorder is told."""
 
-    def __init__(self, model, history, recorder, observe, guess):
+    def __init__(self, model, history, recorder, observe, guess, tally):
         self.model, self.history, self.recorder = model, history, recorder
-        self.observe, self.guess = observe, guess
+        self.observe, self.guess, self.tally = observe, guess, tally
         self.cycle = history.cycle if history.cycle is not None else np.zeros(len(history), dtype=np.int64)
 
     def follow(self, state):
@@ -113,7 +108,7 @@ class _Run:
             guess = None if self.guess is None else self.guess(step)
             Q, sigma = self.history.Q[step], self.history.sigma[step]
             at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma)
-            outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest)
+            outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally)
             if self.observe is not None and not at_rest:
                 self.observe(step, outcome.ds)
             steps.append((outcome, state))

@@ -121,12 +121,13 @@ class State:
     def advance(self, outcome, Q, sigma, w, stress, shear):
         """The state after the increment `outcome` to the loads `Q`, `sigma`, which dissipated `w` [J/m^2]
         and left the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]
-        (the three None outside a load cycle, where nothing is tallied)."""
+        (the three None where nothing is tallied: outside a load cycle, or where only the slip
+        matters)."""
         slip, ds = outcome.slip, outcome.ds
         episode = self.slip - self.episode_start
         reversed_ = np.sign(ds) * np.sign(episode) < 0
         episode_start = np.where(ds == 0, slip, np.where(reversed_, self.slip, self.episode_start))
-        tally = self.tally.add(outcome.dissipation, w, slip, stress, shear) if self.tally.number else self.tally
+        tally = self.tally if w is None else self.tally.add(outcome.dissipation, w, slip, stress, shear)
         return replace(
             self,
             Q=Q,

@@ -15,10 +15,13 @@ Adding a model: one module with a `ModelSpec` subclass and its `Model` subclass,
 """
 
 import abc
+import functools
 from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
+
+from fretting.physics.surface import SurfaceStress
 
 __all__ = ["Model", "ModelSpec", "Outcome"]
 
@@ -169,3 +172,9 @@ class Model(abc.ABC):
     @abc.abstractmethod
     def dissipation_density(self, ds):
         """``f p |ds|`` [J/m^2] at the nodes, consistent with the increment's `dissipation`."""
+
+    @functools.cached_property
+    def surface(self):
+        """The surface direct stress at the nodes (`fretting.physics.surface.SurfaceStress`, its
+        Hilbert matrix built at the first use) and the contact pressure there [Pa]."""
+        return SurfaceStress(self.t), self.contact.pressure(self.x)
