@@ -48,8 +48,9 @@ STEPS = 8
 #: Grid sizes and steps of the speed-against-error scene.
 GRIDS = (64, 128, 256, 384, 768)
 SPEED_STEPS = 128
-#: Gallery figures per example, the most telling of `fretting plot`'s.
-GALLERY = ("loops", "traction", "dissipation_density")
+#: Gallery figures per example, the most telling of `fretting plot`'s: of each group the first that
+#: `fretting plot` drew (a history without Q has sigma loops only).
+GALLERY = (("loops", "sigma_loops"), ("traction",), ("dissipation_density",))
 #: Colours of the gallery's copies of the figures of results/.
 PALETTE = 64
 
@@ -455,10 +456,12 @@ def gallery_figures(name):
     """Copy `GALLERY`'s figures of example `name` from results/ into the docs, reduced to a palette
     of `PALETTE` colours (a third of the size; the figures are line plots); their file names."""
     copied = []
-    for figure in GALLERY:
-        source = RESULTS / f"{name}_{figure}.png"
-        if not source.is_file():
-            raise FileNotFoundError(f"{source} missing: run python scripts/make_results.py first")
+    for group in GALLERY:
+        drawn = [path for path in (RESULTS / f"{name}_{figure}.png" for figure in group) if path.is_file()]
+        if not drawn:
+            missing = RESULTS / f"{name}_{group[0]}.png"
+            raise FileNotFoundError(f"{missing} missing: run python scripts/make_results.py first")
+        source = drawn[0]
         FIGURES.mkdir(parents=True, exist_ok=True)
         with Image.open(source) as image:
             image.convert("RGB").quantize(colors=PALETTE).save(FIGURES / source.name, optimize=True)
