@@ -19,6 +19,8 @@ transform ``(1/pi) PV int F(xi) / (xi - x) dxi`` is ``-sum_n alpha_n T_n(t)`` in
 ``-sum_n alpha_n w^n`` outside it, ``w = t - sign(t) sqrt(t^2 - 1)``.
 """
 
+from __future__ import annotations
+
 from typing import NamedTuple
 
 import numpy as np
@@ -363,7 +365,7 @@ def _method_4(contact, Q, *, nodes=DEFAULT_NODES, steps=STEPS):
 METHODS = {1: _method_1, 2: _method_2, 3: _method_3, 4: _method_4}
 
 
-def partial_slip(contact, Q, method, **options):
+def partial_slip(contact: Contact, Q: float, method: int, **options) -> xr.Dataset:
     """Partial slip of a symmetric contact under monotonic shear, by one method of Table A.
 
     Parameters
@@ -394,6 +396,17 @@ def partial_slip(contact, Q, method, **options):
     ------
     ValueError
         For an unknown method, an asymmetric contact, or ``Q`` outside ``[0, f P)``.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> exact = partial_slip(contact, 0.5 * contact.f * contact.P, 1)
+    >>> round(exact.attrs["c"] / contact.a, 6)  # c/a = sqrt(1 - Q/(f P)) on Hertz
+    0.707107
+    >>> engine = partial_slip(contact, 0.5 * contact.f * contact.P, 4, nodes=32)
+    >>> engine.sizes["x"], bool(engine.stick.any() and not engine.stick.all())
+    (32, True)
     """
     if isinstance(method, bool) or method not in tuple(METHODS):
         raise ValueError(f"method must be one of {', '.join(map(str, METHODS))}, found {method!r}")

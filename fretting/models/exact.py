@@ -25,8 +25,10 @@ differences of ``P``, keeps the relative precision in slip zones as thin as ``1e
 1e-9, and the slip converges to 1e-12 at 1e-6 fP).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -34,6 +36,10 @@ from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.solver import chebyshev_angles
 from fretting.physics.closed_forms import masing_increment, masing_origin
+
+if TYPE_CHECKING:
+    from fretting.loading.history import History
+    from fretting.physics.contact import Contact
 
 __all__ = ["Exact", "ExactModel", "gap", "nodes_theta"]
 
@@ -85,20 +91,20 @@ class Exact(ModelSpec):
             object.__setattr__(self, "theta", np.array(self.theta, dtype=float))
 
     @property
-    def resolved(self):
+    def resolved(self) -> bool:
         return self.theta is not None
 
-    def resolved_for(self, contact, history):
+    def resolved_for(self, contact: Contact, history: History | None) -> Exact:
         """This spec with the nodes of `history` (None: no history known, no stick-zone nodes)."""
         return self if self.resolved else Exact(self.nodes, nodes_theta(contact, history, self.nodes))
 
-    def build(self, contact):
+    def build(self, contact: Contact) -> ExactModel:
         return ExactModel(contact, self)
 
-    def attributes(self):
+    def attributes(self) -> dict:
         return {"model": self.name, "grid_nodes": int(self.nodes)}
 
-    def holds_for(self, contact, history):
+    def holds_for(self, contact: Contact, history: History | None) -> str | None:
         if not contact.profile.SYMMETRIC:
             return f"{contact.profile!r} is not symmetric"
         if history is not None and np.any(history.sigma):
@@ -106,7 +112,7 @@ class Exact(ModelSpec):
         return None
 
     @classmethod
-    def from_record(cls, attrs, theta):
+    def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Exact:
         return cls(int(attrs.get("grid_nodes", DEFAULT_NODES)), theta)
 
 

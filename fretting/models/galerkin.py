@@ -52,8 +52,10 @@ boundaries of the steps between have swept, so its slip zones get elements of
 at every step of general histories: benchmarks/trajectories.py.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
-from typing import ClassVar, NamedTuple
+from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
 import numpy as np
 from numpy.polynomial import polynomial
@@ -63,6 +65,9 @@ from fretting._validate import positive
 from fretting.models.base import ModelSpec
 from fretting.models.method4 import Method4Model, extrapolated_end
 from fretting.physics.profiles import Gap
+
+if TYPE_CHECKING:
+    from fretting.physics.contact import Contact
 
 __all__ = [
     "DEFAULT_RTOL",
@@ -640,18 +645,18 @@ class Mesh(ModelSpec):
             object.__setattr__(self, "rtol", positive("rtol", self.rtol))
 
     @property
-    def resolved(self):
+    def resolved(self) -> bool:
         return self.theta is not None
 
-    def build(self, contact, previous=None):
+    def build(self, contact: Contact, previous: GalerkinModel | None = None) -> GalerkinModel:
         return GalerkinModel(contact, self, previous)
 
-    def attributes(self):
+    def attributes(self) -> dict:
         attributes = {"model": self.name} | ({} if self.rtol is None else {"rtol": self.rtol})
         return attributes | ({} if self.fallback is None else {"model_fallback": self.fallback})
 
     @classmethod
-    def from_record(cls, attrs, theta):
+    def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Mesh:
         return cls(attrs.get("rtol"), theta, attrs.get("model_fallback"))
 
 

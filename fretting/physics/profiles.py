@@ -6,6 +6,8 @@ undeformed bodies is ``h0(x) >= 0``; the pressure solves eq (1) bounded at both 
 Positions inside the contact are written ``x = centre + a t`` with ``-1 <= t <= 1``.
 """
 
+from __future__ import annotations
+
 import abc
 
 import numpy as np
@@ -63,11 +65,19 @@ class Hertz(Profile):
     """Cylinders of relative radius ``R`` [m]: gap ``h0 = x^2 / (2R)``.
 
     ``a = sqrt(4 P R / (pi E_star))``, ``p = p0 sqrt(1 - t^2)``, ``p0 = 2P / (pi a)`` (eq 6).
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(R=0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> import math
+    >>> math.isclose(contact.p0, 2 * contact.P / (math.pi * contact.a))
+    True
     """
 
     SYMMETRIC = True
 
-    def __init__(self, R):
+    def __init__(self, R: float) -> None:
         self.R = positive("R", R)
 
     def __repr__(self):
@@ -118,11 +128,18 @@ class RoundedFlat(Profile):
     Gap ``h0 = (|x| - b)^2 / (2R)`` for ``|x| > b``. Closed form of Ciavarella, Hills & Monno
     (1998) with ``x = a sin(phi)``, ``sin(phi0) = b/a``:
     ``P = E_star a^2 (pi - 2 phi0 - sin 2phi0) / (4R)`` and the pressure of `pressure`.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.RoundedFlat(b=0.002, R=0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> round(contact.a * 1e3, 3), contact.a > contact.profile.b  # a [mm]: the corners are in contact
+    (2.101, True)
     """
 
     SYMMETRIC = True
 
-    def __init__(self, b, R):
+    def __init__(self, b: float, R: float) -> None:
         self.b = positive("b", b)
         self.R = positive("R", R)
         self.breakpoints = (-self.b, self.b)
