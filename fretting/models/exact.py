@@ -20,9 +20,8 @@ punch), and the gap at ``X`` is zero once the contact reaches it:
     g_c(X) = (2 / (pi E_star)) int_c^X P'(c') arccosh(X / c') dc'
 
 (Hertz: ``g_0 = X^2 / (2R)``). The slope ``P' = dP/dc'`` (`Profile.load_slope`), rather than
-differences of ``P``, keeps the relative precision in slip zones as thin as ``1e-10 a``
-(tests/test_masing.py: a reversal of 1e-9 fP, zones 2.5e-10 a wide, dissipates Masing's energy to
-1e-9, and the slip converges to 1e-12 at 1e-6 fP).
+differences of ``P``, keeps the relative precision in the thinnest slip zones: those of a tiny
+reversal dissipate Masing's energy (tests/test_masing.py::test_tiny_reversal_slips_by_the_cubic_law).
 """
 
 from __future__ import annotations
@@ -44,15 +43,17 @@ if TYPE_CHECKING:
 __all__ = ["Exact", "ExactModel", "gap", "nodes_theta"]
 
 #: Gauss-Legendre points of each quadrature (the gap along ``c'``, the energy and ``delta_Q``
-#: along ``X``): on Hertz the slip is within 1e-12 of the closed form's largest value, and on the
-#: rounded flat 256 points change the slip, energy and delta_Q by less than 1e-12 of them, also
-#: at Q/fP = 0.999999 (tests/test_masing.py).
+#: along ``X``): on Hertz the slip meets the closed form to rounding
+#: (tests/test_masing.py::test_gap_of_hertz_is_cattaneo_mindlin), and on the rounded flat more
+#: points change neither the slip, the energy nor delta_Q, also close to sliding
+#: (tests/test_masing.py::test_quadrature_has_converged).
 GAUSS = 64
 _U, _WEIGHTS = np.polynomial.legendre.leggauss(GAUSS)
 
 #: Nodes added toward each edge, per halving of the distance in ``theta``, below the first node
 #: of the Gauss-Chebyshev grid, and the halvings: slip zones down to ``a (2^-12 pi / 2N)^2 / 2``,
-#: ``8e-12 a`` at 384 nodes, hold 4 nodes or more (Q* = 1e-6 f P on Hertz: about 40).
+#: ``8e-12 a`` at 384 nodes, hold 4 nodes or more
+#: (tests/test_masing.py::test_nodes_hold_thin_slip_zones_and_small_stick_zones).
 EDGE_NODES_PER_OCTAVE = 4
 EDGE_OCTAVES = 12
 

@@ -211,17 +211,19 @@ class Gap(Profile):
     breakpoints : sequence of float, optional
         Positions [m] where the curvature of ``h0`` jumps (the ends of a flat, say). The
         pressure's derivative is log-singular there; the Galerkin mesh resolves the traction
-        about them (to 1e-3 f p0), which it cannot do for jumps it is not told of.
+        about them (tests/test_galerkin.py::test_rounded_flat), which it cannot do for jumps it is
+        not told of.
 
     Notes
     -----
     With ``h0'(centre + a t) = sum_n b_n T_n(t)``, eq (1) bounded at both ends gives
     ``p = (E_star / 2) sum_{n>=1} b_n sin(n theta)`` with ``t = cos(theta)``, the consistency
     condition ``b_0 = 0`` (which fixes the centre) and ``P = pi a E_star b_1 / 4``, with `ORDER`
-    points. Where the curvature jumps the slope's expansion converges only algebraically: on the
-    asymmetric flat of tests/test_hard_cases.py ``a`` is within 3.9e-8 relative and the pressure
-    next to a jump within 9.3e-4 p0 of eqs (1)-(2) integrated adaptively, split at the breakpoints
-    (test_gap_normal_contact_against_adaptive_quadrature); a smooth gap converges fast. The solution
+    points. Where the curvature jumps the slope's expansion converges only algebraically: its
+    ``a`` and its pressure next to a jump are held against eqs (1)-(2) integrated adaptively, split
+    at the breakpoints, on the asymmetric flat of
+    tests/test_hard_cases.py::test_gap_normal_contact_against_adaptive_quadrature; a smooth gap
+    converges fast. The solution
     is admissible only where this pressure is nowhere negative: a gap that is not convex where
     the bodies touch (a hollow, a wear scar) is refused by `check` when the `Contact` is built.
     """
@@ -327,8 +329,8 @@ def _x_minus_sin(x):
     """``x - sin(x)`` for ``x >= 0`` without the cancellation of the difference at small ``x``.
 
     Below 0.5 its Taylor series to ``x^17`` (the next term is ``1e-21`` of the sum there), above
-    it the difference: within 3.3e-16 and 1.7e-15 relative of a 60-digit sum of the series
-    (tests/test_profiles.py).
+    it the difference; both are held to rounding against a 60-digit sum of the series by
+    tests/test_profiles.py::test_x_minus_sin_keeps_its_relative_precision.
     """
     x = np.asarray(x, dtype=float)
     series = np.polynomial.polynomial.polyval(x**2, _X_MINUS_SIN) * x**3
