@@ -245,7 +245,7 @@ def monotonic_dissipation(contact, Q, ratio=0.0):
     quadrature. Each slip zone, from its stick end ``L`` to the contact edge ``E``, is mapped by
     ``x = L + (E - L) sin^2(phi / 2)``: the ``(x - L)^(3/2)`` of the slip and the ``sqrt(E - x)``
     of the pressure become analytic in ``phi``, so Gauss-Legendre of `SLIP_WORK_ORDER` points
-    converges exponentially (tests/test_closed_forms.py: 1e-9 of the closed form at ``ratio = 0``).
+    converges exponentially (tests/test_accuracy.py::test_slip_work_by_quadrature_is_the_closed_form).
 
     Parameters
     ----------

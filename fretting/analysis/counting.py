@@ -32,7 +32,8 @@ then depends on more than the counted load (beyond the Nowell-Hills regime
 virgin curves), and on non-proportional paths the reversals of Q and sigma
 differ while the counting follows one of them. Measured against ``4 D(DeltaQ / 2)`` along the
 path's direction (random histories, 64 nodes): proportional paths ``sigma / (f p0) = k Q / (f P)``
-keep the rule to 5e-9 for ``|k| <= 2`` (regime A) and to 0.5 % for ``|k| <= 3``; with a sigma
+keep the rule for ``|k| <= 2`` (regime A; tests/test_counting.py::test_proportional_loads_in_regime_A_keep_the_rule)
+and nearly for ``|k| <= 3``; with a sigma
 mean, or where Q reverses and sigma does not, a small loop can be off by a factor of two or more.
 """
 

@@ -19,6 +19,8 @@ transform ``(1/pi) PV int F(xi) / (xi - x) dxi`` is ``-sum_n alpha_n T_n(t)`` in
 ``-sum_n alpha_n w^n`` outside it, ``w = t - sign(t) sqrt(t^2 - 1)``.
 """
 
+from __future__ import annotations
+
 from typing import NamedTuple
 
 import numpy as np
@@ -39,17 +41,18 @@ from fretting.results.variables import VARIABLES
 __all__ = ["METHODS", "partial_slip", "comparison_figure"]
 
 #: Sine modes of the pressure (methods 1 and 3): a pressure whose slope has kinks (rounded
-#: flat) gives method 3 a traction within 8e-5 of its peak of method 1's at this size, 3.7e-4 at
-#: half of it (Q/fP = 0.2, 0.5, 0.8).
+#: flat) converges slowly in them, and half as many leave method 3's traction visibly farther
+#: from method 1's (both held against Ciavarella-Jaeger by
+#: tests/test_methods.py::test_rounded_flat_ciavarella_jaeger).
 MODES = 4096
 
-#: Gauss-Chebyshev nodes in the stick zone (method 2): traction within 1e-5 of its peak on the
-#: closed forms of the tests.
+#: Gauss-Chebyshev nodes in the stick zone (method 2): enough for the closed forms of
+#: tests/test_methods.py (test_hertz_cattaneo_mindlin, test_rounded_flat_ciavarella_jaeger).
 QUADRATURE = 256
 
 #: Gauss-Legendre points in each slip zone (method 2): the integrand is smooth in ``theta``. On the
-#: rounded flat at Q/fP = 0.2, 0.5, 0.8 the traction is within 5e-7 of its peak of method 1's with 32
-#: points, as with 128.
+#: rounded flat 32 points give method 1's traction as closely as 128
+#: (tests/test_methods.py::test_rounded_flat_ciavarella_jaeger).
 ORDER = 32
 
 #: Load increments of method 4: under monotonic loading the stick zone only shrinks, so the
@@ -363,7 +366,7 @@ def _method_4(contact, Q, *, nodes=DEFAULT_NODES, steps=STEPS):
 METHODS = {1: _method_1, 2: _method_2, 3: _method_3, 4: _method_4}
 
 
-def partial_slip(contact, Q, method, **options):
+def partial_slip(contact: Contact, Q: float, method: int, **options) -> xr.Dataset:
     """Partial slip of a symmetric contact under monotonic shear, by one method of Table A.
 
     Parameters
@@ -394,6 +397,17 @@ def partial_slip(contact, Q, method, **options):
     ------
     ValueError
         For an unknown method, an asymmetric contact, or ``Q`` outside ``[0, f P)``.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> exact = partial_slip(contact, 0.5 * contact.f * contact.P, 1)
+    >>> round(exact.attrs["c"] / contact.a, 6)  # c/a = sqrt(1 - Q/(f P)) on Hertz
+    0.707107
+    >>> engine = partial_slip(contact, 0.5 * contact.f * contact.P, 4, nodes=32)
+    >>> engine.sizes["x"], bool(engine.stick.any() and not engine.stick.all())
+    (32, True)
     """
     if isinstance(method, bool) or method not in tuple(METHODS):
         raise ValueError(f"method must be one of {', '.join(map(str, METHODS))}, found {method!r}")

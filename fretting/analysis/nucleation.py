@@ -312,11 +312,11 @@ def surface_stress(result, body=None, bulk=None):
     in body 1, a tension ``2 f p0`` at the trailing edge ``x = -a`` (McEwen 1949 [3]_).
 
     The principal value is integrated exactly for ``sqrt(1 - t^2) q`` interpolated linearly
-    between the nodes (`fretting.physics.surface.hilbert_matrix`). Against Cattaneo-Mindlin at
-    128 nodes the error is below 2e-3 f p0 farther than 0.05 a from the stick/slip boundaries and
-    7e-3 f p0 beyond 0.02 a (measured, Q/(f P) = 0.05 to 0.95); at a boundary the stress has a
-    square-root profile with a vertical tangent that no fixed grid resolves (errors up to 0.08 f
-    p0 there).
+    between the nodes (`fretting.physics.surface.hilbert_matrix`). Its error against
+    Cattaneo-Mindlin away from the stick/slip boundaries is held by
+    tests/test_nucleation.py::test_surface_stress_of_cattaneo_mindlin; at a boundary the stress has a
+    square-root profile with a vertical tangent that no fixed grid resolves, so the error is largest
+    there.
 
     Parameters
     ----------

@@ -19,7 +19,10 @@ there (`_interpolated_directions`), which the answer does not depend on and whic
 the releases of the passes after the first (benchmarks/adaptation_passes.py).
 """
 
+from __future__ import annotations
+
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -29,6 +32,10 @@ from fretting.engine.state import State
 from fretting.engine.threads import one_blas_thread
 from fretting.errors import GrossSlipError, SolverError
 from fretting.models.galerkin import DEFAULT_RTOL, Mesh, element_targets, initial_theta, refine
+
+if TYPE_CHECKING:
+    from fretting.loading.history import History
+    from fretting.physics.contact import Contact
 
 __all__ = ["MAX_TURN", "REFINEMENTS", "MeshTooLarge", "adapted_mesh", "adapted_model", "refined_for", "remapped"]
 
@@ -57,9 +64,25 @@ class MeshTooLarge(Exception):
         self.nodes, self.step, self.model = nodes, step, model
 
 
-def adapted_mesh(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
+def adapted_mesh(
+    contact: Contact, history: History, rtol: float = DEFAULT_RTOL, max_nodes: int | None = None
+) -> np.ndarray | None:
     """Galerkin mesh ``theta`` [rad] that resolves the stick and slip zones of `history` to `rtol`
-    (`adapted_model`); None as soon as it is certain to need more than `max_nodes` nodes."""
+    (`adapted_model`); None as soon as it is certain to need more than `max_nodes` nodes.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> fP = contact.f * contact.P
+    >>> history = fr.History.piecewise_linear([0, 0.5 * fP], [0, 50e6], 8)
+    >>> theta = adapted_mesh(contact, history)
+    >>> bool(theta[0] == 0 and theta[-1] == np.pi and np.all(np.diff(theta) > 0))
+    True
+    >>> adapted_mesh(contact, history, max_nodes=16) is None
+    True
+    >>> result = fr.simulate(contact, history, mesh=theta)  # the mesh as it is
+    """
     try:
         with one_blas_thread():
             return adapted_model(contact, history, positive("rtol", rtol), max_nodes).theta

@@ -12,8 +12,11 @@ The default for a contact and a history (`choose_model`):
    as the bound is certain.
 """
 
+from __future__ import annotations
+
 import warnings
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from fretting.engine.adaptation import MeshTooLarge, adapted_model, refined_for
 from fretting.errors import HistoryError
@@ -21,6 +24,10 @@ from fretting.models.base import ModelSpec
 from fretting.models.collocation import DEFAULT_NODES, Grid
 from fretting.models.exact import Exact
 from fretting.models.galerkin import DEFAULT_RTOL, Mesh
+
+if TYPE_CHECKING:
+    from fretting.loading.history import History
+    from fretting.physics.contact import Contact
 
 __all__ = [
     "MAX_DEFAULT_MESH",
@@ -48,13 +55,24 @@ class ModelFallbackWarning(UserWarning):
     """The default model fell back to a coarser one; the message says why."""
 
 
-def choose_model(contact, history):
+def choose_model(contact: Contact, history: History) -> ModelSpec:
     """The default model for `contact` and `history`, resolved (module docstring).
 
     Returns
     -------
     ModelSpec
         `Exact` or `Mesh`, with its nodes fixed.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> fP = contact.f * contact.P
+    >>> choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP, -0.5 * fP], None, 8)).name
+    'exact'
+    >>> spec = choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP], [0, 50e6], 8))
+    >>> spec.name, spec.resolved  # sigma: a Galerkin mesh adapted to the history
+    ('mesh', True)
     """
     return _default_model(contact, history).spec
 

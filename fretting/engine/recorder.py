@@ -6,9 +6,12 @@ per load cycle, and turns them into the variables of `fretting.results.variables
 (`Recorder.dataset`). `final_state` reads the state back from such a dataset.
 """
 
+from __future__ import annotations
+
 import itertools
 
 import numpy as np
+import xarray as xr
 
 from fretting.engine.choice import recorded_spec
 from fretting.engine.state import State, Tally
@@ -147,8 +150,21 @@ class Recorder:
         return build_dataset(self.data(state), attributes | spec.attributes())
 
 
-def final_state(result):
-    """State at the last step of a result of `fretting.simulate`, to continue the history from."""
+def final_state(result: xr.Dataset) -> State:
+    """State at the last step of a result of `fretting.simulate`, to continue the history from.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> first = fr.History.piecewise_linear([0, 30e3], None, 8)
+    >>> state = final_state(fr.simulate(contact, first, fr.models.Grid(32)))
+    >>> state.Q, state.model
+    (30000.0, Grid(nodes=32))
+    >>> later = fr.simulate(contact, fr.History.piecewise_linear([30e3, -30e3], None, 8), state=state)
+    >>> float(later.Q[-1])
+    -30000.0
+    """
     tally = Tally(
         int(result.state_cycle),
         float(result.state_cycle_dissipation),

@@ -11,12 +11,17 @@ Before any stepping a run checks that it can write its output and takes the outp
 killed run are deleted, since no live run can own them.
 """
 
+from __future__ import annotations
+
 import contextlib
 import errno
+import os
 import time
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from filelock import FileLock, Timeout
@@ -27,6 +32,11 @@ from fretting.engine.stepper import Stepper
 from fretting.errors import GrossSlipError
 from fretting.loading.history_file import read_history_source
 from fretting.results.io import Joiner, ResultError, load, remove_temporaries, save, source_attributes
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from fretting.models.base import ModelSpec
 
 __all__ = ["CHECKPOINT_SECONDS", "Run", "holding", "run_file"]
 
@@ -136,15 +146,15 @@ def writable(output):
 
 
 def run_file(
-    history_path,
-    output,
-    model=None,
+    history_path: str | os.PathLike,
+    output: str | os.PathLike,
+    model: ModelSpec | None = None,
     *,
-    record=None,
-    resume=False,
-    checkpoint_interval=CHECKPOINT_SECONDS,
-    progress=None,
-):
+    record: ArrayLike | str | None = None,
+    resume: bool = False,
+    checkpoint_interval: float = CHECKPOINT_SECONDS,
+    progress: Callable[[int, int], object] | None = None,
+) -> Run:
     """Run a history file and write its result to `output`, checkpointed and resumable.
 
     Parameters
@@ -174,6 +184,17 @@ def run_file(
     OSError
         Before any step, when `output` cannot be written (`writable`) or another run is writing
         it (`holding`).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import fretting as fr
+    >>> from fretting.loading.examples import example_path
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     run = fr.run_file(example_path("hertz_shear_cycling"), Path(folder) / "result.nc", fr.models.Grid(32))
+    ...     print(run.output.name, run.output.is_file(), run.result.sizes["cycle_number"], run.notes)
+    result.nc True 5 []
     """
     source = read_history_source(history_path)
     output = writable(output)

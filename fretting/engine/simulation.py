@@ -1,15 +1,37 @@
 """`simulate`: follow a load history with a model and record the contact."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import xarray as xr
+from numpy.typing import ArrayLike
+
 from fretting.engine.choice import continued, spec_from
 from fretting.engine.recorder import Recorder, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.engine.threads import one_blas_thread
 from fretting.loading.history import History
 
+if TYPE_CHECKING:
+    from fretting.engine.state import State
+    from fretting.models.base import ModelSpec
+    from fretting.physics.contact import Contact
+
 __all__ = ["simulate"]
 
 
-def simulate(contact, history, model=None, *, nodes=None, rtol=None, mesh=None, state=None, record=None):
+def simulate(
+    contact: Contact,
+    history: History,
+    model: ModelSpec | None = None,
+    *,
+    nodes: int | None = None,
+    rtol: float | None = None,
+    mesh: ArrayLike | None = None,
+    state: State | None = None,
+    record: ArrayLike | str | None = None,
+) -> xr.Dataset:
     """Follow a load history and record the contact.
 
     Parameters

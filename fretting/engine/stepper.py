@@ -5,7 +5,11 @@ What is stored of the steps is the recorder's business (`fretting.engine.recorde
 which `run` tells of every step and cycle.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -14,8 +18,12 @@ from fretting.engine.follow import advance, follow
 from fretting.engine.state import State, Tally
 from fretting.engine.threads import one_blas_thread
 from fretting.errors import HistoryError
-from fretting.models.base import Model, ModelSpec
+from fretting.loading.history import History
+from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.physics.contact import Contact
+
+if TYPE_CHECKING:
+    from fretting.engine.recorder import Recorder
 
 __all__ = ["Stepper"]
 
@@ -43,7 +51,7 @@ class Stepper:
     True
     """
 
-    def __init__(self, contact, model=None, state=None):
+    def __init__(self, contact: Contact, model: ModelSpec | Model | None = None, state: State | None = None) -> None:
         if not isinstance(contact, Contact):
             raise ValueError(f"contact must be a fretting.Contact, found {contact!r}")
         if model is not None and not isinstance(model, (ModelSpec, Model)):
@@ -64,16 +72,16 @@ class Stepper:
             self._build_state()
 
     @property
-    def model(self):
+    def model(self) -> Model | None:
         """The built `fretting.models.base.Model` (None until a history has chosen or resolved it)."""
         return self._model
 
     @property
-    def state(self):
+    def state(self) -> State | None:
         """The current `State` (None until a model is built)."""
         return self._state
 
-    def step(self, Q, sigma=0.0, cycle=0):
+    def step(self, Q: float, sigma: float = 0.0, cycle: int = 0) -> Outcome:
         """Advance by one increment to the loads `Q` [N/m], `sigma` [Pa]; return its `Outcome`.
 
         `cycle` is the load cycle the increment belongs to (0: none): its energy, ``w`` and slip
@@ -91,7 +99,14 @@ class Stepper:
         self._fresh = False
         return outcome
 
-    def run(self, history, recorder=None, *, observe=None, guess=None):
+    def run(
+        self,
+        history: History,
+        recorder: Recorder | None = None,
+        *,
+        observe: Callable | None = None,
+        guess: Callable | None = None,
+    ) -> State:
         """Follow `history` from the current state (whose loads are the history's first); return the last state.
 
         Parameters
@@ -118,7 +133,7 @@ class Stepper:
         self._fresh = False
         return self._state
 
-    def resolve(self, history):
+    def resolve(self, history: History) -> None:
         """Fix the model for `history` without stepping: choose the default, or adapt the spec's
         nodes to it (`fretting.engine.choice.built_model`); with a model built already, check that it
         can run `history`."""

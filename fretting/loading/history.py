@@ -1,9 +1,12 @@
 """Load histories: the trajectory of the shear force Q and the bulk tension sigma."""
 
+from __future__ import annotations
+
 import itertools
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from fretting._validate import finite, finite_array, positive
 from fretting.errors import HistoryError
@@ -172,7 +175,9 @@ class History:
         return cls(*map(np.concatenate, (Q, sigma, vertex_step)), np.concatenate(cycle) if has_cycles else None)
 
     @classmethod
-    def piecewise_linear(cls, Q, sigma=None, steps_per_segment=16):
+    def piecewise_linear(
+        cls, Q: ArrayLike, sigma: ArrayLike | None = None, steps_per_segment: int | ArrayLike = 16
+    ) -> History:
         """Straight segments between vertices of the (Q, sigma) path.
 
         Parameters
@@ -183,6 +188,12 @@ class History:
             Bulk tension at the vertices [Pa]; zero when omitted.
         steps_per_segment : int or array_like of int
             Equal increments of each segment (one number for all, or one per segment).
+
+        Examples
+        --------
+        >>> history = History.piecewise_linear([0, 100.0, -100.0], None, 4)
+        >>> len(history), history.vertex_step.tolist(), history.Q[:3].tolist()
+        (9, [0, 4, 8], [0.0, 25.0, 50.0])
         """
         Q = _loads("Q", Q)
         sigma = np.zeros_like(Q) if sigma is None else _loads("sigma", sigma)
@@ -197,17 +208,17 @@ class History:
     @classmethod
     def sinusoidal(
         cls,
-        Q_amplitude,
-        sigma_amplitude=0.0,
-        phase_deg=0.0,
-        cycles=1,
-        steps_per_cycle=64,
-        Q_mean=0.0,
-        sigma_mean=0.0,
+        Q_amplitude: float,
+        sigma_amplitude: float = 0.0,
+        phase_deg: float = 0.0,
+        cycles: int = 1,
+        steps_per_cycle: int = 64,
+        Q_mean: float = 0.0,
+        sigma_mean: float = 0.0,
         *,
-        start=(0.0, 0.0),
-        ramp_steps=RAMP_STEPS,
-    ):
+        start: tuple[float, float] = (0.0, 0.0),
+        ramp_steps: int = RAMP_STEPS,
+    ) -> History:
         """Sinusoidal load cycles, reached from `start` by a straight ramp when they start elsewhere.
 
         ``Q = Q_mean + Q_amplitude sin(theta)`` and ``sigma = sigma_mean + sigma_amplitude sin(theta + phase)``,
@@ -231,6 +242,14 @@ class History:
             ``(Q, sigma)`` the history starts from [N/m], [Pa].
         ramp_steps : int
             Steps of the ramp to the first point, >= 1.
+
+        Examples
+        --------
+        >>> history = History.sinusoidal(1000.0, cycles=2, steps_per_cycle=8)
+        >>> len(history), history.cycle_count, history.cycle.tolist()
+        (17, 2, [0, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2])
+        >>> bool(history.Q[0] == history.Q[8] == history.Q[16] == 0)  # each cycle ends where it starts
+        True
         """
         amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
         phase = np.radians(_number("phase_deg", phase_deg))

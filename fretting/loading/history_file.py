@@ -4,9 +4,12 @@ Every value is checked here, at the boundary, and every problem raises `HistoryF
 naming the file, the line where it can be found, the key, what was found and what was expected.
 """
 
+from __future__ import annotations
+
 import csv
 import hashlib
 import math
+import os
 import re
 import tomllib
 from dataclasses import dataclass
@@ -71,7 +74,7 @@ class HistorySource:
     history: History
 
 
-def read_history(path):
+def read_history(path: str | os.PathLike) -> tuple[Contact, History]:
     """Contact and load history of a history file.
 
     Parameters
@@ -91,6 +94,13 @@ def read_history(path):
         When the file cannot be read.
     HistoryFileError
         When its content is malformed.
+
+    Examples
+    --------
+    >>> from fretting.loading.examples import example_path
+    >>> contact, history = read_history(example_path("hertz_shear_cycling"))
+    >>> contact.profile, history.start, history.cycle_count
+    (Hertz(R=0.05), (0.0, 0.0), 5)
     """
     source = read_history_source(path)
     return source.contact, source.history

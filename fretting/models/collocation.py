@@ -6,14 +6,19 @@ is `fretting.models.solver.ChebyshevGrid`'s. The model's traction measure is
 ``sqrt(1 - t^2)`` times the traction [Pa].
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
 from fretting.models.base import ModelSpec
 from fretting.models.method4 import Method4Model
 from fretting.models.solver import ChebyshevGrid
+
+if TYPE_CHECKING:
+    from fretting.physics.contact import Contact
 
 __all__ = ["DEFAULT_NODES", "CollocationModel", "Grid"]
 
@@ -44,17 +49,17 @@ class Grid(ModelSpec):
             raise ValueError(f"nodes must be an integer >= 4, found {self.nodes!r}")
 
     @property
-    def resolved(self):
+    def resolved(self) -> bool:
         return True
 
-    def build(self, contact):
+    def build(self, contact: Contact) -> CollocationModel:
         return CollocationModel(contact, self)
 
-    def attributes(self):
+    def attributes(self) -> dict:
         return {"model": self.name, "nodes": int(self.nodes)}
 
     @classmethod
-    def from_record(cls, attrs, theta):
+    def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Grid:
         return cls(int(attrs["nodes"]))
 
 

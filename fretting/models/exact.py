@@ -20,13 +20,14 @@ punch), and the gap at ``X`` is zero once the contact reaches it:
     g_c(X) = (2 / (pi E_star)) int_c^X P'(c') arccosh(X / c') dc'
 
 (Hertz: ``g_0 = X^2 / (2R)``). The slope ``P' = dP/dc'`` (`Profile.load_slope`), rather than
-differences of ``P``, keeps the relative precision in slip zones as thin as ``1e-10 a``
-(tests/test_masing.py: a reversal of 1e-9 fP, zones 2.5e-10 a wide, dissipates Masing's energy to
-1e-9, and the slip converges to 1e-12 at 1e-6 fP).
+differences of ``P``, keeps the relative precision in the thinnest slip zones: those of a tiny
+reversal dissipate Masing's energy (tests/test_masing.py::test_tiny_reversal_slips_by_the_cubic_law).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -35,18 +36,24 @@ from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.solver import chebyshev_angles
 from fretting.physics.closed_forms import masing_increment, masing_origin
 
+if TYPE_CHECKING:
+    from fretting.loading.history import History
+    from fretting.physics.contact import Contact
+
 __all__ = ["Exact", "ExactModel", "gap", "nodes_theta"]
 
 #: Gauss-Legendre points of each quadrature (the gap along ``c'``, the energy and ``delta_Q``
-#: along ``X``): on Hertz the slip is within 1e-12 of the closed form's largest value, and on the
-#: rounded flat 256 points change the slip, energy and delta_Q by less than 1e-12 of them, also
-#: at Q/fP = 0.999999 (tests/test_masing.py).
+#: along ``X``): on Hertz the slip meets the closed form to rounding
+#: (tests/test_masing.py::test_gap_of_hertz_is_cattaneo_mindlin), and on the rounded flat more
+#: points change neither the slip, the energy nor delta_Q, also close to sliding
+#: (tests/test_masing.py::test_quadrature_has_converged).
 GAUSS = 64
 _U, _WEIGHTS = np.polynomial.legendre.leggauss(GAUSS)
 
 #: Nodes added toward each edge, per halving of the distance in ``theta``, below the first node
 #: of the Gauss-Chebyshev grid, and the halvings: slip zones down to ``a (2^-12 pi / 2N)^2 / 2``,
-#: ``8e-12 a`` at 384 nodes, hold 4 nodes or more (Q* = 1e-6 f P on Hertz: about 40).
+#: ``8e-12 a`` at 384 nodes, hold 4 nodes or more
+#: (tests/test_masing.py::test_nodes_hold_thin_slip_zones_and_small_stick_zones).
 EDGE_NODES_PER_OCTAVE = 4
 EDGE_OCTAVES = 12
 
@@ -85,20 +92,20 @@ class Exact(ModelSpec):
             object.__setattr__(self, "theta", np.array(self.theta, dtype=float))
 
     @property
-    def resolved(self):
+    def resolved(self) -> bool:
         return self.theta is not None
 
-    def resolved_for(self, contact, history):
+    def resolved_for(self, contact: Contact, history: History | None) -> Exact:
         """This spec with the nodes of `history` (None: no history known, no stick-zone nodes)."""
         return self if self.resolved else Exact(self.nodes, nodes_theta(contact, history, self.nodes))
 
-    def build(self, contact):
+    def build(self, contact: Contact) -> ExactModel:
         return ExactModel(contact, self)
 
-    def attributes(self):
+    def attributes(self) -> dict:
         return {"model": self.name, "grid_nodes": int(self.nodes)}
 
-    def holds_for(self, contact, history):
+    def holds_for(self, contact: Contact, history: History | None) -> str | None:
         if not contact.profile.SYMMETRIC:
             return f"{contact.profile!r} is not symmetric"
         if history is not None and np.any(history.sigma):
@@ -106,7 +113,7 @@ class Exact(ModelSpec):
         return None
 
     @classmethod
-    def from_record(cls, attrs, theta):
+    def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Exact:
         return cls(int(attrs.get("grid_nodes", DEFAULT_NODES)), theta)
 
 

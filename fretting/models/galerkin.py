@@ -18,13 +18,12 @@ needs the mean of ``Cl1(theta -+ phi)`` over each pair of elements. ``F = zeta(3
 the singularities of ``Cl1`` that combination cancels, and a Taylor series about the
 rectangle's centre takes over: a polynomial in ``cot^2`` of half the centre's argument whose
 coefficients depend on the two element sizes only, so that both kernels share them. The means
-are then right to about 1e-14 for elements of similar size and to ``~ 1e-16`` times the ratio
-of the sizes otherwise: at most 4e-10 on the meshes that `element_targets` settles on, with
-elements down to 3e-6 rad. Each mean is computed from its own two elements alone, in operations
-that do not depend on the other elements, so that the scene of a refined mesh copies the means
-of the pairs of elements it shares with the scene before (`GalerkinModel`'s ``previous``) and
-its stiffness equals, bit for bit, one assembled afresh (as a run resumed from a saved state
-assembles it).
+lose accuracy in proportion to the ratio of the two sizes, which the grading of the meshes
+bounds (tests/test_galerkin.py::test_pair_means_against_quadrature). Each mean is computed from
+its own two elements alone, in operations that do not depend on the other elements, so that the
+scene of a refined mesh copies the means of the pairs of elements it shares with the scene
+before (`GalerkinModel`'s ``previous``) and its stiffness equals, bit for bit, one assembled
+afresh (as a run resumed from a saved state assembles it).
 
 Loads. The fully stuck traction of eqs (9) and (20) does the work
 ``F_k = int q_st phi_k dx = int (Q / pi + sigma a cos(theta) / 4) phi_k dtheta``, that is
@@ -52,8 +51,10 @@ boundaries of the steps between have swept, so its slip zones get elements of
 at every step of general histories: benchmarks/trajectories.py.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
-from typing import ClassVar, NamedTuple
+from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
 import numpy as np
 from numpy.polynomial import polynomial
@@ -63,6 +64,9 @@ from fretting._validate import positive
 from fretting.models.base import ModelSpec
 from fretting.models.method4 import Method4Model, extrapolated_end
 from fretting.physics.profiles import Gap
+
+if TYPE_CHECKING:
+    from fretting.physics.contact import Contact
 
 __all__ = [
     "DEFAULT_RTOL",
@@ -111,10 +115,11 @@ SMALL_HALF_WIDTH = 0.5
 _J1_TERMS = 12
 
 #: Relative accuracy asked by default of the energy dissipated in an increment (`element_targets`):
-#: every closed form of benchmarks/galerkin_convergence.py is then met to 5e-4 or better.
+#: the error it leaves against every closed form is measured by benchmarks/galerkin_convergence.py.
 DEFAULT_RTOL = 1e-4
-#: Elements of the initial uniform mesh, the coarsest any zone gets: with 32 the slip of the
-#: large zones at Q/fP = 0.999 errs by 1.3e-3 of its maximum, with 64 by 4e-4.
+#: Elements of the initial uniform mesh, the coarsest any zone gets: half as many leave the slip
+#: of the large zones close to sliding (Q/fP = 0.999) markedly less accurate
+#: (benchmarks/galerkin_convergence.py).
 INITIAL_ELEMENTS = 64
 #: Size [rad] of the edge elements of the initial mesh: edge slip zones down to about this
 #: width in theta (5e-9 a in x) make the edge node slip, and are then refined.
@@ -122,23 +127,24 @@ EDGE_SIZE = 1e-4
 #: Smallest element size [rad] that `element_targets` asks for, so that refinement ends even
 #: where a zone never resolves.
 MIN_SIZE = 1e-7
-#: Elements across every stick or slip zone, at least: the slip is then within 6e-4 of its
-#: maximum (8 leave 7.4e-4 at Q/fP = 0.05).
+#: Elements across every stick or slip zone, at least: fewer leave the slip of a small zone
+#: (Q/fP = 0.05) less accurate (benchmarks/galerkin_convergence.py).
 ZONE_ELEMENTS = 10
-#: Relative energy error left inside zones of ``ZONE_ELEMENTS`` elements (the floor seen at
-#: Q*/fP = 0.95 when 1e-5 is asked); it falls like the square of the element size.
+#: Relative energy error left inside zones of ``ZONE_ELEMENTS`` elements (the floor that
+#: benchmarks/galerkin_convergence.py shows when a smaller rtol is asked); it falls like the
+#: square of the element size.
 ZONE_ERROR = 1e-4
 #: The worst relative energy error of an increment is about ``BOUNDARY_ERROR (size / w)^(5/2)``
 #: with ``size`` the element holding a stick/slip boundary and ``w`` the narrower zone beside
-#: it. Fitted with a margin: over 60 amplitudes Q*/fP in [0.05, 0.95] the worst energy per
-#: cycle errs by 3.2e-4 with rtol = 1e-3 and 3.7e-5 with 1e-4 (9, the bare fit, let 4 exceed 1e-4).
+#: it. Fitted with a margin to the worst energy per cycle over amplitudes Q*/fP in [0.05, 0.95]
+#: (benchmarks/galerkin_convergence.py), where the bare fit lets some exceed rtol.
 BOUNDARY_ERROR = 40.0
 #: The element holding a boundary spans at most ``BOUNDARY_SPAN rtol a`` in x: the boundary
 #: extrapolated from the slip (`fretting.engine.simulation.stick_zones`) then errs by ~ 0.15 of that.
 BOUNDARY_SPAN = 50.0
-#: Elements at a pressure breakpoint span this fraction of ``BOUNDARY_SPAN rtol a``: the
-#: traction's ``d ln d`` there errs by 1.2e-3 f p0 at the node nearest the end of a rounded
-#: flat with the full span (Q/fP = 0.8).
+#: Elements at a pressure breakpoint span this fraction of ``BOUNDARY_SPAN rtol a``: with the
+#: full span the traction's ``d ln d`` there errs most at the node nearest the end of a rounded
+#: flat (tests/test_galerkin.py::test_rounded_flat).
 BREAKPOINT_SPAN = 0.1
 #: Around a boundary elements grow at most like this fraction of their distance from it, so
 #: that the square-root kink of the traction is seen through gently graded elements.
@@ -640,18 +646,18 @@ class Mesh(ModelSpec):
             object.__setattr__(self, "rtol", positive("rtol", self.rtol))
 
     @property
-    def resolved(self):
+    def resolved(self) -> bool:
         return self.theta is not None
 
-    def build(self, contact, previous=None):
+    def build(self, contact: Contact, previous: GalerkinModel | None = None) -> GalerkinModel:
         return GalerkinModel(contact, self, previous)
 
-    def attributes(self):
+    def attributes(self) -> dict:
         attributes = {"model": self.name} | ({} if self.rtol is None else {"rtol": self.rtol})
         return attributes | ({} if self.fallback is None else {"model_fallback": self.fallback})
 
     @classmethod
-    def from_record(cls, attrs, theta):
+    def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Mesh:
         return cls(attrs.get("rtol"), theta, attrs.get("model_fallback"))
 
 

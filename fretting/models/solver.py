@@ -46,8 +46,8 @@ from fretting.errors import GrossSlipError, SolverError
 __all__ = ["ChebyshevGrid", "Increment", "chebyshev_angles", "solve_increment"]
 
 #: Rounding allowance on the friction limit, relative to the largest term of the traction: the
-#: Cholesky solves leave nodes at the limit over it by up to 2e-13 of that term (measured on
-#: the hard states of tests/test_hard_cases.py, 384 nodes); 1e-11 keeps a margin of 50.
+#: Cholesky solves leave nodes at the limit over it by rounding of that term (measured on the
+#: hard states of tests/test_hard_cases.py); 1e-11 keeps a wide margin over that rounding.
 ROUNDING = 1e-11
 
 
@@ -251,8 +251,8 @@ class _Factor:
         """Extend the factor by the nodes `new`: ``[[L, 0], [X, L_new]]`` with ``L X^T = G[order][:, new]``.
 
         Rows are gathered whole and then columns (``G[rows][:, columns]``), which numpy does
-        faster than one ``np.ix_`` gather (0.2 against 0.8 ms for 550 of 764 nodes,
-        benchmarks/adaptation_passes.py); ``G`` is symmetric.
+        faster than one ``np.ix_`` gather (benchmarks/adaptation_passes.py times both);
+        ``G`` is symmetric.
         """
         rows = self.G[new]
         X = self._forward(rows[:, self.order].T).T

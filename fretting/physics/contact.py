@@ -1,6 +1,9 @@
 """The contact: a profile pressed by a constant normal load, with friction."""
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from fretting._validate import finite, positive
 from fretting.physics.profiles import Profile
@@ -16,7 +19,7 @@ POISSON_RANGE = (-1.0, 0.5)
 SPECIMEN = 2
 
 
-def plane_strain_modulus(E, nu):
+def plane_strain_modulus(E: float, nu: float) -> float:
     """``E_star = E / (2 (1 - nu^2))`` [Pa] of two bodies of Young's modulus `E` [Pa], Poisson's ratio `nu`.
 
     The composite modulus of the seed paper (section 2) for elastically similar bodies.
@@ -25,6 +28,11 @@ def plane_strain_modulus(E, nu):
     ------
     ValueError
         Unless `E` is a finite number > 0 and `nu` lies in `POISSON_RANGE`, ``(-1, 0.5]``.
+
+    Examples
+    --------
+    >>> round(plane_strain_modulus(210e9, 0.3) / 1e9, 2)
+    115.38
     """
     E, nu = positive("E", E), finite("nu", nu)
     low, high = POISSON_RANGE
@@ -72,9 +80,18 @@ class Contact:
         On a bad value, or a profile whose pressure under `P` is not admissible: negative
         somewhere in the contact (a gap that is not convex where the bodies touch), or, for a
         tabulated `Gap`, a contact that leaves its table (`Profile.check`).
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> round(contact.a * 1e3, 4), round(contact.p0 / 1e6, 2)  # a [mm], p0 [MPa]
+    (0.2353, 270.58)
+    >>> float(contact.pressure(contact.a))  # zero at the edge and outside
+    0.0
     """
 
-    def __init__(self, profile, E_star, f, P, specimen=SPECIMEN):
+    def __init__(self, profile: Profile, E_star: float, f: float, P: float, specimen: int = SPECIMEN) -> None:
         if not isinstance(profile, Profile):
             raise ValueError(f"profile must be a fretting Profile, found {profile!r}")
         if isinstance(specimen, bool) or specimen not in (1, 2):
@@ -93,7 +110,7 @@ class Contact:
             f"Contact({self.profile!r}, E_star={self.E_star!r}, f={self.f!r}, P={self.P!r}, specimen={self.specimen!r})"
         )
 
-    def pressure(self, x):
+    def pressure(self, x: ArrayLike) -> np.ndarray:
         """Contact pressure ``p(x)`` [Pa] at positions `x` [m]; zero outside the contact."""
         t = (np.asarray(x, dtype=float) - self.centre) / self.a
         inside = np.abs(t) < 1
@@ -101,7 +118,7 @@ class Contact:
         p[inside] = self.profile.pressure(t[inside], self.a, self.centre, self.P, self.E_star)
         return p
 
-    def pressure_weighted(self, t):
+    def pressure_weighted(self, t: ArrayLike) -> np.ndarray:
         """``p sqrt(1 - t^2)`` [Pa] at normalised positions ``t`` in (-1, 1), bounded for all profiles."""
         t = np.asarray(t, dtype=float)
         return self.profile.pressure(t, self.a, self.centre, self.P, self.E_star) * np.sqrt(1 - t**2)

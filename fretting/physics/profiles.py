@@ -6,6 +6,8 @@ undeformed bodies is ``h0(x) >= 0``; the pressure solves eq (1) bounded at both 
 Positions inside the contact are written ``x = centre + a t`` with ``-1 <= t <= 1``.
 """
 
+from __future__ import annotations
+
 import abc
 
 import numpy as np
@@ -63,11 +65,19 @@ class Hertz(Profile):
     """Cylinders of relative radius ``R`` [m]: gap ``h0 = x^2 / (2R)``.
 
     ``a = sqrt(4 P R / (pi E_star))``, ``p = p0 sqrt(1 - t^2)``, ``p0 = 2P / (pi a)`` (eq 6).
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(R=0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> import math
+    >>> math.isclose(contact.p0, 2 * contact.P / (math.pi * contact.a))
+    True
     """
 
     SYMMETRIC = True
 
-    def __init__(self, R):
+    def __init__(self, R: float) -> None:
         self.R = positive("R", R)
 
     def __repr__(self):
@@ -118,11 +128,18 @@ class RoundedFlat(Profile):
     Gap ``h0 = (|x| - b)^2 / (2R)`` for ``|x| > b``. Closed form of Ciavarella, Hills & Monno
     (1998) with ``x = a sin(phi)``, ``sin(phi0) = b/a``:
     ``P = E_star a^2 (pi - 2 phi0 - sin 2phi0) / (4R)`` and the pressure of `pressure`.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.RoundedFlat(b=0.002, R=0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> round(contact.a * 1e3, 3), contact.a > contact.profile.b  # a [mm]: the corners are in contact
+    (2.101, True)
     """
 
     SYMMETRIC = True
 
-    def __init__(self, b, R):
+    def __init__(self, b: float, R: float) -> None:
         self.b = positive("b", b)
         self.R = positive("R", R)
         self.breakpoints = (-self.b, self.b)
@@ -194,17 +211,19 @@ class Gap(Profile):
     breakpoints : sequence of float, optional
         Positions [m] where the curvature of ``h0`` jumps (the ends of a flat, say). The
         pressure's derivative is log-singular there; the Galerkin mesh resolves the traction
-        about them (to 1e-3 f p0), which it cannot do for jumps it is not told of.
+        about them (tests/test_galerkin.py::test_rounded_flat), which it cannot do for jumps it is
+        not told of.
 
     Notes
     -----
     With ``h0'(centre + a t) = sum_n b_n T_n(t)``, eq (1) bounded at both ends gives
     ``p = (E_star / 2) sum_{n>=1} b_n sin(n theta)`` with ``t = cos(theta)``, the consistency
     condition ``b_0 = 0`` (which fixes the centre) and ``P = pi a E_star b_1 / 4``, with `ORDER`
-    points. Where the curvature jumps the slope's expansion converges only algebraically: on the
-    asymmetric flat of tests/test_hard_cases.py ``a`` is within 3.9e-8 relative and the pressure
-    next to a jump within 9.3e-4 p0 of eqs (1)-(2) integrated adaptively, split at the breakpoints
-    (test_gap_normal_contact_against_adaptive_quadrature); a smooth gap converges fast. The solution
+    points. Where the curvature jumps the slope's expansion converges only algebraically: its
+    ``a`` and its pressure next to a jump are held against eqs (1)-(2) integrated adaptively, split
+    at the breakpoints, on the asymmetric flat of
+    tests/test_hard_cases.py::test_gap_normal_contact_against_adaptive_quadrature; a smooth gap
+    converges fast. The solution
     is admissible only where this pressure is nowhere negative: a gap that is not convex where
     the bodies touch (a hollow, a wear scar) is refused by `check` when the `Contact` is built.
     """
@@ -310,8 +329,8 @@ def _x_minus_sin(x):
     """``x - sin(x)`` for ``x >= 0`` without the cancellation of the difference at small ``x``.
 
     Below 0.5 its Taylor series to ``x^17`` (the next term is ``1e-21`` of the sum there), above
-    it the difference: within 3.3e-16 and 1.7e-15 relative of a 60-digit sum of the series
-    (tests/test_profiles.py).
+    it the difference; both are held to rounding against a 60-digit sum of the series by
+    tests/test_profiles.py::test_x_minus_sin_keeps_its_relative_precision.
     """
     x = np.asarray(x, dtype=float)
     series = np.polynomial.polynomial.polyval(x**2, _X_MINUS_SIN) * x**3

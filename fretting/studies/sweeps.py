@@ -17,6 +17,8 @@ or holds it (``[contact]`` and ``[[loading]]`` tables), and lists the values in 
 table (format: docs/guide/sweeps.md).
 """
 
+from __future__ import annotations
+
 import contextlib
 import copy
 import errno
@@ -25,6 +27,7 @@ import itertools
 import json
 import logging
 import math
+import os
 import re
 import tomllib
 from collections.abc import Mapping
@@ -181,7 +184,13 @@ class Sweep:
         return [dict(zip(self.grid, values, strict=True)) for values in itertools.product(*self.grid.values())]
 
 
-def sweep(path, grid, scheduler=None, *, output=None):
+def sweep(
+    path: str | os.PathLike,
+    grid: Mapping[str, list],
+    scheduler: str | None = None,
+    *,
+    output: str | os.PathLike | None = None,
+) -> xr.Dataset:
     """Run a history file for every combination of values of some of its keys.
 
     Parameters
