@@ -208,7 +208,11 @@ def run_file(
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ModelFallbackWarning)
             stepper.resolve(history)
-        notes += [str(warning.message) for warning in caught if issubclass(warning.category, ModelFallbackWarning)]
+        for warning in caught:  # a fallback becomes a note of the run; any other warning goes on
+            if issubclass(warning.category, ModelFallbackWarning):
+                notes.append(str(warning.message))
+            else:
+                warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
         attributes = source_attributes(source)
         record = recorded_steps(record, len(history))
         written = time.monotonic()
