@@ -10,7 +10,7 @@ import pytest
 
 import fretting as fr
 from fretting import cli
-from fretting.engine.choice import recorded_spec
+from fretting.engine.choice import RECORDED_BEFORE, recorded_spec
 
 
 def _walk(contact, sigma=True, steps=4):
@@ -116,3 +116,17 @@ def test_a_given_mesh_is_continued_as_it_is(hertz):
     state = fr.final_state(fr.simulate(hertz, history[:10], mesh=theta))
     tail = fr.simulate(hertz, history[9:], state=state)
     np.testing.assert_array_equal(tail.theta.values[::-1], theta)
+
+
+@pytest.mark.parametrize("model", [fr.models.Grid(48), fr.models.Mesh(theta=np.linspace(0, np.pi, 65)), None])
+def test_a_result_of_fretting_0_1_0_is_read_with_its_model(hertz, model):
+    """Results kept from before models had names record a description as their ``model``: it is
+    read as the model it describes, so the result can still be continued or resumed."""
+    history = _walk(hertz, sigma=model is not None)
+    result = fr.simulate(hertz, history, model=model)
+    old = {description for description, name in RECORDED_BEFORE.items() if name == result.attrs["model"]}
+    (description,) = old
+    kept = result.copy()
+    kept.attrs = {k: v for k, v in result.attrs.items() if k not in ("model_description", "grid_nodes")}
+    kept.attrs["model"] = description
+    assert recorded_spec(kept) == recorded_spec(result)

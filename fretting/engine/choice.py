@@ -45,6 +45,16 @@ __all__ = [
 #: Every kind of model, by the name the dataset records: a new model adds its spec here.
 SPECS = {spec.name: spec for spec in (Exact, Mesh, Grid)}
 
+#: The ``model`` attribute of results written by fretting 0.1.0, before models had names: the name
+#: it stands for, so that a result kept from then can still be continued or resumed.
+RECORDED_BEFORE = {
+    "method 4: dislocation correction to the fully adhered solution, P1 Galerkin in theta on a mesh adapted to rtol": (
+        Mesh.name
+    ),
+    "method 4: dislocation correction to the fully adhered solution, Gauss-Chebyshev collocation": Grid.name,
+    "Ciavarella-Jaeger with Masing's rule: exact for Q alone on a symmetric profile, at fixed nodes": Exact.name,
+}
+
 #: Nodes at which the default's mesh adaptation stops: a mesh's passes cost ``N^3`` per turning
 #: point, and the non-periodic turning points of out-of-phase cycles can drive it past 1000 nodes
 #: (benchmarks/default_out_of_phase.py); the last mesh within the bound then runs.
@@ -156,7 +166,7 @@ def spec_from(model=None, nodes=None, rtol=None, mesh=None):
 def recorded_spec(result):
     """The resolved spec a result was run with, from its ``model`` attribute and nodes."""
     attrs = result.attrs
-    name = attrs.get("model")
+    name = RECORDED_BEFORE.get(attrs.get("model"), attrs.get("model"))
     if name not in SPECS:
         raise ValueError(f"the result records the model {name!r}, expected one of {', '.join(SPECS)}")
     theta = result.theta.values[::-1].copy() if "theta" in result else None  # ascending in theta
