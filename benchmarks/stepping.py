@@ -9,39 +9,22 @@ energy of every step are equal bit for bit. The engine runs BLAS on one thread e
 """
 
 import argparse
-import time
 
 import numpy as np
+from engine_speed import CONTACT, cpu, walks
 
 import fretting as fr
-
-CONTACT = fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e5)
 
 
 def histories():
     """(label, history, model) of the scenes: random Q and sigma walks, and Q alone."""
-    fP, fp0 = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0
-    rng = np.random.default_rng(0)
-    Q = np.concatenate([[0.0], rng.uniform(-0.7, 0.7, 10)]) * fP
-    sigma = np.concatenate([[0.0], rng.uniform(-0.7, 0.7, 10)]) * fp0
-    walk = fr.History.piecewise_linear(Q, sigma, 16)
-    shear = fr.History.piecewise_linear(Q, None, 16)
+    walk, shear = walks()
     mesh = fr.models.Mesh(theta=fr.adapted_mesh(CONTACT, walk))
     return [
         ("Q and sigma, grid 384", walk, fr.models.Grid(384)),
         (f"Q and sigma, mesh of {mesh.theta.size} nodes", walk, mesh),
         ("Q alone, exact model", shear, fr.choose_model(CONTACT, shear)),
     ]
-
-
-def cpu(compute, repeats):
-    """Least CPU time [s] of `repeats` calls of `compute`, and its last value."""
-    best = np.inf
-    for _ in range(repeats):
-        start = time.process_time()
-        value = compute()
-        best = min(best, time.process_time() - start)
-    return best, value
 
 
 def stepped(history, model):
@@ -65,9 +48,7 @@ def main(argv=None):
         step_time, (slip, _) = cpu(lambda h=history, m=model: stepped(h, m), args.repeats)
         same = np.array_equal(slip[1:], whole.slip.values[1:])
         ratio = step_time / whole_time
-        print(
-            f"{label:<34} {len(history):>6} {whole_time:>13.3f} {step_time:>12.3f} {ratio:>6.2f}  {same}"
-        )
+        print(f"{label:<34} {len(history):>6} {whole_time:>13.3f} {step_time:>12.3f} {ratio:>6.2f}  {same}")
 
 
 if __name__ == "__main__":
