@@ -516,7 +516,13 @@ def test_default_runs_its_last_mesh_where_the_adapted_mesh_would_be_too_large():
     with pytest.warns(fr.ModelFallbackWarning, match="runs the last mesh within it"):
         result = fr.simulate(contact, history)
     assert result.attrs["model"] == "mesh" and result.sizes["x"] <= fr.MAX_DEFAULT_MESH
-    assert "over the default's bound of 768" in result.attrs.pop("model_fallback")
+    state = fr.final_state(result)
+    back = fr.History.piecewise_linear([state.Q, 0.0], [state.sigma, 0.0], 4)
+    continued = fr.simulate(contact, back, state=state)  # the capped mesh goes on as it is, and says so
+    np.testing.assert_array_equal(continued.theta.values, result.theta.values)
+    assert continued.attrs["model_fallback"] == result.attrs["model_fallback"]
+    reason = result.attrs.pop("model_fallback")
+    assert "over the default's bound of 768" in reason
     given = fr.simulate(contact, history, mesh=result.theta.values[::-1])
     assert result.attrs.pop("rtol") == fr.DEFAULT_RTOL
     xr.testing.assert_identical(result, given)

@@ -133,9 +133,11 @@ def continued(contact, state, history):
     """The model (None: the state's own, to build) and the state to continue `state` along `history`.
 
     A state of a `Mesh` adapted to an ``rtol`` has its mesh refined where the new loads need it
-    (`fretting.engine.adaptation.refined_for`); any other is continued as it is.
+    (`fretting.engine.adaptation.refined_for`); any other is continued as it is, and so is a
+    mesh the default capped at `MAX_DEFAULT_MESH` (its ``fallback`` stays true of it).
     """
-    if isinstance(state.model, Mesh) and state.model.rtol is not None:
+    spec = state.model
+    if isinstance(spec, Mesh) and spec.rtol is not None and spec.fallback is None:
         return refined_for(contact, state, history)
     return None, state
 
