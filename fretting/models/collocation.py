@@ -85,7 +85,6 @@ class CollocationModel(Method4Model):
         self.x = contact.centre + contact.a * self.t
         self.G = contact.E_star / contact.a * self.grid.stiffness
         self.w = contact.a * self.grid.weight  # quadrature weight of int F / sqrt(a^2 - x^2) dx times a
-        self.area = self.w * np.sqrt(1 - self.t**2)  # quadrature weight of int F dx [m]
         weighted = contact.pressure_weighted(self.t)  # p sqrt(1 - t^2) [Pa]
         self.pressure_scale = contact.P / (self.w * weighted.sum())  # [-]
         self.limit = contact.f * self.pressure_scale * weighted  # f p sqrt(1 - t^2) of the discrete pressure [Pa]

@@ -498,20 +498,18 @@ def _j1(w):
     return np.where(small, series, direct)
 
 
-def _hat_trig_integrals(theta):
-    """``int cos(theta) phi_k dtheta`` and ``int sin(theta) phi_k dtheta`` [-] per node (theta order).
+def _hat_cos_integrals(theta):
+    """``int cos(theta) phi_k dtheta`` [-] per node (theta order).
 
     On an element of centre ``m`` and half-width ``w`` the rising hat gives
-    ``cos m sin w - sin m j(w)`` and ``sin m sin w + cos m j(w)``, the falling one the same with
-    ``-j``; ``j(w) = (sin w - w cos w) / w``.
+    ``cos m sin w - sin m j(w)``, the falling one the same with ``-j``;
+    ``j(w) = (sin w - w cos w) / w``.
     """
     m = (theta[:-1] + theta[1:]) / 2
     w = np.diff(theta) / 2
     j = _j1(w)
     sin_w = np.sin(w)
-    cos_rise, cos_fall = np.cos(m) * sin_w - np.sin(m) * j, np.cos(m) * sin_w + np.sin(m) * j
-    sin_rise, sin_fall = np.sin(m) * sin_w + np.cos(m) * j, np.sin(m) * sin_w - np.cos(m) * j
-    return _assemble(cos_fall, cos_rise), _assemble(sin_fall, sin_rise)
+    return _assemble(np.cos(m) * sin_w + np.sin(m) * j, np.cos(m) * sin_w - np.sin(m) * j)
 
 
 def _assemble(fall, rise):
@@ -688,8 +686,6 @@ class GalerkinModel(Method4Model):
     friction_force : float
         ``sum_k L_k`` [N/m]: ``f P`` up to the quadrature of `limit`, since the hats sum to 1.
         The engine takes gross slip from the smaller of this and ``f P``.
-    area : ndarray, shape (N,)
-        ``int phi_k dx`` [m].
     breakpoints : ndarray
         Angles [rad] where the pressure has a singular derivative (the profile's `breakpoints`
         inside the contact), for `element_targets`.
@@ -707,10 +703,9 @@ class GalerkinModel(Method4Model):
         self.x = contact.centre + a * self.t
         self._kernel_means = _kernel_means(theta[:-1], theta[1:], previous)  # for the model of a refined mesh
         self.G = _stiffness(self._kernel_means[order, order], contact.E_star)
-        cos_integral, sin_integral = _hat_trig_integrals(theta)
+        cos_integral = _hat_cos_integrals(theta)
         self._dQ = (_assemble(np.diff(theta) / 2, np.diff(theta) / 2) / np.pi)[order]
         self._dsig = (a / 4 * cos_integral)[order]
-        self.area = (a * sin_integral)[order]
         moments = _pressure_moments(contact, theta)
         self.limit = (contact.f * a * moments[0])[order]
         self.friction_force = float(self.limit.sum())
