@@ -220,7 +220,8 @@ def _info(args):
         f"P = {attrs['P']:.4g} N/m",
         "solution": f"a = {attrs['a']:.4g} m, centre = {attrs['centre']:.4g} m, p0 = {attrs['p0']:.4g} Pa",
         "model": f"{attrs['model']} ({attrs.get('model_description', '')}), {attrs['nodes']} nodes"
-        + (f"; fell back: {attrs['model_fallback']}" if "model_fallback" in attrs else ""),
+        + (f"; fell back: {attrs['model_fallback']}" if "model_fallback" in attrs else "")
+        + (f"; mesh {attrs['model_sample']}" if "model_sample" in attrs else ""),
         "steps": f"{result.attrs['steps'] - 1} steps ({result.sizes['step']} recorded), "
         f"{result.sizes['vertex']} vertices, {_cycles(result)} cycles",
         "loads": _peaks(result.Q.values, result.sigma.values, attrs["f"], attrs["P"], attrs["p0"]),

@@ -124,12 +124,11 @@ def load_extreme_peak(result, number):
 
 
 def test_the_shipped_out_of_phase_example_peaks_between_the_load_extremes():
-    """Issue 19: cycle 8 of hertz_out_of_phase, specimen, peaks at 315.1 MPa (at x = a, between the
-    load extremes), where the load extremes alone gave 269.3 MPa."""
+    """Issue 19: in cycle 8 of hertz_out_of_phase the specimen's sigma_xx peaks (at x = a) at a step
+    between the load extremes, more than 10 % above the largest value at the load extremes."""
     shipped = read_history_source(EXAMPLES / "hertz_out_of_phase.toml")
     result = fr.simulate(shipped.contact, shipped.history)
     peak = nu.per_cycle(result).sigma_xx_max.values[-1]
     stress = nu.surface_stress(result).values[result.cycle.values == 8]
     assert peak == pytest.approx(stress.max(), rel=FLOAT32)
-    assert round(peak / 1e6, 1) == 315.1
-    assert round(load_extreme_peak(result, 8) / 1e6, 1) == 269.3
+    assert load_extreme_peak(result, 8) < peak / 1.1

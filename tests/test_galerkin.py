@@ -20,6 +20,7 @@ from scipy import integrate, special
 
 import fretting as fr
 from fretting.analysis import accuracy
+from fretting.engine import choice
 from fretting.models import Grid, Outcome
 from fretting.models import galerkin as gk
 from fretting.models.solver import solve_increment
@@ -502,26 +503,27 @@ def test_many_steps_per_cycle_at_the_default_rtol(hertz, psi):
     np.testing.assert_allclose(steady, cf.mindlin_deresiewicz_energy(hertz, Q_star), rtol=1e-4)
 
 
-def test_default_runs_its_last_mesh_where_the_adapted_mesh_would_be_too_large():
+def test_default_runs_its_last_mesh_where_the_adapted_mesh_would_be_too_large(monkeypatch):
     """Out-of-phase Q = 0.47 fP, sigma = 1.19 f p0 (103 degrees) on a rounded flat: at rtol 1e-4
     the mesh would take more than MAX_DEFAULT_MESH nodes; the default stops adapting as soon as
     that is certain and runs the last mesh within the bound, the same run as that mesh asked for,
-    saying so in a warning and in the dataset."""
+    saying so in a warning and in the dataset. The bound is lowered to 768 nodes to keep the test short."""
+    monkeypatch.setattr(choice, "MAX_DEFAULT_MESH", 768)
     contact = fr.Contact(fr.RoundedFlat(1e-3, 0.02), 115e9, 0.3, 3e4)
     history = fr.History.sinusoidal(
         0.474 * contact.f * contact.P, 1.187 * contact.f * contact.p0, 103.6, cycles=3, steps_per_cycle=32
     )
-    assert fr.adapted_mesh(contact, history, max_nodes=fr.MAX_DEFAULT_MESH) is None
+    assert fr.adapted_mesh(contact, history, max_nodes=choice.MAX_DEFAULT_MESH) is None
     with pytest.warns(fr.ModelFallbackWarning, match="runs the last mesh within it"):
         result = fr.simulate(contact, history)
-    assert result.attrs["model"] == "mesh" and result.sizes["x"] <= fr.MAX_DEFAULT_MESH
+    assert result.attrs["model"] == "mesh" and result.sizes["x"] <= choice.MAX_DEFAULT_MESH
     state = fr.final_state(result)
     back = fr.History.piecewise_linear([state.Q, 0.0], [state.sigma, 0.0], 4)
     continued = fr.simulate(contact, back, state=state)  # the capped mesh goes on as it is, and says so
     np.testing.assert_array_equal(continued.theta.values, result.theta.values)
     assert continued.attrs["model_fallback"] == result.attrs["model_fallback"]
     reason = result.attrs.pop("model_fallback")
-    assert "over the default's bound of 768" in reason
+    assert f"over the default's bound of {choice.MAX_DEFAULT_MESH}" in reason
     given = fr.simulate(contact, history, mesh=result.theta.values[::-1])
     assert result.attrs.pop("rtol") == fr.DEFAULT_RTOL
     xr.testing.assert_identical(result, given)

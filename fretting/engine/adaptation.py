@@ -37,7 +37,16 @@ if TYPE_CHECKING:
     from fretting.loading.history import History
     from fretting.physics.contact import Contact
 
-__all__ = ["MAX_TURN", "REFINEMENTS", "MeshTooLarge", "adapted_mesh", "adapted_model", "refined_for", "remapped"]
+__all__ = [
+    "MAX_TURN",
+    "REFINEMENTS",
+    "SAMPLE_TURNS",
+    "MeshTooLarge",
+    "adapted_mesh",
+    "adapted_model",
+    "refined_for",
+    "remapped",
+]
 
 #: Refinements of the mesh before `adapted_mesh` gives up: each at least halves an element, and 60
 #: halvings take pi below 1e-17.
@@ -46,9 +55,10 @@ REFINEMENTS = 60
 #: Turn [rad] of the load path's direction after which a curved stretch between turning points is
 #: cut, the direction taken in the plane of ``Q / (pi a)`` and ``sigma / 4`` [Pa], the mean and the
 #: slope of the fully stuck traction ``sqrt(1 - t^2) q_st = Q / (pi a) + sigma t / 4`` of eqs (9)
-#: and (20). A quarter of a 90-degree out-of-phase cycle is then run as two increments (energy per
-#: cycle against the turn: results/speed_vs_error.md).
-MAX_TURN = np.pi / 4
+#: and (20). The steps between two cuts then stick where the increment from one cut to the next
+#: sticks, within the elements that locate their ends; with a quarter turn the stick ends of
+#: elliptical paths fell outside them (benchmarks/trajectories.py, the ``ellipse_*`` histories).
+MAX_TURN = np.pi / 16
 
 
 class MeshTooLarge(Exception):
@@ -94,6 +104,12 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
     """The `GalerkinModel` (built once, for the run to use) whose mesh ``theta`` [rad] resolves the
     stick and slip zones of `history` to `rtol`.
 
+    A history of more than `SAMPLE_TURNS` turning points is adapted to a sample of them: the
+    first `SAMPLE_TURNS`, then twice as many from the mesh found, and so on, until a doubling
+    adds no node or the sample is the whole history; the spec says which (`Mesh.sample`, the
+    dataset's ``model_sample``). Each sample's passes start from the last sample's mesh, so
+    none is thrown away.
+
     Raises `MeshTooLarge` as soon as a refinement is certain to give more than `max_nodes` nodes:
     the targets only shrink within a pass, so the mesh they ask for only grows (`_bisected_size`).
     """
@@ -102,37 +118,69 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
         history = history[: max(sliding[0], 1)]
     turning = history.turning_points(MAX_TURN, (np.pi * contact.a, 4.0))
     mirrored = contact.profile.SYMMETRIC and not (history.Q.any() and history.sigma.any())
-    theta = initial_theta()
-    directions = {}  # step: the slip directions the last pass found there, and its nodes' x
-    model = None
-    for _ in range(REFINEMENTS):
-        model = Mesh(rtol, theta).build(contact, previous=model)
-        targets, known, directions = np.full(theta.size - 1, np.inf), directions, {}
+    adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored)
+    if len(turning) <= SAMPLE_TURNS:
+        return adapt(turning, initial_theta())
+    size, model = SAMPLE_TURNS, adapt(turning[:SAMPLE_TURNS], initial_theta())
+    while size < len(turning):
+        size = min(2 * size, len(turning))
+        grown = adapt(turning[:size], model.theta)
+        if np.array_equal(grown.theta, model.theta) and size < len(turning):
+            sample = (
+                f"adapted to the first {size} of the history's {len(turning)} turning points: the mesh "
+                f"stopped growing from the first {size // 2}"
+            )
+            grown.spec = replace(grown.spec, sample=sample)
+            return grown
+        model = grown
+    return model
 
-        def observe(step, ds, model=model, targets=targets, found=directions):
-            np.minimum(targets, element_targets(model.theta, ds, rtol, model.breakpoints), out=targets)
-            found[step] = np.sign(ds).astype(np.int8), model.x
-            if max_nodes is not None and (size := _bisected_size(model.theta, targets)) > max_nodes:
-                raise MeshTooLarge(size, step, model)
 
-        def guess(step, known=known, x=model.x):
-            return _interpolated_directions(*known[step], x) if step in known else None
+#: Turning points of a history beyond which the mesh is adapted to a sample of them (`adapted_model`):
+#: a pass costs in proportion to the turning points it runs, and the zones of a long spectrum's
+#: later cycles repeat those of its first.
+SAMPLE_TURNS = 256
 
-        try:
-            follow(model, turning, State.virgin(model), observe=observe, guess=guess, tally=False)
-        except GrossSlipError as error:  # named by the step of `history` whose loads reached it
-            step = int(np.flatnonzero((history.Q == error.Q) & (history.sigma == error.sigma))[0])
-            raise GrossSlipError(step, error.Q, error.sigma, error.limit) from None
-        refined = refine(theta, np.minimum(targets, targets[::-1]) if mirrored else targets)
-        if mirrored:  # Q alone or sigma alone: the zones are even or odd in x, and so is the mesh, exactly
-            lower = refined[refined <= np.pi / 2]
-            refined = np.concatenate([lower, np.pi - lower[::-1][int(lower[-1] == np.pi / 2) :]])
-        if np.array_equal(refined, theta):
-            return model
-        if max_nodes is not None and refined.size > max_nodes:
-            raise MeshTooLarge(refined.size, len(turning) - 1, model)
-        theta = refined
-    raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
+
+class _Adaptation:
+    """The passes of `adapted_model` over the turning points of (a part of) one history."""
+
+    def __init__(self, contact, history, rtol, max_nodes, mirrored):
+        self.contact, self.history, self.rtol = contact, history, rtol
+        self.max_nodes, self.mirrored = max_nodes, mirrored
+
+    def __call__(self, turning, theta):
+        """The model whose mesh, refined from `theta` [rad], resolves the increments of `turning`."""
+        rtol, max_nodes, directions, model = self.rtol, self.max_nodes, {}, None
+        for _ in range(REFINEMENTS):
+            model = Mesh(rtol, theta).build(self.contact, previous=model)
+            targets, known, directions = np.full(theta.size - 1, np.inf), directions, {}
+
+            def observe(step, ds, model=model, targets=targets, found=directions):
+                np.minimum(targets, element_targets(model.theta, ds, rtol, model.breakpoints), out=targets)
+                found[step] = np.sign(ds).astype(np.int8), model.x
+                if max_nodes is not None and (size := _bisected_size(model.theta, targets)) > max_nodes:
+                    raise MeshTooLarge(size, step, model)
+
+            def guess(step, known=known, x=model.x):
+                return _interpolated_directions(*known[step], x) if step in known else None
+
+            try:
+                follow(model, turning, State.virgin(model), observe=observe, guess=guess, tally=False)
+            except GrossSlipError as error:  # named by the step of the history whose loads reached it
+                history = self.history
+                step = int(np.flatnonzero((history.Q == error.Q) & (history.sigma == error.sigma))[0])
+                raise GrossSlipError(step, error.Q, error.sigma, error.limit) from None
+            refined = refine(theta, np.minimum(targets, targets[::-1]) if self.mirrored else targets)
+            if self.mirrored:  # Q alone or sigma alone: the zones are even or odd in x, and so is the mesh, exactly
+                lower = refined[refined <= np.pi / 2]
+                refined = np.concatenate([lower, np.pi - lower[::-1][int(lower[-1] == np.pi / 2) :]])
+            if np.array_equal(refined, theta):
+                return model
+            if max_nodes is not None and refined.size > max_nodes:
+                raise MeshTooLarge(refined.size, len(turning) - 1, model)
+            theta = refined
+        raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
 
 
 def refined_for(contact, state, history):

@@ -9,7 +9,10 @@ The default for a contact and a history (`choose_model`):
 3. where that mesh would need more than `MAX_DEFAULT_MESH` nodes, the mesh of the last pass
    of the adaptation within the bound, with the reason recorded in the spec (`Mesh.fallback`,
    the dataset's ``model_fallback``) and a `ModelFallbackWarning`; the adaptation stops as soon
-   as the bound is certain.
+   as the bound is certain;
+4. a long history's mesh is adapted to a sample of its turning points
+   (`fretting.engine.adaptation.SAMPLE_TURNS`), said by a `MeshSampleWarning` and recorded
+   (`Mesh.sample`, the dataset's ``model_sample``).
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ if TYPE_CHECKING:
 __all__ = [
     "MAX_DEFAULT_MESH",
     "SPECS",
+    "MeshSampleWarning",
     "ModelFallbackWarning",
     "check",
     "built_model",
@@ -55,14 +59,20 @@ RECORDED_BEFORE = {
     "Ciavarella-Jaeger with Masing's rule: exact for Q alone on a symmetric profile, at fixed nodes": Exact.name,
 }
 
-#: Nodes at which the default's mesh adaptation stops: a mesh's passes cost ``N^3`` per turning
-#: point, and the non-periodic turning points of out-of-phase cycles can drive it past 1000 nodes
-#: (benchmarks/default_out_of_phase.py); the last mesh within the bound then runs.
-MAX_DEFAULT_MESH = 2 * DEFAULT_NODES
+#: Nodes at which the default's mesh adaptation stops: an increment costs ``N^2`` to ``N^3``, and
+#: the elements that locate every step's stick ends (`fretting.models.galerkin.BOUNDARY_SPAN`) take
+#: the meshes of general Q/sigma histories to a few thousand nodes (benchmarks/trajectories.py);
+#: past the bound the last mesh within it runs.
+MAX_DEFAULT_MESH = 8 * DEFAULT_NODES
 
 
 class ModelFallbackWarning(UserWarning):
     """The default model fell back to a coarser one; the message says why."""
+
+
+class MeshSampleWarning(ModelFallbackWarning):
+    """The mesh was adapted to a sample of a long history's turning points (`Mesh.sample`); the
+    message says which. A note of the run, as a fallback is."""
 
 
 def choose_model(contact: Contact, history: History) -> ModelSpec:
@@ -93,7 +103,7 @@ def _default_model(contact, history):
     if exact.holds_for(contact, history) is None:
         return exact.resolved_for(contact, history).build(contact)
     try:
-        return adapted_model(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH)
+        return _said(adapted_model(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH))
     except MeshTooLarge as error:
         model, reason = error.model, f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
     reason += f": runs the last mesh within it, {model.theta.size} nodes, coarser than rtol = {DEFAULT_RTOL:g} asks"
@@ -125,8 +135,15 @@ def built_model(spec, contact, history):
     if spec.resolved:
         return spec.build(contact)
     if isinstance(spec, Mesh):
-        return adapted_model(contact, history, spec.rtol)
+        return _said(adapted_model(contact, history, spec.rtol))
     return spec.resolved_for(contact, history).build(contact)
+
+
+def _said(model):
+    """`model`, with a `MeshSampleWarning` where its mesh was adapted to a sample of the history."""
+    if model.spec.sample is not None:
+        warnings.warn(f"the mesh was {model.spec.sample}", MeshSampleWarning, stacklevel=4)
+    return model
 
 
 def continued(contact, state, history):

@@ -44,10 +44,10 @@ turned by `fretting.engine.adaptation.MAX_TURN`), reduces the targets of every i
 ``np.minimum``, refines, and runs again until `refine` returns the same mesh, starting from
 `initial_theta` (pass `GalerkinModel.breakpoints` on: the profile's, where the pressure has a
 singular derivative). ``rtol`` is the relative accuracy asked of the energy dissipated in each
-increment; the stick/slip boundaries of the increments asked about are then located to about
-``10 rtol a``. An increment from one turning point (or cut) to the next slips where the
-boundaries of the steps between have swept, so its slip zones get elements of
-``BOUNDARY_SPAN rtol a`` in x too. Accuracy on closed forms: benchmarks/galerkin_convergence.py;
+increment; the elements that hold the stick/slip boundaries of any step are at most
+``BOUNDARY_SPAN rtol a`` in x, which bounds the error of the located ends. An increment from one
+turning point (or cut) to the next slips where the boundaries of the steps between have swept,
+so its slip zones get elements of that size too. Accuracy on closed forms: benchmarks/galerkin_convergence.py;
 at every step of general histories: benchmarks/trajectories.py.
 """
 
@@ -139,13 +139,16 @@ ZONE_ERROR = 1e-4
 #: it. Fitted with a margin to the worst energy per cycle over amplitudes Q*/fP in [0.05, 0.95]
 #: (benchmarks/galerkin_convergence.py), where the bare fit lets some exceed rtol.
 BOUNDARY_ERROR = 40.0
-#: The element holding a boundary spans at most ``BOUNDARY_SPAN rtol a`` in x: the boundary
-#: extrapolated from the slip (`fretting.engine.simulation.stick_zones`) then errs by ~ 0.15 of that.
-BOUNDARY_SPAN = 50.0
-#: Elements at a pressure breakpoint span this fraction of ``BOUNDARY_SPAN rtol a``: with the
-#: full span the traction's ``d ln d`` there errs most at the node nearest the end of a rounded
+#: Elements holding a boundary, and those of the slip zones that the boundaries of the steps
+#: between two turning points sweep, span at most ``BOUNDARY_SPAN rtol a`` in x: `located_end`
+#: places most ends to a tenth of their element, but a slip zone that grows into slip locked in
+#: before can leave its end up to about one element off, so the element itself is held to the
+#: accuracy asked of the ends, ``1e-3 a`` at the default rtol (benchmarks/trajectories.py).
+BOUNDARY_SPAN = 10.0
+#: Elements at a pressure breakpoint span this fraction of ``BOUNDARY_SPAN rtol a``: with a
+#: larger span the traction's ``d ln d`` there errs most at the node nearest the end of a rounded
 #: flat (tests/test_galerkin.py::test_rounded_flat).
-BREAKPOINT_SPAN = 0.1
+BREAKPOINT_SPAN = 0.5
 #: Around a boundary elements grow at most like this fraction of their distance from it, so
 #: that the square-root kink of the traction is seen through gently graded elements.
 BOUNDARY_GRADING = 0.5
@@ -626,11 +629,15 @@ class Mesh(ModelSpec):
     fallback : str, optional
         Why the mesh is coarser than `rtol` asks: the adaptation of a default stopped at its bound
         of nodes (`fretting.engine.choice.MAX_DEFAULT_MESH`). None: the mesh is the one asked for.
+    sample : str, optional
+        What the adaptation ran when it ran a sample of a long history's turning points instead of
+        all of them (`fretting.engine.adaptation.SAMPLE_TURNS`). None: it ran them all.
     """
 
     rtol: float | None = None
     theta: np.ndarray | None = None
     fallback: str | None = None
+    sample: str | None = None
 
     name: ClassVar[str] = "mesh"
     description: ClassVar[str] = "method 4: dislocation correction to the fully adhered solution, P1 Galerkin in theta"
@@ -652,11 +659,12 @@ class Mesh(ModelSpec):
 
     def attributes(self) -> dict:
         attributes = {"model": self.name} | ({} if self.rtol is None else {"rtol": self.rtol})
-        return attributes | ({} if self.fallback is None else {"model_fallback": self.fallback})
+        notes = {"model_fallback": self.fallback, "model_sample": self.sample}
+        return attributes | {key: note for key, note in notes.items() if note is not None}
 
     @classmethod
     def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Mesh:
-        return cls(attrs.get("rtol"), theta, attrs.get("model_fallback"))
+        return cls(attrs.get("rtol"), theta, attrs.get("model_fallback"), attrs.get("model_sample"))
 
 
 class GalerkinModel(Method4Model):
@@ -837,7 +845,7 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
     - the element holding a boundary: ``boundary_fraction(rtol) w`` of the narrower zone beside
       it (or of its distance to the nearest of `breakpoints`, where the pressure has a singular
       derivative), since the energy error a boundary leaves falls like ``(size / w)^(5/2)``, and at most
-      ``BOUNDARY_SPAN rtol a`` in x, so that the boundary is located to ``~ 10 rtol a``;
+      ``BOUNDARY_SPAN rtol a`` in x, the accuracy asked of the located ends;
     - around a boundary, ``BOUNDARY_GRADING`` times the distance from it;
     - at each of `breakpoints`, ``BREAKPOINT_SPAN BOUNDARY_SPAN rtol a`` in x, graded the same way, whatever
       the increment: the traction inherits the pressure's singular derivative there;

@@ -10,6 +10,7 @@ limit ``limit`` in its own measure (`CollocationModel`: ``sqrt(1 - t^2)`` times 
 """
 
 import abc
+from functools import cached_property
 
 import numpy as np
 
@@ -34,6 +35,11 @@ class Method4Model(Model):
     def dissipation(self, ds):
         """``int f p |ds| dx`` [J/m] of the slip increment `ds` [m]."""
 
+    @cached_property
+    def G_abs(self):
+        """``|G|`` elementwise, for the solver's rounding allowance, formed once per model."""
+        return np.abs(self.G)
+
     def at_rest(self, state):
         ds = np.zeros(state.slip.size)
         return Outcome(self.g_stuck(state.Q, state.sigma) - self.G @ state.slip, ds, state.slip, 0.0)
@@ -41,7 +47,7 @@ class Method4Model(Model):
     def increment(self, state, Q, sigma, guess=None):
         if guess is None:  # the directions of the increment before
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
-        solved = solve_increment(self.G, self.g_stuck(Q, sigma), self.limit, state.slip, guess)
+        solved = solve_increment(self.G, self.g_stuck(Q, sigma), self.limit, state.slip, guess, self.G_abs)
         return Outcome(solved.g, solved.ds, solved.slip, self.dissipation(solved.ds))
 
     def stick_zones(self, outcome, state):

@@ -86,7 +86,7 @@ class Increment:
     iterations: int
 
 
-def solve_increment(G, g_stuck, limit, slip=None, guess=None):
+def solve_increment(G, g_stuck, limit, slip=None, guess=None, G_abs=None):
     """Slip increment that restores the friction conditions at every node.
 
     Parameters
@@ -103,6 +103,9 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
         Slip directions (+1, -1; 0: stuck) to try first, e.g. those of the increment before.
         A start only: the answer does not depend on it (the last working set fixes it), the
         number of linear solves does.
+    G_abs : ndarray, shape (N, N), optional
+        ``|G|``, elementwise, for the rounding allowance; given by a caller that solves many
+        increments with one `G`, since forming it costs as much as a product with ``G``.
 
     Returns
     -------
@@ -121,7 +124,8 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
     # g is a difference of terms that may be far larger than the limit (locked-in slip under
     # large sigma): its rounding at each node scales with the largest of them there, and only
     # there (a node at the edge, where the limit is small, slips under loads of its own size).
-    tolerance = ROUNDING * (limit + np.abs(g_stuck) + np.abs(G) @ np.abs(slip))
+    G_abs = np.abs(G) if G_abs is None else G_abs
+    tolerance = ROUNDING * (limit + np.abs(g_stuck) + G_abs @ np.abs(slip))
     over = np.abs(g) - limit > tolerance
     if not over.any():  # Coulomb's law holds without slip: nothing moves, not even by rounding
         return Increment(slip, np.zeros_like(slip), g, 0)
