@@ -47,6 +47,7 @@ from scipy import special
 
 from fretting._validate import finite, finite_array
 from fretting.analysis.nucleation import _body, _bulk
+from fretting.engine.choice import recorded_spec
 from fretting.physics.closed_forms import masing_increment, masing_origin
 from fretting.physics.contact import POISSON_RANGE
 
@@ -195,6 +196,18 @@ def field(result, x, z, step=None, body=None, nu=None):
         ``traction``, how the loads were integrated: ``"elliptical"`` (McEwen's closed forms:
         the exact model on a Hertz contact) or ``"piecewise linear"``, and ``pressure`` likewise.
 
+    Examples
+    --------
+    The Hertz pressure alone (step 0) has its largest shear stress, ``0.30 p0``, at the depth
+    ``0.786 a`` under the centre (Johnson 1985, section 4.2):
+
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> result = fr.simulate(contact, fr.History.piecewise_linear([0, 30e3], None, 4), nodes=32)
+    >>> point = field(result, [0.0], [0.786 * contact.a], step=0, nu=0.3).isel(step=0, z=0, x=0)
+    >>> round(float(point.sigma_xx - point.sigma_zz) / 2 / contact.p0, 3)
+    0.3
+
     Raises
     ------
     ValueError
@@ -326,7 +339,7 @@ def _elliptical_traction(result, rows):
     seed for the corrective load ``P - |Q - Q_k| / (m f)``; `fretting.models.exact`).
     """
     attrs = result.attrs
-    if attrs.get("model") != "exact" or not _hertz(result):
+    if recorded_spec(result).name != "exact" or not _hertz(result):
         return None
     path = dict(zip(result.vertex_step.values.tolist(), result.vertex_Q.values.tolist(), strict=True))
     path |= dict(zip(result.step.values.tolist(), result.Q.values.tolist(), strict=True))
