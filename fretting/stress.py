@@ -230,11 +230,14 @@ def field(result, x, z, step=None, body=None, nu=None):
     (pressure, pressure_kind), (traction, loads, traction_kind) = _pressure(result), _traction(result, rows)
     sign = 1.0 if body == 1 else -1.0
     stress = np.empty((3, rows.size, t.size))
+    knots, inside = _knots(result)
+    linear = pressure_kind == "piecewise linear" or traction_kind == "piecewise linear"
     for chunk in range(0, t.size, CHUNK):
         at = slice(chunk, chunk + CHUNK)
-        p_field = pressure(t[at], depth[at])  # (3, points)
-        unit = traction(t[at], depth[at])  # (3, points, basis)
-        stress[:, :, at] = p_field[:, None, :] + sign * np.einsum("cmb,sb->csm", unit, loads)
+        influence = polygon(t[at], depth[at], knots) if linear else None  # shared by both loads
+        p_field = pressure(t[at], depth[at], influence)  # (3, points)
+        unit = traction(t[at], depth[at], influence)  # (3, points, basis)
+        stress[:, :, at] = p_field[:, None, :] + sign * (unit @ loads.T).transpose(0, 2, 1)
     stress[0] += _bulk(result, body, None)[rows, None]
     stress = stress.reshape(3, rows.size, z.size, x.size)
     values = dict(zip(("sigma_xx", "sigma_zz", "tau_xz"), stress, strict=True))
@@ -298,13 +301,13 @@ def _hertz(result):
 
 
 def _pressure(result):
-    """Field of the pressure, ``(t, depth) -> (3, points)`` [Pa] in normalised coordinates, and its kind."""
+    """Field of the pressure, ``(t, depth, influence) -> (3, points)`` [Pa] in normalised coordinates
+    (`influence`: `polygon` at the knots of `_knots`), and its kind."""
     if _hertz(result):
         p0 = result.attrs["p0"]
-        return (lambda t, depth: p0 * mcewen(t, depth, 1.0)[0]), "elliptical"
-    knots, inside = _knots(result)
-    p = result.p.values[inside]
-    return (lambda t, depth: polygon(t, depth, knots)[0] @ p), "piecewise linear"
+        return (lambda t, depth, influence: p0 * mcewen(t, depth, 1.0)[0]), "elliptical"
+    p = result.p.values[_knots(result)[1]]
+    return (lambda t, depth, influence: influence[0] @ p), "piecewise linear"
 
 
 def _knots(result):
@@ -316,14 +319,15 @@ def _knots(result):
 
 
 def _traction(result, rows):
-    """Field of the shear traction on body 1 per unit basis load, ``(t, depth) -> (3, points, B)``,
-    the loads (steps, B) [Pa] and its kind."""
+    """Field of the shear traction on body 1 per unit basis load, ``(t, depth, influence) -> (3, points, B)``
+    (as `_pressure`), the loads (steps, B) [Pa] and its kind."""
     elliptical = _elliptical_traction(result, rows)
     if elliptical is not None:
         widths, loads = elliptical
-        return (lambda t, depth: np.stack([mcewen(t, depth, c)[1] for c in widths], axis=-1)), loads, "elliptical"
-    knots, inside = _knots(result)
-    return (lambda t, depth: polygon(t, depth, knots)[1]), result.q.values[rows][:, inside], "piecewise linear"
+        unit = lambda t, depth, influence: np.stack([mcewen(t, depth, c)[1] for c in widths], axis=-1)  # noqa: E731
+        return unit, loads, "elliptical"
+    inside = _knots(result)[1]
+    return (lambda t, depth, influence: influence[1]), result.q.values[rows][:, inside], "piecewise linear"
 
 
 def _elliptical_traction(result, rows):
