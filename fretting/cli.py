@@ -1,4 +1,4 @@
-"""The command line: ``fretting run | validate | info | plot | examples`` (also ``python -m fretting``).
+"""The command line: ``fretting run | validate | info | plot | stress | examples`` (also ``python -m fretting``).
 
 Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
 failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
@@ -14,6 +14,7 @@ from tqdm import tqdm
 
 from fretting import __version__
 from fretting._validate import positive
+from fretting.analysis import nucleation
 from fretting.engine.choice import MAX_DEFAULT_MESH
 from fretting.engine.recorder import RECORD_ALL_STEPS, RECORDED_ENDS
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
@@ -23,7 +24,8 @@ from fretting.loading.history_file import read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL
-from fretting.results.io import ResultError, load
+from fretting.results.io import ResultError, load, save
+from fretting.stress import COMPONENTS, field
 from fretting.studies.sweeps import add_arguments as add_sweep_arguments
 from fretting.studies.sweeps import run as run_sweep
 
@@ -34,6 +36,10 @@ EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
 #: Resolution of `fretting plot`: 6.4 x 4.4 inch figures at 100 dpi keep results/ of eight
 #: examples near 5 MB (7.9 MB at 150 dpi).
 FIGURE_DPI = 100
+
+#: Default grid of `fretting stress`: points along x and in depth, the depth and the half-span in
+#: half-widths a (two half-widths hold the peak shear under the contact and the edge gradients).
+STRESS_NX, STRESS_NZ, STRESS_DEPTH, STRESS_SPAN = 201, 101, 2.0, 2.0
 
 #: Seconds a run lasts before its progress bar appears: short runs show none.
 PROGRESS_DELAY = 2.0
@@ -128,6 +134,8 @@ def _parser():
     )
     plot.set_defaults(command=_plot)
 
+    _stress_parser(commands, common)
+
     listing = commands.add_parser("examples", parents=[common], help="list the shipped example histories")
     listing.set_defaults(command=_examples, file="examples")
 
@@ -135,6 +143,45 @@ def _parser():
     add_sweep_arguments(sweep)
     sweep.set_defaults(command=run_sweep)
     return parser
+
+
+def _stress_parser(commands, common):
+    stress = commands.add_parser(
+        "stress", parents=[common], help="write the stress field under the surface of a result (and a figure)"
+    )
+    stress.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    stress.add_argument("-o", "--output", metavar="OUT", help="field file (default: <result stem>_stress.h5 beside it)")
+    stress.add_argument("--nx", type=_at_least(2, int), default=STRESS_NX, help=f"points along x (default {STRESS_NX})")
+    stress.add_argument("--nz", type=_at_least(2, int), default=STRESS_NZ, help=f"depths (default {STRESS_NZ})")
+    stress.add_argument(
+        "--depth",
+        type=_positive,
+        default=STRESS_DEPTH,
+        help=f"largest depth, in half-widths a (default {STRESS_DEPTH:g})",
+    )
+    stress.add_argument(
+        "--span",
+        type=_positive,
+        default=STRESS_SPAN,
+        help=f"x from centre - SPAN a to centre + SPAN a (default {STRESS_SPAN:g})",
+    )
+    stress.add_argument(
+        "--step",
+        type=_at_least(0, int),
+        nargs="+",
+        help="recorded steps (default: those of the last load cycle recorded whole, from its starting state, "
+        "else the last step)",
+    )
+    stress.add_argument(
+        "--body", choices=("specimen", "pad"), default="specimen", help="body of the field (default: the specimen)"
+    )
+    stress.add_argument("--nu", type=float, help="Poisson's ratio (default: the nu of the result's history file)")
+    stress.add_argument(
+        "--figure",
+        choices=tuple(COMPONENTS),
+        help="also draw this component at the last step as <OUT stem>_<component>.png",
+    )
+    stress.set_defaults(command=_stress)
 
 
 def _at_least(minimum, kind):
@@ -252,6 +299,44 @@ def _plot(args):
         path = directory / f"{Path(args.file).stem}_{name}.png"
         figure.savefig(path, dpi=FIGURE_DPI)
         print(path)
+
+
+def _stress(args):
+    result = load(args.file)
+    a, centre = result.attrs["a"], result.attrs["centre"]
+    x = centre + a * np.linspace(-args.span, args.span, args.nx)
+    z = a * np.linspace(0.0, args.depth, args.nz)
+    specimen = nucleation.specimen(result)
+    body = specimen if args.body == "specimen" else 3 - specimen
+    try:
+        stresses = field(result, x, z, step=args.step or _last_cycle(result), body=body, nu=args.nu)
+    except ValueError as error:
+        raise ResultError(f"{args.file}: {error}") from None
+    output = Path(args.output or Path(args.file).with_name(f"{Path(args.file).stem}_stress.h5"))
+    save(stresses, output)
+    print(f"{output}: {stresses.sizes['step']} steps, {args.nz} x {args.nx} points, body {body} ({args.body})")
+    if args.figure:
+        import matplotlib  # as in _plot: only when a figure is asked for
+
+        matplotlib.use("Agg")
+        from matplotlib.figure import Figure
+
+        from fretting import plots
+
+        figure = Figure(figsize=(6.4, 4.4), layout="constrained")
+        plots.stress_map(stresses[args.figure], result, ax=figure.subplots())
+        path = output.with_name(f"{output.stem}_{args.figure}.png")
+        figure.savefig(path, dpi=FIGURE_DPI)
+        print(path)
+
+
+def _last_cycle(result):
+    """Steps of the last load cycle recorded whole, from its starting state; else the last step."""
+    if "cycle_number" in result.dims and result.sizes["cycle_number"]:
+        rows = nucleation.complete_cycles(result)[-1]
+        if rows is not None:
+            return result.step.values[rows].tolist()
+    return [int(result.step[-1])]
 
 
 def _peaks(Q, sigma, f, P, p0):

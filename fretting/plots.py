@@ -25,6 +25,7 @@ __all__ = [
     "slip",
     "slip_amplitude",
     "snapshot_steps",
+    "stress_map",
     "surface_stress",
     "traction",
 ]
@@ -41,6 +42,9 @@ LOG_CYCLES = 100
 #: (docs/theory/conventions.md#energy); the elastic part, linear in Q and defined in plane strain
 #: only up to a datum, is left out.
 DELTA_Q_LABEL = "slip part of the displacement, $\\delta_Q$ [µm]"
+
+#: Contour levels of `stress_map`.
+STRESS_LEVELS = 24
 
 #: Cycles drawn by default in the figures that show one curve per cycle: enough to see a
 #: transient settle, few enough to tell apart.
@@ -243,6 +247,58 @@ def surface_stress(result, steps=None, ax=None, body=None, bulk=None):
         title=f"surface direct stress, {field.role} (body {field.body}, traction {'+q' if field.body == 1 else '-q'})",
     )
     ax.legend(fontsize="small")
+    return ax
+
+
+def stress_map(data, result, step=None, ax=None, levels=STRESS_LEVELS):
+    """Filled contours of a field under the surface against ``x / a`` and depth ``z / a``, at one step.
+
+    The contact ``|x - centre| <= a`` is drawn along the surface and, when the step is known,
+    its stick zones over it (``stick_start``, ``stick_end`` of `result`).
+
+    Parameters
+    ----------
+    data : xarray.DataArray
+        A variable on dims (z, x) or (step, z, x), ``z`` the depth [m] (a component of
+        `fretting.stress.field`, or any map on its points, e.g. a fatigue parameter); its
+        ``long_name`` and ``units`` label the colour bar.
+    result : xarray.Dataset
+        The result the field was computed from: its ``a``, ``centre`` and stick zones.
+    step : int, optional
+        Step to draw when `data` has a step dimension (default: its last); for data without
+        one, the step whose stick zones to mark (None: none marked).
+    ax : matplotlib.axes.Axes, optional
+    levels : int
+        Number of contour levels.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    ax = _axes(ax)
+    if "step" in data.dims:
+        step = int(data.step[-1]) if step is None else step
+        data = data.sel(step=step)
+    a = result.attrs["a"]
+    filled = ax.contourf(_position(result, data.x.values), data.z.values / a, data.transpose("z", "x").values, levels)
+    label = data.attrs.get("long_name", data.name or "")
+    ax.figure.colorbar(filled, ax=ax, label=f"{label} [{data.attrs.get('units', '-')}]")
+    ax.plot([-1, 1], [0, 0], color="black", linewidth=4, solid_capstyle="butt", clip_on=False, label="contact")
+    if step is not None:
+        row = _rows(result, [step])[0]
+        ends = zip(result.stick_start.values[row], result.stick_end.values[row], strict=True)
+        for k, (start, end) in enumerate((s, e) for s, e in ends if np.isfinite(s)):
+            ax.plot(
+                _position(result, np.array([start, end])),
+                [0, 0],
+                color="white",
+                linewidth=2,
+                clip_on=False,
+                label="stick zone" if k == 0 else None,
+            )
+    ax.invert_yaxis()
+    ax.set(xlabel="$x / a$", ylabel="depth $z / a$", title=f"{data.name}" + ("" if step is None else f", step {step}"))
+    ax.legend(fontsize="small", loc="lower right")
     return ax
 
 

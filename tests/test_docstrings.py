@@ -20,6 +20,7 @@ MODULES = [
     "fretting.physics.contact",
     "fretting.physics.profiles",
     "fretting.results.io",
+    "fretting.stress",
 ]
 
 

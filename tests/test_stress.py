@@ -1,0 +1,308 @@
+"""Stress fields under the surface: McEwen's closed forms and the piecewise-linear integrals against a
+numerical quadrature of the Flamant kernels, partial-slip fields as superpositions of McEwen's, the
+surface limit, sliding Hertz, bad input, the command and the figure.
+
+Tolerances on the discretised models are their own traction error against the closed form (computed in
+each test), not fixed numbers.
+"""
+
+import subprocess
+import sys
+
+import matplotlib
+import numpy as np
+import pytest
+from scipy import integrate
+
+import fretting as fr
+from fretting import cli, stress
+from fretting.analysis import nucleation
+from fretting.physics import closed_forms as cf
+from fretting.results.io import save
+
+matplotlib.use("Agg")
+
+NU = 0.3
+
+#: Points (x / half-width, z / half-width) inside and outside the loaded interval, near its edge and deep.
+POINTS = [(0.3, 0.2), (-0.7, 0.5), (0.95, 0.02), (1.5, 0.3), (-2.0, 1.0), (0.1, 2.0), (0.0, 0.78)]
+
+
+@pytest.fixture(scope="module")
+def contact():
+    return fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, NU), 0.6, 1e5)
+
+
+def flamant(load, x, z, lower, upper, breaks=()):
+    """``[pressure, shear] x [sigma_xx, sigma_zz, tau_xz]`` of `load` on (lower, upper) by quadrature of
+    Johnson's eq 2.23, an independent computation of the field."""
+    kernels = (
+        lambda u: z * u**2,
+        lambda u: z**3,
+        lambda u: z**2 * u,
+        lambda u: u**3,
+    )
+    points = [p for p in (*breaks, x) if lower < p < upper] or None
+    a, b, c, d = (
+        -(2 / np.pi)
+        * integrate.quad(
+            lambda s, k=k: load(s) * k(x - s) / ((x - s) ** 2 + z**2) ** 2,
+            lower,
+            upper,
+            points=points,
+            limit=400,
+            epsabs=1e-14,
+            epsrel=1e-13,
+        )[0]
+        for k in kernels
+    )
+    return np.array([[a, b, c], [d, c, a]])
+
+
+def grid(contact, nx=41, nz=21):
+    """Points [m] over |x| <= 2a and depths to 2a."""
+    return np.linspace(-2, 2, nx) * contact.a, np.linspace(0, 2, nz) * contact.a
+
+
+def components(field):
+    """``[sigma_xx, sigma_zz, tau_xz]`` (3, step, z, x) of a field dataset."""
+    return np.array([field[name].values for name in ("sigma_xx", "sigma_zz", "tau_xz")])
+
+
+def hertz_field(contact, x, z, traction):
+    """Field [Pa] (3, z, x) of the Hertz pressure and a body-1 traction ``sum_k peak_k sqrt(1 - ((s - e_k)/c_k)^2)``
+    given as ``[(peak, c, e), ...]``, by McEwen's closed forms."""
+    X, Z = np.meshgrid(x, z)
+    total = contact.p0 * stress.mcewen(X, Z, contact.a)[0]
+    for peak, c, e in traction:
+        total = total + peak * stress.mcewen(X, Z, c, e)[1]
+    return total
+
+
+def cattaneo_mindlin(contact, Q, sign=1.0):
+    """Elliptical loads of the Cattaneo-Mindlin traction at `Q` (times `sign`)."""
+    fp0, a, b = sign * contact.f * contact.p0, contact.a, cf.stick_half_width(contact, Q)
+    return [(fp0, a, 0.0), (-fp0 * b / a, b, 0.0)]
+
+
+# The closed forms
+
+
+@pytest.mark.parametrize(("x", "z"), POINTS)
+def test_mcewen_is_the_quadrature_of_the_flamant_kernels(x, z):
+    half_width, centre = 0.7, 0.2
+    ellipse = lambda s: np.sqrt(max(1 - ((s - centre) / half_width) ** 2, 0.0))  # noqa: E731
+    reference = flamant(ellipse, x, z, centre - half_width, centre + half_width)
+    np.testing.assert_allclose(stress.mcewen(x, z, half_width, centre), reference, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize(("x", "z"), POINTS)
+def test_piecewise_linear_loads_are_the_quadrature_of_the_flamant_kernels(x, z):
+    knots = np.array([-1.0, -0.6, -0.1, 0.3, 0.5, 1.0])
+    values = np.array([0.7, -0.2, 1.1, 0.4])
+    load = lambda s: np.interp(s, knots, np.concatenate([[0.0], values, [0.0]]))  # noqa: E731
+    reference = flamant(load, x, z, -1.0, 1.0, knots)
+    got = stress.polygon(np.array([x]), np.array([z]), knots)[:, :, 0, :] @ values
+    np.testing.assert_allclose(got, reference, rtol=0, atol=1e-12)
+
+
+def test_the_surface_carries_the_loads():
+    """At z = 0: sigma_zz = -p, tau_xz = -t_x, and a piecewise-linear pressure alone gives sigma_xx = -p."""
+    knots = np.array([-1.0, -0.4, 0.2, 1.0])
+    values = np.array([0.5, 1.0])
+    x = np.array([-0.7, -0.4, 0.0, 0.6, 1.3])
+    load = np.interp(x, knots, [0.0, *values, 0.0])
+    field = stress.polygon(x, np.zeros(x.size), knots) @ values
+    np.testing.assert_allclose(field[0], [-load, -load, np.zeros(x.size)], atol=1e-15)
+    np.testing.assert_allclose(field[1, 1:], [np.zeros(x.size), -load], atol=1e-15)
+
+
+# The models' fields
+
+
+def test_exact_model_is_mcewen_to_rounding(contact):
+    """Loading to Q*, unloading to Q (Mindlin-Deresiewicz): the field is the superposition of McEwen's."""
+    fP = contact.f * contact.P
+    Q_star, Q = 0.6 * fP, 0.1 * fP
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, Q_star, Q], None, 4), fr.models.Exact(64))
+    x, z = grid(contact)
+    field = stress.field(result, x, z, step=[4, 8], nu=NU)
+    assert field.attrs["traction"] == field.attrs["pressure"] == "elliptical"
+    loading = cattaneo_mindlin(contact, Q_star, -1.0)  # the specimen, body 2, carries -q
+    unloading = loading + [(-2 * peak, c, e) for peak, c, e in cattaneo_mindlin(contact, (Q_star - Q) / 2, -1.0)]
+    for row, loads in enumerate((loading, unloading)):
+        expected = hertz_field(contact, x, z, loads)
+        np.testing.assert_allclose(components(field)[:, row], expected, rtol=0, atol=1e-9 * contact.p0)
+
+
+@pytest.mark.parametrize("model", [fr.models.Grid(64), fr.models.Mesh(rtol=1e-3)], ids=["grid", "mesh"])
+@pytest.mark.parametrize("tau", [0.0, 0.3], ids=["cattaneo_mindlin", "nowell_hills"])
+def test_discretised_models_meet_the_partial_slip_fields_to_their_traction_accuracy(contact, model, tau):
+    """Cattaneo-Mindlin and Nowell-Hills (offset stick zone, the specimen in bulk tension sigma): below the
+    surface the field's error is no larger than the largest error of the model's traction."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    Q, sigma = 0.5 * fP, tau * fp0
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, Q], [0.0, sigma], 4), model)
+    traction_error = np.abs(result.q[-1] - cf.nowell_hills_traction(contact, Q, sigma, result.x.values)).max()
+    x, z = grid(contact)
+    z = z[z >= 0.05 * contact.a]
+    field = stress.field(result, x, z, step=4, nu=NU)
+    b, e = cf.stick_half_width(contact, Q), cf.nowell_hills_offset(contact, sigma)
+    expected = hertz_field(contact, x, z, [(-fp0, contact.a, 0.0), (fp0 * b / contact.a, b, e)])
+    expected[0] += sigma  # body 2's bulk stress
+    error = np.abs(components(field)[:, 0] - expected).max()
+    assert 0 < error <= traction_error
+
+
+def test_surface_limit_is_the_surface_stress(contact):
+    """At the nodes, away from the stick-slip boundaries (where the surface stress has a vertical tangent),
+    the field at z = 0 is the limit of the field below it and equals `nucleation.surface_stress` to the
+    traction accuracy of the model."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, 0.5 * fP], [0.0, 0.2 * fp0], 4), nodes=64)
+    x = result.x.values
+    field = stress.field(result, x, np.array([0.0, 1e-9 * contact.a]), step=4, nu=NU).sigma_xx.values[0]
+    np.testing.assert_allclose(field[1], field[0], rtol=0, atol=1e-6 * fp0)
+    b, e = cf.stick_half_width(contact, 0.5 * fP), cf.nowell_hills_offset(contact, 0.2 * fp0)
+    away = np.abs(np.abs(x - e) - b) > 0.05 * contact.a
+    traction_error = np.abs(result.q[-1] - cf.nowell_hills_traction(contact, 0.5 * fP, 0.2 * fp0, x)).max()
+    surface = nucleation.surface_stress(result).sel(step=4).values
+    assert np.abs(field[0] - surface)[away].max() <= traction_error
+
+
+def _sliding(result, contact):
+    """`result` with the last step's traction replaced by sliding, ``q = f p`` at ``Q = f P``."""
+    sliding = result.copy(deep=True)
+    sliding["q"][-1] = contact.f * result.p.values
+    sliding["Q"][-1] = contact.f * contact.P
+    return sliding
+
+
+@pytest.mark.parametrize(("body", "edge"), [(1, -1.0), (2, 1.0)])
+def test_sliding_hertz_has_the_trailing_edge_tension(contact, body, edge):
+    """q = f p: 2 f p0 (plus the bulk stress) at the trailing edge of each body, to rounding on the
+    elliptical representation and, on a grid of 64 nodes, to 2 % (1.2 % measured: the piecewise-linear
+    ellipse converges at the edge as 1 / N)."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.piecewise_linear([0.0, 0.5 * fP], [0.0, 0.0], 4)
+    point = (np.array([edge * contact.a]), np.array([0.0]))
+    exact = _sliding(fr.simulate(contact, history, fr.models.Exact(64)), contact)
+    field = stress.field(exact, *point, step=4, body=body, nu=NU)
+    assert field.attrs["traction"] == "elliptical"
+    assert field.sigma_xx.item() == pytest.approx(2 * fp0, rel=1e-12)
+    on_grid = stress.field(_sliding(fr.simulate(contact, history, nodes=64), contact), *point, step=4, body=body, nu=NU)
+    assert on_grid.sigma_xx.item() == pytest.approx(2 * fp0, rel=0.02)
+
+
+def test_exact_model_continued_from_a_state_falls_back_to_piecewise_linear(contact):
+    """A result that does not start from the virgin contact does not say its turning points: its traction
+    is integrated as recorded."""
+    fP = contact.f * contact.P
+    first = fr.simulate(contact, fr.History.piecewise_linear([0.0, 0.5 * fP], None, 4), fr.models.Exact(64))
+    history = fr.History.piecewise_linear([0.5 * fP, 0.0], None, 4)
+    later = fr.simulate(contact, history, state=fr.final_state(first))
+    assert stress.field(later, *grid(contact, 5, 3), nu=NU).attrs["traction"] == "piecewise linear"
+
+
+def test_dataset_contract(contact):
+    fP = contact.f * contact.P
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, 0.4 * fP], [0.0, 1e7], 4), nodes=32)
+    x, z = grid(contact, 7, 5)
+    field = stress.field(result, x, z, step=[2, 4], nu=NU)
+    assert list(field.data_vars) == list(stress.COMPONENTS)
+    for name in stress.COMPONENTS:
+        assert field[name].dims == ("step", "z", "x")
+        assert field[name].attrs["units"] == "Pa"
+    np.testing.assert_array_equal(field.sigma_yy, NU * (field.sigma_xx + field.sigma_zz))
+    assert field.step.values.tolist() == [2, 4]
+    assert (field.attrs["body"], field.attrs["role"], field.attrs["nu"]) == (2, "specimen", NU)
+    pad = stress.field(result, x, z, step=4, body=1, nu=NU)
+    specimen = field.sel(step=[4])
+    # the pad carries +q and no bulk stress: its field is the specimen's with the traction's part negated
+    pressure_part = (pad.sigma_zz + specimen.sigma_zz) / 2
+    np.testing.assert_allclose(pressure_part, hertz_field(contact, x, z, [])[1][None], atol=1e-9 * contact.p0)
+
+
+def test_nu_of_the_history_file_is_used(tmp_path):
+    path = tmp_path / "hertz.toml"
+    path.write_text(
+        '[contact]\nprofile = "hertz"\nR = 0.05\nE = 210e9\nnu = 0.25\nf = 0.6\nP = 1e5\n\n'
+        '[[loading]]\nkind = "linear"\nQ = [20e3]\nsteps_per_segment = 4\n'
+    )
+    result = fr.run_file(path, tmp_path / "hertz.h5").result
+    field = stress.field(result, [0.0], [1e-4])
+    assert field.attrs["nu"] == 0.25
+    with pytest.raises(ValueError, match="nu = 0.3 differs from the nu = 0.25 of the result's history file"):
+        stress.field(result, [0.0], [1e-4], nu=0.3)
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ({"z": [-1e-6, 0.0]}, "z must be depths >= 0"),
+        ({"step": [99]}, "step 99 is not recorded in the result"),
+        ({"step": 1.5}, "step must be a step number"),
+        ({"body": 3}, "body must be 1"),
+        ({"nu": None}, "nu is needed for sigma_yy"),
+        ({"nu": 0.7}, "nu must be in"),
+        ({"x": [[0.0]]}, "x must be 1-dimensional"),
+    ],
+)
+def test_bad_input(contact, options, message):
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, 1e4], None, 2), nodes=16)
+    arguments = {"x": [0.0], "z": [0.0], "nu": NU} | options
+    with pytest.raises(ValueError, match=message):
+        stress.field(result, **arguments)
+
+
+def test_flat_punch_is_refused():
+    punch = fr.Contact(fr.FlatPunch(1e-3), 1e11, 0.6, 1e5)
+    result = fr.simulate(punch, fr.History.piecewise_linear([0.0, 1e4], None, 2), nodes=16)
+    with pytest.raises(ValueError, match="flat punch's pressure is unbounded"):
+        stress.field(result, [0.0], [1e-4], nu=NU)
+
+
+# The command and the figure
+
+
+def test_command_writes_the_field(contact, tmp_path, capsys):
+    fP = contact.f * contact.P
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, 0.4 * fP, -0.4 * fP, 0.4 * fP], None, 4), nodes=32)
+    save(result, tmp_path / "run.h5")
+    output = tmp_path / "field.h5"
+    arguments = ["stress", str(tmp_path / "run.h5"), "--nx", "9", "--nz", "5", "--nu", "0.3", "-o", str(output)]
+    assert cli.main([*arguments, "--step", "4", "8", "--figure", "tau_xz"]) == 0
+    assert (tmp_path / "field_tau_xz.png").exists()
+    import xarray as xr
+
+    with xr.open_dataset(output, engine="h5netcdf") as written:
+        x = contact.a * np.linspace(-2, 2, 9)
+        expected = stress.field(result, x, contact.a * np.linspace(0, 2, 5), step=[4, 8], nu=NU)
+        np.testing.assert_allclose(written.sigma_xx.values, expected.sigma_xx.values, rtol=1e-12)
+    assert cli.main([*arguments, "--step", "99"]) == 2
+    assert "step 99 is not recorded" in capsys.readouterr().err
+    assert cli.main([*arguments[:-4], "-o", str(output)]) == 2  # no nu: the result has no history file
+    assert "nu is needed" in capsys.readouterr().err
+
+
+def test_stress_map_marks_the_contact_and_the_stick_zone(contact):
+    from matplotlib.figure import Figure
+
+    from fretting import plots
+
+    fP = contact.f * contact.P
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, 0.5 * fP], None, 4), nodes=32)
+    field = stress.field(result, *grid(contact, 21, 11), nu=NU)
+    ax = plots.stress_map(field.tau_xz, result, ax=Figure().subplots())
+    assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_title()) == ("$x / a$", "depth $z / a$", "tau_xz, step 4")
+    lines = {line.get_label(): line.get_xdata() for line in ax.get_lines()}
+    zone = [float(result.stick_start[-1, 0]) / contact.a, float(result.stick_end[-1, 0]) / contact.a]
+    np.testing.assert_allclose(lines["stick zone"], zone, rtol=1e-12)
+    assert zone[0] < 0 < zone[1]
+    assert list(lines["contact"]) == [-1, 1]
+    assert ax.yaxis_inverted()
+
+
+def test_import_does_not_load_matplotlib():
+    code = "import sys, fretting.stress; print('matplotlib' in sys.modules)"
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout == "False\n"
