@@ -2,7 +2,7 @@
 
 Run from the repository root:  python scripts/make_validation.py [--only closed-forms trajectories ...]
 
-Writes docs/validation/{closed-forms,trajectories,performance}.md and docs/examples.md, with their
+Writes docs/validation/{closed-forms,trajectories,performance,galerkin-constants}.md and docs/examples.md, with their
 figures in docs/validation/figures/ (100 dpi). Every figure and table is computed here, by the
 engine against closed forms or against the converged references of benchmarks/trajectories.py
 (cached in benchmarks/.cache), and each page is stamped with the version, the UTC date and this
@@ -29,6 +29,7 @@ from fretting.physics import closed_forms as cf  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
+import galerkin_constants  # noqa: E402
 import stepping  # noqa: E402
 import trajectories  # noqa: E402
 
@@ -517,11 +518,24 @@ with files, see [Sweeps](guide/sweeps.md).
     write_page(DOCS / "examples.md", "Examples", "It copied the figures of results/ and ran the study below.", body)
 
 
+# -- Galerkin constants -----------------------------------------------------------------------------
+
+
+def galerkin_constants_page():
+    write_page(
+        PAGES / "galerkin-constants.md",
+        "Galerkin tuning constants",
+        "It reran the comparisons of scripts/galerkin_constants.py.",
+        galerkin_constants.body(markdown_table),
+    )
+
+
 PAGE_BUILDERS = {
     "closed-forms": closed_forms_page,
     "trajectories": trajectories_page,
     "performance": performance_page,
     "examples": examples_page,
+    "galerkin-constants": galerkin_constants_page,
 }
 
 

@@ -15,14 +15,23 @@ recorded every step; `score` gives a run's errors against either:
 Each error is the largest over the recorded steps (or cycles) of the run.
 """
 
+from __future__ import annotations
+
 import itertools
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from fretting.physics import closed_forms as cf
 from fretting.physics.contact import Contact
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from fretting.loading.history import History
 
 __all__ = [
     "BAND",
@@ -73,7 +82,7 @@ class Reference:
 # -- Error metrics ----------------------------------------------------------------------------
 
 
-def zone_distance(zones, reference):
+def zone_distance(zones: ArrayLike, reference: ArrayLike) -> float:
     """Distance between two sets of stick zones [m, or the unit of the zones].
 
     The ends of `zones` are matched in order to those of `reference` (starts to starts, ends to
@@ -107,7 +116,7 @@ def zone_distance(zones, reference):
     return float(cost[-1, -1])
 
 
-def energy_error(W, W_ref):
+def energy_error(W: ArrayLike, W_ref: ArrayLike) -> float:
     """Largest relative error ``|W / W_ref - 1|`` [-] of the energies per cycle.
 
     Parameters
@@ -126,7 +135,7 @@ def energy_error(W, W_ref):
     return float(np.max(np.abs(W / W_ref - 1), initial=0.0))
 
 
-def traction_error(x, q, q_ref, exclude, width):
+def traction_error(x: ArrayLike, q: ArrayLike, q_ref: ArrayLike, exclude: ArrayLike, width: float) -> float:
     """Largest ``|q - q_ref|`` [Pa] at the positions farther than `width` from all of `exclude`.
 
     Parameters
@@ -147,7 +156,7 @@ def traction_error(x, q, q_ref, exclude, width):
     return float(np.max(np.abs(np.asarray(q) - np.asarray(q_ref))[far], initial=0.0))
 
 
-def memory_kinks(x, stick):
+def memory_kinks(x: np.ndarray, stick: np.ndarray) -> list[np.ndarray]:
     """Former stick/slip boundaries where the locked-in slip still puts a kink in the traction [m], per step.
 
     Where a point that slipped at step ``k`` meets one that last slipped before ``k - 1`` (or
@@ -173,13 +182,13 @@ def memory_kinks(x, stick):
     return [middle[np.abs(np.diff(row)) > 1] for row in last]
 
 
-def run_zones(result, k):
+def run_zones(result: xr.Dataset, k: int) -> np.ndarray:
     """Stick zones ``(start, end)`` [m] of row `k` of a result of `fretting.simulate`, shape (n_zones, 2)."""
     pairs = np.stack([result.stick_start.values[k], result.stick_end.values[k]], axis=-1)
     return pairs[~np.isnan(pairs[:, 0])]
 
 
-def score(result, reference):
+def score(result: xr.Dataset, reference: Reference) -> dict[str, float]:
     """Errors of a run against a reference, each the largest over the run's recorded steps after the first.
 
     Parameters
@@ -214,7 +223,7 @@ def score(result, reference):
 # -- References -------------------------------------------------------------------------------
 
 
-def run_reference(result, label):
+def run_reference(result: xr.Dataset, label: str) -> Reference:
     """Reference from a (most resolved) run that recorded every step: its stick zones, energies and traction.
 
     The traction is interpolated linearly to the scored run's points. Kinks are the stick-zone
@@ -231,13 +240,13 @@ def run_reference(result, label):
     x, q = result.x.values, result.q.values
     kinks = [np.concatenate([z.ravel(), m]) for z, m in zip(zones, memory_kinks(x, result.stick.values), strict=True)]
 
-    def tractions(step, at):
+    def tractions(step: int, at: ArrayLike) -> np.ndarray:
         return np.interp(at, x, q[step])
 
     return Reference(label, zones, kinks, result.cycle_dissipation.values, tractions)
 
 
-def monotonic_dissipation(contact, Q, ratio=0.0):
+def monotonic_dissipation(contact: Contact, Q: float, ratio: float = 0.0) -> float:
     """Energy [J/m] a Hertz contact dissipates loaded from zero along ``sigma = ratio Q`` to ``Q`` [N/m].
 
     ``int f p |s| dx`` of the Nowell-Hills slip (every point slips one way only):
@@ -257,7 +266,7 @@ def monotonic_dissipation(contact, Q, ratio=0.0):
     return _slip_work(contact, Q, ratio)
 
 
-def _slip_work(contact, Q, ratio):
+def _slip_work(contact: Contact, Q: float, ratio: float) -> float:
     """``int f p |s| dx`` [J/m] of the Nowell-Hills slip at ``Q``, ``sigma = ratio Q``, by quadrature."""
     if Q == 0:
         return 0.0
@@ -282,23 +291,23 @@ class _Monotonic:
     contact: Contact
     ratio: float
 
-    def traction(self, Q, x):
+    def traction(self, Q: float, x: ArrayLike) -> np.ndarray:
         return cf.nowell_hills_traction(self.contact, Q, self.ratio * Q, x)
 
-    def zone(self, Q):
+    def zone(self, Q: float) -> tuple[float, float]:
         """Stick zone ``(start, end)`` [m]."""
         centre = float(np.sign(Q) * cf.nowell_hills_offset(self.contact, self.ratio * Q))
         b = float(cf.stick_half_width(self.contact, Q))
         return centre - b, centre + b
 
-    def dissipation(self, Q, cache):
+    def dissipation(self, Q: float, cache: dict[float, float]) -> float:
         key = abs(Q)
         if key not in cache:
             cache[key] = monotonic_dissipation(self.contact, key, self.ratio)
         return cache[key]
 
 
-def _proportional_ratio(history):
+def _proportional_ratio(history: History) -> float:
     """``sigma / Q`` of a proportional history (raises if it is not)."""
     k = int(np.argmax(np.abs(history.Q)))
     ratio = float(history.sigma[k] / history.Q[k])
@@ -307,7 +316,7 @@ def _proportional_ratio(history):
     return ratio
 
 
-def masing_reference(contact, history):
+def masing_reference(contact: Contact, history: History) -> Reference:
     """Closed-form reference of a Hertz contact under proportional loads ``sigma = ratio Q`` from zero.
 
     Masing's rule (`fretting.physics.closed_forms.masing_walk`) over the Nowell-Hills solution
@@ -339,14 +348,14 @@ def masing_reference(contact, history):
     paths = [_branches(stack, load) for stack, load in zip(stacks, history.Q.tolist(), strict=True)]
     kinks = [np.array([end for o, s, to in path if to != o for end in mono.zone((to - o) / s)]) for path in paths]
 
-    def tractions(step, x):
+    def tractions(step: int, x: ArrayLike) -> np.ndarray:
         return sum((s * mono.traction((to - o) / s, x) for o, s, to in paths[step]), np.zeros(np.shape(x)))
 
     energy = np.bincount(history.cycle, weights=dissipation)[1:]
     return Reference("closed form (Masing)", zones, kinks, energy, tractions)
 
 
-def _piece_dissipation(mono, piece, cache):
+def _piece_dissipation(mono: _Monotonic, piece: cf.Piece, cache: dict[float, float]) -> float:
     """Energy [J/m] dissipated along a piece ``(origin, factor, Q_from, Q_to)`` of a Masing branch."""
     origin, factor, start, end = piece
     return factor * (
@@ -354,7 +363,7 @@ def _piece_dissipation(mono, piece, cache):
     )
 
 
-def _last_zone(mono, walk):
+def _last_zone(mono: _Monotonic, walk: list[cf.Piece]) -> tuple[float, float]:
     """Stick zone [m] of an increment: that of the branch it ends on; the whole contact if nothing moved."""
     if not walk:
         return (-mono.contact.a, mono.contact.a)
@@ -362,7 +371,7 @@ def _last_zone(mono, walk):
     return mono.zone((end - origin) / factor)
 
 
-def _branches(stack, load):
+def _branches(stack: tuple[float, ...], load: float) -> list[tuple[float, int, float]]:
     """Branches ``(origin, factor, end)`` from the virgin state through the turning points to ``load``."""
     points = [0.0, *stack, load]
     return [(o, 1 if i == 0 else 2, to) for i, (o, to) in enumerate(itertools.pairwise(points))]

@@ -37,11 +37,15 @@ and nearly for ``|k| <= 3``; with a sigma
 mean, or where Q reverses and sigma does not, a small loop can be off by a factor of two or more.
 """
 
+from __future__ import annotations
+
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
 import rainflow
 import xarray as xr
+from numpy.typing import ArrayLike
 
 __all__ = ["counted_energy", "rainflow_cycles"]
 
@@ -53,7 +57,7 @@ __all__ = ["counted_energy", "rainflow_cycles"]
 RESOLUTION = 1e-12
 
 
-def rainflow_cycles(series):
+def rainflow_cycles(series: ArrayLike) -> xr.Dataset:
     """Rainflow cycles of a series (ASTM E1049-85 section 5.4.4, `rainflow.extract_cycles`).
 
     Parameters
@@ -87,7 +91,7 @@ def rainflow_cycles(series):
     return xr.Dataset(data, attrs={"method": "rainflow counting, ASTM E1049-85 (2011) section 5.4.4"})
 
 
-def _closing(load, start, end):
+def _closing(load: np.ndarray, start: int, end: int) -> tuple[int, float]:
     """Increment in which the load, after the reversal `end`, first returns to its value at `start`.
 
     Returns
@@ -123,7 +127,7 @@ class _Loop:
     own: float = 0.0  # its own energy [J/m]
 
 
-def _loop_energies(loops, C, D):
+def _loop_energies(loops: Iterable[_Loop], C: np.ndarray, D: np.ndarray) -> list[_Loop]:
     """Fill in each loop's share of its closing increment, total and own energy.
 
     `C` is the cumulative dissipation at the steps, `D` the dissipation of each increment. Loops
@@ -149,7 +153,7 @@ def _loop_energies(loops, C, D):
     return done
 
 
-def counted_energy(result, load="Q"):
+def counted_energy(result: xr.Dataset, load: str = "Q") -> xr.Dataset:
     """Rainflow cycles of a load of a result and the energy dissipated in each (module docstring).
 
     Parameters

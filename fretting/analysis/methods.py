@@ -21,11 +21,14 @@ transform ``(1/pi) PV int F(xi) / (xi - x) dxi`` is ``-sum_n alpha_n T_n(t)`` in
 
 from __future__ import annotations
 
-from typing import NamedTuple
+import os
+from collections.abc import Callable
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 import xarray as xr
 from numpy.polynomial import chebyshev, legendre
+from numpy.typing import ArrayLike
 from scipy import fft, linalg, optimize
 
 from fretting._validate import finite
@@ -37,6 +40,9 @@ from fretting.physics import closed_forms
 from fretting.physics.contact import Contact
 from fretting.physics.profiles import Hertz
 from fretting.results.variables import VARIABLES
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["METHODS", "partial_slip", "comparison_figure"]
 
@@ -90,28 +96,28 @@ class _Solution(NamedTuple):
 # Series and quadrature rules ------------------------------------------------------------------
 
 
-def _second_kind_angles(n):
+def _second_kind_angles(n: int) -> np.ndarray:
     """``theta_k = k pi / (n + 1)``, k = 1..n: nodes of the bounded Gauss-Chebyshev rule."""
     return np.arange(1, n + 1) * np.pi / (n + 1)
 
 
-def _grid(nodes):
+def _grid(nodes: int) -> np.ndarray:
     """Output positions ``t``: the engine's Gauss-Chebyshev nodes (first kind), ascending."""
     return np.cos(chebyshev_angles(nodes))[::-1]
 
 
-def _sine_coefficients(values):
+def _sine_coefficients(values: np.ndarray) -> np.ndarray:
     """``alpha_n``, n = 1..N, of the sine series through `values` at `_second_kind_angles` (N)."""
     return fft.dst(values, type=1) / (values.size + 1)
 
 
-def _sine_series(alpha, t):
+def _sine_series(alpha: np.ndarray, t: np.ndarray) -> np.ndarray:
     """``sum_n alpha_n sin(n theta)`` at ``t = cos(theta)`` in [-1, 1]."""
     theta = np.arccos(np.clip(t, -1, 1))
     return np.sin(np.multiply.outer(theta, np.arange(1, alpha.size + 1))) @ alpha
 
 
-def _chebyshev_coefficients(values):
+def _chebyshev_coefficients(values: np.ndarray) -> np.ndarray:
     """``b_n``, n = 0..N-1, through `values` at `chebyshev_angles` (N), ``t`` descending.
 
     The N-point Gauss-Chebyshev rule of the first kind: ``b_n = (2/N) sum_k F(t_k) T_n(t_k)``,
@@ -122,7 +128,7 @@ def _chebyshev_coefficients(values):
     return b
 
 
-def _outer_integral(b, t):
+def _outer_integral(b: np.ndarray, t: np.ndarray) -> np.ndarray:
     """``int_1^t sum_{n>=1} b_n w(tau)^n dtau`` at ``t >= 1``, ``w = tau - sqrt(tau^2 - 1)``.
 
     With ``tau = cosh(u)``, ``w^n = exp(-n u)``, each mode integrates to ``(r_{n-1} - r_{n+1}) / 2``
@@ -131,7 +137,7 @@ def _outer_integral(b, t):
     u = np.arccosh(t)[:, None]
     n = np.arange(1, b.size)
 
-    def ramp(m):
+    def ramp(m: np.ndarray) -> np.ndarray:
         return np.where(m == 0, u, -np.expm1(-m * u) / np.maximum(m, 1))
 
     return ((ramp(n - 1) - ramp(n + 1)) / 2) @ b[1:]
@@ -151,17 +157,17 @@ class _BoundedRule(NamedTuple):
     triangular: np.ndarray
 
     @classmethod
-    def of_size(cls, n):
+    def of_size(cls, n: int) -> _BoundedRule:
         theta = _second_kind_angles(n)
         collocation = np.cos(chebyshev_angles(n + 1))
         system = np.sin(theta) / ((n + 1) * (np.cos(theta) - collocation[:, None]))
         return cls(theta, collocation, *linalg.qr(system, mode="economic"))
 
-    def solve(self, G):
+    def solve(self, G: np.ndarray) -> np.ndarray:
         """``F`` at the nodes."""
         return linalg.solve_triangular(self.triangular, self.orthogonal.T @ G)
 
-    def integral(self, F):
+    def integral(self, F: np.ndarray) -> float:
         """``int_{-1}^{1} F ds``."""
         return np.pi / (self.theta.size + 1) * np.dot(np.sin(self.theta), F)
 
@@ -169,13 +175,13 @@ class _BoundedRule(NamedTuple):
 # Pieces shared by the methods -----------------------------------------------------------------
 
 
-def _pressure_coefficients(contact, modes):
+def _pressure_coefficients(contact: Contact, modes: int) -> np.ndarray:
     """Sine coefficients [Pa] of ``p(centre + a cos(theta))``, eqs (1)-(2), any bounded pressure."""
     t = np.cos(_second_kind_angles(modes))
     return _sine_coefficients(contact.pressure(contact.centre + contact.a * t))
 
 
-def _sliding_slip_gradient(contact, alpha, t):
+def _sliding_slip_gradient(contact: Contact, alpha: np.ndarray, t: np.ndarray) -> np.ndarray:
     """Slip gradient [-] of the sliding traction ``q = f p`` at ``x = centre + a t``, eq (26).
 
     ``B_sl = -(2 f / (pi E_star)) PV int p / (xi - x) dxi = (2 f / E_star) sum_n alpha_n T_n(t)``.
@@ -183,7 +189,7 @@ def _sliding_slip_gradient(contact, alpha, t):
     return 2 * contact.f / contact.E_star * chebyshev.chebval(t, np.concatenate([[0.0], alpha]))
 
 
-def _slip(contact, alpha, c, b, t):
+def _slip(contact: Contact, alpha: np.ndarray, c: float, b: np.ndarray, t: np.ndarray) -> np.ndarray:
     """Slip [m] at ``x = centre + a t``: zero in the stick zone, ``int_c^|x| B dx`` in the slip zones.
 
     The slip gradient there is the sliding one (eq 26) plus that of the stick-zone correction,
@@ -201,7 +207,9 @@ def _slip(contact, alpha, c, b, t):
     return slip
 
 
-def _traction(contact, t, c, stick_traction):
+def _traction(
+    contact: Contact, t: np.ndarray, c: float, stick_traction: Callable[[np.ndarray], np.ndarray]
+) -> tuple[np.ndarray, np.ndarray]:
     """``q = f p`` [Pa] in the slip zones and ``stick_traction(x - centre)`` in the stick zone."""
     x = contact.centre + contact.a * t
     q = contact.f * contact.pressure(x)
@@ -210,7 +218,7 @@ def _traction(contact, t, c, stick_traction):
     return q, stick
 
 
-def _adhered_holds(contact, Q, t):
+def _adhered_holds(contact: Contact, Q: float, t: np.ndarray) -> bool:
     """True when the fully stuck traction (eq 9) is below ``f p`` at every node: nothing slips.
 
     Compared as ``q_st sqrt(1 - t^2) = Q / (pi a)`` against ``f p sqrt(1 - t^2)``, which stays
@@ -219,13 +227,13 @@ def _adhered_holds(contact, Q, t):
     return bool(np.all(Q / (np.pi * contact.a) < contact.f * contact.pressure_weighted(t)))
 
 
-def _fully_stuck(contact, Q, t):
+def _fully_stuck(contact: Contact, Q: float, t: np.ndarray) -> _Solution:
     """The adhered solution, eq (9): ``c = a``, no slip."""
     q = Q / (np.pi * contact.a * np.sqrt(1 - t**2))
     return _Solution(t, contact.a, q, np.ones(t.shape, bool), np.zeros_like(t))
 
 
-def _stick_end(contact, Q, force):
+def _stick_end(contact: Contact, Q: float, force: Callable[[float], float]) -> float:
     """Stick-zone half-width [m] at which the traction carrying `force` (c) [N/m] is bounded.
 
     The slip zones carry ``f p`` and the stick zone the bounded solution of its integral
@@ -235,7 +243,7 @@ def _stick_end(contact, Q, force):
     """
     a = contact.a
 
-    def K(c):
+    def K(c: float) -> float:
         return Q - force(c)
 
     if K(a) <= 0:
@@ -246,7 +254,7 @@ def _stick_end(contact, Q, force):
 # The four methods ------------------------------------------------------------------------------
 
 
-def _method_1(contact, Q, *, nodes=DEFAULT_NODES, modes=MODES):
+def _method_1(contact: Contact, Q: float, *, nodes: int = DEFAULT_NODES, modes: int = MODES) -> _Solution:
     """Corrective traction on the sliding solution (Ciavarella-Jaeger), eqs (3)-(5).
 
     ``q = f (p(x; P) - p(x; P_c))`` with ``P_c = P - Q / f``; the stick zone is the contact of
@@ -264,7 +272,9 @@ def _method_1(contact, Q, *, nodes=DEFAULT_NODES, modes=MODES):
     return _Solution(t, c, q, stick, _slip(contact, _pressure_coefficients(contact, modes), c, b, t))
 
 
-def _method_2(contact, Q, *, nodes=DEFAULT_NODES, quadrature=QUADRATURE, order=ORDER):
+def _method_2(
+    contact: Contact, Q: float, *, nodes: int = DEFAULT_NODES, quadrature: int = QUADRATURE, order: int = ORDER
+) -> _Solution:
     """Corrective traction on the adhered solution, eqs (24)-(25).
 
     The slip zones get ``q_c1 = f p - q_st`` (eq 24, ``q_st`` of eq 9), and the stick zone the
@@ -288,10 +298,10 @@ def _method_2(contact, Q, *, nodes=DEFAULT_NODES, quadrature=QUADRATURE, order=O
     rule = _BoundedRule.of_size(quadrature)
     a, f = contact.a, contact.f
 
-    def pressure(r):
+    def pressure(r: np.ndarray) -> np.ndarray:
         return contact.pressure(contact.centre + r)
 
-    def solve(c):
+    def solve(c: float) -> tuple[np.ndarray, float, float]:
         """``chi`` [Pa] at the nodes, ``p(c)`` [Pa] and the force [N/m] of the whole traction."""
         xi, weight = _slip_zone_quadrature(a, c, order)
         x = c * rule.collocation
@@ -308,7 +318,7 @@ def _method_2(contact, Q, *, nodes=DEFAULT_NODES, quadrature=QUADRATURE, order=O
     return _Solution(t, c, q, stick, None)
 
 
-def _slip_zone_quadrature(a, c, order):
+def _slip_zone_quadrature(a: float, c: float, order: int) -> tuple[np.ndarray, np.ndarray]:
     """Gauss-Legendre nodes ``xi`` [m] in ``[c, a]`` and weights [m], uniform in ``theta``, ``xi = a cos(theta)``."""
     u, w = legendre.leggauss(order)
     theta_c = np.arccos(c / a)
@@ -316,7 +326,7 @@ def _slip_zone_quadrature(a, c, order):
     return xi, theta_c / 2 * w * np.sqrt(a**2 - xi**2)
 
 
-def _method_3(contact, Q, *, nodes=DEFAULT_NODES, modes=MODES):
+def _method_3(contact: Contact, Q: float, *, nodes: int = DEFAULT_NODES, modes: int = MODES) -> _Solution:
     """Corrective dislocations on the sliding solution, eqs (26)-(28).
 
     In the stick zone the dislocations ``B = -B_sl`` (eq 28) cancel the sliding slip gradient
@@ -338,23 +348,23 @@ def _method_3(contact, Q, *, nodes=DEFAULT_NODES, modes=MODES):
     alpha = _pressure_coefficients(contact, modes)
     rule_nodes = np.cos(chebyshev_angles(modes + 1))
 
-    def b(c):
+    def b(c: float) -> np.ndarray:
         return _chebyshev_coefficients(-_sliding_slip_gradient(contact, alpha, c * rule_nodes / contact.a))
 
-    def force(c):
+    def force(c: float) -> float:
         return contact.f * contact.P + np.pi * contact.E_star * c / 4 * b(c)[1]
 
     c = _stick_end(contact, Q, force)
     b_c = b(c)
 
-    def stick_traction(r):
+    def stick_traction(r: np.ndarray) -> np.ndarray:
         return contact.f * contact.pressure(contact.centre + r) + contact.E_star / 2 * _sine_series(b_c[1:], r / c)
 
     q, stick = _traction(contact, t, c, stick_traction)
     return _Solution(t, c, q, stick, _slip(contact, alpha, c, b_c, t))
 
 
-def _method_4(contact, Q, *, nodes=DEFAULT_NODES, steps=STEPS):
+def _method_4(contact: Contact, Q: float, *, nodes: int = DEFAULT_NODES, steps: int = STEPS) -> _Solution:
     """Corrective dislocations on the adhered solution: `fretting.engine.simulation` (eqs 9-12), last step."""
     last = simulate(contact, History.piecewise_linear([0.0, Q], None, steps), nodes=nodes).isel(step=-1)
     t = (last.x.values - contact.centre) / contact.a
@@ -366,7 +376,7 @@ def _method_4(contact, Q, *, nodes=DEFAULT_NODES, steps=STEPS):
 METHODS = {1: _method_1, 2: _method_2, 3: _method_3, 4: _method_4}
 
 
-def partial_slip(contact: Contact, Q: float, method: int, **options) -> xr.Dataset:
+def partial_slip(contact: Contact, Q: float, method: int, **options: int) -> xr.Dataset:
     """Partial slip of a symmetric contact under monotonic shear, by one method of Table A.
 
     Parameters
@@ -419,7 +429,7 @@ def partial_slip(contact: Contact, Q: float, method: int, **options) -> xr.Datas
     return _dataset(contact, Q, int(method), METHODS[method](contact, Q, **options))
 
 
-def _check_symmetric(contact):
+def _check_symmetric(contact: Contact) -> None:
     if not isinstance(contact, Contact):
         raise ValueError(f"contact must be a fretting.Contact, found {contact!r}")
     t = _grid(DEFAULT_NODES)
@@ -428,10 +438,10 @@ def _check_symmetric(contact):
         raise ValueError(f"the pressure of {contact.profile!r} is not symmetric about its centre")
 
 
-def _dataset(contact, Q, method, solution):
+def _dataset(contact: Contact, Q: float, method: int, solution: _Solution) -> xr.Dataset:
     """Dataset with the units and long names of `fretting.results.variables.VARIABLES`."""
 
-    def variable(name, values):
+    def variable(name: str, values: ArrayLike) -> xr.Variable:
         _, units, long_name = VARIABLES[name]
         return xr.Variable(("x",), np.asarray(values), {"units": units, "long_name": long_name})
 
@@ -455,7 +465,7 @@ def _dataset(contact, Q, method, solution):
     )
 
 
-def comparison_figure(path):
+def comparison_figure(path: str | os.PathLike) -> Figure:
     """Write a PNG of the tractions and slips of the four methods (Hertz, ``Q = 0.6 f P``).
 
     Parameters

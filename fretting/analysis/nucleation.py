@@ -38,8 +38,11 @@ References
    friction, wear and crack nucleation, Wear 257 (2004) 916-929.
 """
 
+from __future__ import annotations
+
 import numpy as np
 import xarray as xr
+from numpy.typing import ArrayLike
 
 from fretting.physics.contact import SPECIMEN
 from fretting.physics.surface import SurfaceStress, bulk_stress
@@ -76,27 +79,27 @@ DELTA_DEFINITION = (
 )
 
 
-def _attrs(units, long_name, definition):
+def _attrs(units: str, long_name: str, definition: str) -> dict[str, str]:
     return {"units": units, "long_name": long_name, "definition": definition}
 
 
-def _has_cycles(result):
+def _has_cycles(result: xr.Dataset) -> bool:
     return "cycle_number" in result.dims and result.sizes["cycle_number"] > 0
 
 
-def _require_cycles(result):
+def _require_cycles(result: xr.Dataset) -> None:
     if not _has_cycles(result):
         raise ValueError("the result has no load cycles: its history counts none")
 
 
-def _last_step(result):
+def _last_step(result: xr.Dataset) -> int:
     """Last step of the run (recorded or not)."""
     if "steps" in result.attrs:
         return int(result.attrs["steps"]) - 1
     return int(result.vertex_step.max())
 
 
-def _recorded_rows(result):
+def _recorded_rows(result: xr.Dataset) -> dict[int, tuple[int, int]]:
     """Recorded rows of each cycle: ``{number: (first row, last row)}`` for the cycles with a recorded step."""
     cycle = result.cycle.values
     inside = np.flatnonzero(cycle > 0)
@@ -105,7 +108,7 @@ def _recorded_rows(result):
     return {int(n): (int(i), int(j)) for n, i, j in zip(numbers, inside[first], inside[last], strict=True)}
 
 
-def complete_cycles(result):
+def complete_cycles(result: xr.Dataset) -> list[slice | None]:
     """Rows of the recorded steps that cover each load cycle whole.
 
     Parameters
@@ -131,7 +134,7 @@ def complete_cycles(result):
     return [rows.get(int(number)) for number in result.cycle_number.values]
 
 
-def dissipation_density(result):
+def dissipation_density(result: xr.Dataset) -> xr.DataArray:
     """Energy dissipated per unit area in each load cycle, ``w(x)`` [J/m^2].
 
     ``w_k(x) = sum_{increments of cycle k} f p(x) |ds(x)|`` (docs/theory/conventions.md#energy), whose
@@ -164,7 +167,7 @@ def dissipation_density(result):
     )
 
 
-def slip_amplitude(result):
+def slip_amplitude(result: xr.Dataset) -> xr.DataArray:
     """Slip amplitude ``delta(x)`` [m] of each load cycle: half the range of the slip over it.
 
     The range includes the cycle's starting state. For a closed cycle this is the ``delta`` of
@@ -190,7 +193,7 @@ def slip_amplitude(result):
     return delta.rename("slip_amplitude").assign_attrs(attrs)
 
 
-def _largest(values, x):
+def _largest(values: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Largest of each row of `values` (cycles, N) and its node `x` [m]; NaN for rows of NaN only."""
     valid = ~np.all(np.isnan(values), axis=1)
     at = np.zeros(values.shape[0], dtype=np.int64)
@@ -198,7 +201,7 @@ def _largest(values, x):
     return np.where(valid, values[np.arange(values.shape[0]), at], np.nan), np.where(valid, x[at], np.nan)
 
 
-def _peak(field, name, units, long_name, definition):
+def _peak(field: xr.DataArray, name: str, units: str, long_name: str, definition: str) -> xr.Dataset:
     """Largest value over x of each row of `field` and its position, as a Dataset."""
     peak, x = _largest(field.values, field.x.values)
     coords = {"cycle_number": field.cycle_number}
@@ -211,7 +214,7 @@ def _peak(field, name, units, long_name, definition):
     )
 
 
-def peak_dissipation_density(result):
+def peak_dissipation_density(result: xr.Dataset) -> xr.Dataset:
     """Peak of ``w(x)`` in each cycle [J/m^2] and its position [m] (at the nodes).
 
     Returns
@@ -225,7 +228,7 @@ def peak_dissipation_density(result):
     )
 
 
-def accumulated_dissipation_density(result):
+def accumulated_dissipation_density(result: xr.Dataset) -> xr.DataArray:
     """Energy dissipated per unit area over cycles 1 to k, ``sum_{j <= k} w_j(x)`` [J/m^2].
 
     Steps outside any cycle (the first loading ramp) are not included.
@@ -244,7 +247,7 @@ def accumulated_dissipation_density(result):
     return w.cumsum("cycle_number").rename("w_accumulated").assign_attrs(attrs)
 
 
-def fouvry(result):
+def fouvry(result: xr.Dataset) -> xr.Dataset:
     """Quantities of the accumulated dissipated energy approach, per cycle (Fouvry et al. [5]_, [6]_).
 
     The energy ratio ``A = E_d / (4 delta* Q*)`` of [5] is left out: in plane strain the
@@ -281,12 +284,12 @@ def fouvry(result):
     return xr.Dataset(data, coords={"cycle_number": result.cycle_number}).merge(peak)
 
 
-def specimen(result):
+def specimen(result: xr.Dataset) -> int:
     """The body [1 or 2] that is the specimen: the result's ``specimen`` attribute, else `SPECIMEN` (body 2)."""
     return int(result.attrs.get("specimen", SPECIMEN))
 
 
-def _body(result, body):
+def _body(result: xr.Dataset, body: int | None) -> tuple[int, str]:
     """`body`, the specimen when None, checked; and what it is, ``"specimen"`` or ``"pad"``."""
     body = specimen(result) if body is None else body
     if isinstance(body, bool) or body not in (1, 2):
@@ -294,14 +297,14 @@ def _body(result, body):
     return body, "specimen" if body == specimen(result) else "pad"
 
 
-def _bulk(result, body, bulk):
+def _bulk(result: xr.Dataset, body: int, bulk: ArrayLike | None) -> np.ndarray:
     """Bulk direct stress [Pa] of `body` at each recorded step, from body 1's `bulk` (`bulk_stress`)."""
     sigma = result.sigma.values
     bulk1 = None if bulk is None else np.broadcast_to(np.asarray(bulk, dtype=float), sigma.shape)
     return np.broadcast_to(bulk_stress(sigma, body, bulk1, specimen(result)), sigma.shape)
 
 
-def surface_stress(result, body=None, bulk=None):
+def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike | None = None) -> xr.DataArray:
     """Direct stress ``sigma_xx`` [Pa] along the surface of one body, at every recorded step.
 
     ``sigma_xx(x) = -(2/pi) PV int t_x(xi) / (x - xi) dxi - p(x) + sigma_b`` for a half-plane whose
@@ -351,7 +354,7 @@ def surface_stress(result, body=None, bulk=None):
     )
 
 
-def _recorded_peaks(result, body, bulk):
+def _recorded_peaks(result: xr.Dataset, body: int, bulk: ArrayLike | None) -> dict[str, np.ndarray]:
     """`_cycle_peaks` from the recorded steps: NaN for the cycles not recorded whole (`complete_cycles`)."""
     peaks = np.full((len(CYCLE_PEAKS), result.sizes["cycle_number"], result.sizes["x"]), np.nan)
     stress, shear = surface_stress(result, body, bulk).values, np.abs(result.q.values)
@@ -363,7 +366,7 @@ def _recorded_peaks(result, body, bulk):
     return dict(zip(CYCLE_PEAKS, peaks, strict=True))
 
 
-def _cycle_peaks(result, body, bulk):
+def _cycle_peaks(result: xr.Dataset, body: int, bulk: ArrayLike | None) -> dict[str, np.ndarray]:
     """Per cycle and node, the largest ``sigma_xx`` [Pa] of `body`, ``|q|`` [Pa] and ``sigma_xx |q|``
     [Pa^2] over the steps of the cycle (its increments, not its starting state).
 
@@ -383,7 +386,7 @@ def _cycle_peaks(result, body, bulk):
     return _recorded_peaks(result, body, bulk) | {name: tallied[name] for name in ("q_peak",) if name in tallied}
 
 
-def ruiz(result, body=None, bulk=None):
+def ruiz(result: xr.Dataset, body: int | None = None, bulk: ArrayLike | None = None) -> xr.Dataset:
     """Ruiz parameters of each cycle, ``F1 = max(|q| delta)`` and ``F2 = max(sigma_xx |q| delta)``.
 
     Ruiz, Boddington & Chen (1984) [4]_: ``tau`` the surface shear traction, ``sigma_T`` the surface
@@ -432,7 +435,7 @@ def ruiz(result, body=None, bulk=None):
     return xr.Dataset(data, coords={"cycle_number": result.cycle_number}, attrs={"body": body, "role": role})
 
 
-def cycles_to_nucleation(result, w_critical, steady_rtol=STEADY_RTOL):
+def cycles_to_nucleation(result: xr.Dataset, w_critical: float, steady_rtol: float = STEADY_RTOL) -> xr.Dataset:
     """Cycles until the peak accumulated dissipated energy density reaches `w_critical`.
 
     Energy approach (Fouvry et al. 2004 [6]_): a crack nucleates where ``sum_k w_k(x)`` first
@@ -505,7 +508,7 @@ def cycles_to_nucleation(result, w_critical, steady_rtol=STEADY_RTOL):
     )
 
 
-def loop_work(result):
+def loop_work(result: xr.Dataset) -> xr.Dataset:
     """Work of the loads around each cycle's hysteresis loops and its mismatch with the dissipation.
 
     ``W = loop Q d(delta_Q) + loop sigma d(delta_sigma)`` by the trapezoidal rule over the
@@ -549,7 +552,7 @@ def loop_work(result):
     return xr.Dataset(data, coords={"cycle_number": result.cycle_number})
 
 
-def per_cycle(result, body=None, bulk=None):
+def per_cycle(result: xr.Dataset, body: int | None = None, bulk: ArrayLike | None = None) -> xr.Dataset:
     """Every per-cycle scalar of this module in one Dataset, dims (cycle_number,).
 
     ``E_d``, ``E_d_accumulated``, ``w_max``, ``x_w_max``, ``w_accumulated_max``,

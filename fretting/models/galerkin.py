@@ -104,7 +104,8 @@ BLOCK_PAIRS = 2**15
 GAUSS_POINTS = 8
 #: Ratio of the geometric pieces toward a point where the pressure has a singular derivative
 #: (the ends of a rounded flat): each piece then lies its own length from the singularity,
-#: where 8-point Gauss converges like 5.8^-16 = 6e-13.
+#: where 8-point Gauss converges like ``5.8^-16``; the friction limits against adaptive quadrature,
+#: beside larger ratios: docs/validation/galerkin-constants.md#grading_ratio.
 GRADING_RATIO = 0.5
 #: Levels of geometric pieces: the innermost ``2^-24`` of an element carries an error
 #: ``~ d^2 ln d``, below 1e-13 of it.
@@ -115,11 +116,12 @@ SMALL_HALF_WIDTH = 0.5
 _J1_TERMS = 12
 
 #: Relative accuracy asked by default of the energy dissipated in an increment (`element_targets`):
-#: the error it leaves against every closed form is measured by benchmarks/galerkin_convergence.py.
+#: the error it leaves on the cycles' energy, docs/validation/galerkin-constants.md#default_rtol; against
+#: every closed form, benchmarks/galerkin_convergence.py.
 DEFAULT_RTOL = 1e-4
-#: Elements of the initial uniform mesh, the coarsest any zone gets: half as many leave the slip
-#: of the large zones close to sliding (Q/fP = 0.999) markedly less accurate
-#: (benchmarks/galerkin_convergence.py).
+#: Elements of the initial uniform mesh, the coarsest any zone gets. Close to sliding (Q/fP up to
+#: 0.999999) half as many give the same slip and, at Q/fP = 0.95, a less accurate traction
+#: (docs/validation/galerkin-constants.md#initial_elements).
 INITIAL_ELEMENTS = 64
 #: Size [rad] of the edge elements of the initial mesh: edge slip zones down to about this
 #: width in theta (5e-9 a in x) make the edge node slip, and are then refined.
@@ -127,17 +129,17 @@ EDGE_SIZE = 1e-4
 #: Smallest element size [rad] that `element_targets` asks for, so that refinement ends even
 #: where a zone never resolves.
 MIN_SIZE = 1e-7
-#: Elements across every stick or slip zone, at least: fewer leave the slip of a small zone
-#: (Q/fP = 0.05) less accurate (benchmarks/galerkin_convergence.py).
+#: Elements across every stick or slip zone, at least: half as many leave the slip of small zones
+#: (Q/fP = 0.05, 0.2) less accurate (docs/validation/galerkin-constants.md#zone_elements).
 ZONE_ELEMENTS = 10
-#: Relative energy error left inside zones of ``ZONE_ELEMENTS`` elements (the floor that
-#: benchmarks/galerkin_convergence.py shows when a smaller rtol is asked); it falls like the
-#: square of the element size.
+#: Relative energy error assumed left inside zones of ``ZONE_ELEMENTS`` elements, which falls like
+#: the square of the element size; a bound: the cycles' energy is as accurate with zones held at
+#: ``ZONE_ELEMENTS`` elements at the page's smaller rtol (docs/validation/galerkin-constants.md#zone_error).
 ZONE_ERROR = 1e-4
 #: The worst relative energy error of an increment is about ``BOUNDARY_ERROR (size / w)^(5/2)``
 #: with ``size`` the element holding a stick/slip boundary and ``w`` the narrower zone beside
-#: it. Fitted with a margin to the worst energy per cycle over amplitudes Q*/fP in [0.05, 0.95]
-#: (benchmarks/galerkin_convergence.py), where the bare fit lets some exceed rtol.
+#: it. Fitted with a margin to the worst energy per cycle over amplitudes Q*/fP in [0.05, 0.95];
+#: the margin left, beside a quarter of it: docs/validation/galerkin-constants.md#boundary_error.
 BOUNDARY_ERROR = 40.0
 #: Elements holding a boundary, and those of the slip zones that the boundaries of the steps
 #: between two turning points sweep, span at most ``BOUNDARY_SPAN rtol a`` in x: `located_end`

@@ -4,10 +4,14 @@ Conventions of docs/theory/conventions.md: positive Q gives positive slip; posit
 move the stick zone toward negative x.
 """
 
+from __future__ import annotations
+
 import itertools
 import math
+from collections.abc import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy import optimize, special
 
 from fretting.physics.contact import Contact
@@ -30,29 +34,32 @@ __all__ = [
     "masing_walk",
 ]
 
+#: A branch piece of Masing's rule, ``(origin, factor, Q_start, Q_end)``: origin and loads [N/m], factor [-].
+Piece = tuple[float, float, float, float]
+
 #: Terms of the power series of `_slip_series`, which it sums below ``psi = 1/4``: ``4^-80`` is
 #: far below rounding.
 SERIES_TERMS = 80
 
 
-def stick_half_width(contact, Q):
+def stick_half_width(contact: Contact, Q: float) -> float:
     """Stick-zone half-width ``b = a sqrt(1 - |Q|/(f P))`` of a Hertz contact [m], eq (8)."""
     return contact.a * np.sqrt(1 - abs(Q) / (contact.f * contact.P))
 
 
-def _ellipse(x, half_width, centre=0.0):
+def _ellipse(x: ArrayLike, half_width: float, centre: float = 0.0) -> np.ndarray:
     """``sqrt(1 - ((x - centre)/half_width)^2)`` inside the interval, zero outside."""
     return np.sqrt(np.clip(1 - ((np.asarray(x) - centre) / half_width) ** 2, 0, None))
 
 
-def cattaneo_mindlin_traction(contact, Q, x):
+def cattaneo_mindlin_traction(contact: Contact, Q: float, x: ArrayLike) -> np.ndarray:
     """Shear traction [Pa] of a Hertz contact under monotonic ``Q`` [N/m], eq (7)."""
     b = stick_half_width(contact, Q)
     shape = _ellipse(x, contact.a) - (b / contact.a) * _ellipse(x, b)
     return np.sign(Q) * contact.f * contact.p0 * shape
 
 
-def cattaneo_mindlin_slip(contact, Q, x):
+def cattaneo_mindlin_slip(contact: Contact, Q: float, x: ArrayLike) -> np.ndarray:
     """Slip [m] of a Hertz contact under monotonic ``Q`` [N/m]: eq (19) integrated from ``b``.
 
     ``s(x) = (f p0 / (E_star a)) [X sqrt(X^2 - b^2) - b^2 arccosh(X / b)]`` with ``X = |x| >= b``.
@@ -64,7 +71,7 @@ def cattaneo_mindlin_slip(contact, Q, x):
     return np.sign(Q) * contact.f * contact.p0 / (contact.E_star * contact.a) * integral
 
 
-def mindlin_deresiewicz_traction(contact, Q_star, Q, x):
+def mindlin_deresiewicz_traction(contact: Contact, Q_star: float, Q: float, x: ArrayLike) -> np.ndarray:
     """Traction [Pa] after ``Q`` [N/m] rises to ``Q_star`` and falls back to ``Q``.
 
     Masing: the change from the turning point is ``-2`` times the monotonic traction of
@@ -73,12 +80,12 @@ def mindlin_deresiewicz_traction(contact, Q_star, Q, x):
     return cattaneo_mindlin_traction(contact, Q_star, x) - 2 * cattaneo_mindlin_traction(contact, (Q_star - Q) / 2, x)
 
 
-def mindlin_deresiewicz_slip(contact, Q_star, Q, x):
+def mindlin_deresiewicz_slip(contact: Contact, Q_star: float, Q: float, x: ArrayLike) -> np.ndarray:
     """Slip [m] after ``Q`` [N/m] rises to ``Q_star`` and falls back to ``Q`` (Masing rule)."""
     return cattaneo_mindlin_slip(contact, Q_star, x) - 2 * cattaneo_mindlin_slip(contact, (Q_star - Q) / 2, x)
 
 
-def bulk_tension_stick_half_width(contact, sigma):
+def bulk_tension_stick_half_width(contact: Contact, sigma: float) -> float:
     """Stick half-width [m] of a Hertz contact under bulk tension ``sigma`` [Pa] alone, eq (23).
 
     ``K(k) - E(k) = pi |sigma| / (8 f p0)`` with modulus ``k = sqrt(1 - (b/a)^2)`` (SciPy's
@@ -90,12 +97,12 @@ def bulk_tension_stick_half_width(contact, sigma):
     return contact.a * np.sqrt(1 - m)
 
 
-def nowell_hills_offset(contact, sigma):
+def nowell_hills_offset(contact: Contact, sigma: float) -> float:
     """Stick-zone centre [m] of a Hertz contact under proportional Q > 0 and sigma: ``-sigma a/(4 f p0)``."""
     return -sigma * contact.a / (4 * contact.f * contact.p0)
 
 
-def nowell_hills_traction(contact, Q, sigma, x):
+def nowell_hills_traction(contact: Contact, Q: float, sigma: float, x: ArrayLike) -> np.ndarray:
     """Traction [Pa] of a Hertz contact under proportional ``Q`` [N/m] and ``sigma`` [Pa] from zero.
 
     Nowell & Hills (1987): ``q = f p0 [sqrt(1 - x^2/a^2) - (b/a) sqrt(1 - (x - e)^2/b^2)]`` with
@@ -107,7 +114,7 @@ def nowell_hills_traction(contact, Q, sigma, x):
     return np.sign(Q) * contact.f * contact.p0 * (_ellipse(x, contact.a) - (b / contact.a) * _ellipse(x, b, e))
 
 
-def ciavarella_jaeger(contact, Q, x):
+def ciavarella_jaeger(contact: Contact, Q: float, x: ArrayLike) -> tuple[np.ndarray, Contact]:
     """Traction [Pa] of any symmetric profile under monotonic ``Q`` [N/m], and its corrective contact.
 
     Ciavarella (1998), Jaeger (1998), section 2 of the seed: ``q = f (p(x; P) - p(x; P_c))`` with
@@ -119,7 +126,7 @@ def ciavarella_jaeger(contact, Q, x):
     return np.sign(Q) * q, corrective
 
 
-def _slip_series(psi, first):
+def _slip_series(psi: float, first: int) -> float:
     """``sum_{n >= first} psi^n / (n (n - 1))`` for ``0 <= psi <= 1`` and `first` 2 or 3, without cancellation.
 
     For ``first = 2`` the sum is ``psi + (1 - psi) ln(1 - psi)``; that form cancels for small
@@ -133,7 +140,7 @@ def _slip_series(psi, first):
     return two if first == 2 else two - psi**2 / 2
 
 
-def cattaneo_mindlin_compliance(contact, Q):
+def cattaneo_mindlin_compliance(contact: Contact, Q: float) -> float:
     """Tangential displacement ``delta_Q`` [m] of a Hertz contact under monotonic ``Q`` [N/m] (Mindlin 1949).
 
     The mean slip ``(1/pi) int_0^pi s(a cos th) dth`` of `cattaneo_mindlin_slip`:
@@ -144,7 +151,7 @@ def cattaneo_mindlin_compliance(contact, Q):
     return math.copysign(contact.f * contact.p0 * contact.a / (2 * contact.E_star) * _slip_series(psi, 2), Q)
 
 
-def cattaneo_mindlin_dissipation(contact, Q):
+def cattaneo_mindlin_dissipation(contact: Contact, Q: float) -> float:
     """Energy [J/m] that a Hertz contact dissipates as ``Q`` [N/m] rises monotonically from zero.
 
     ``int f p |s| dx`` of `cattaneo_mindlin_slip` (every point slips one way only):
@@ -154,7 +161,7 @@ def cattaneo_mindlin_dissipation(contact, Q):
     return math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star) * _slip_series(psi, 3)
 
 
-def mindlin_deresiewicz_energy(contact, Q_star):
+def mindlin_deresiewicz_energy(contact: Contact, Q_star: float) -> float:
     """Energy [J/m] a Hertz contact dissipates per steady cycle of ``Q`` between ``-Q_star`` and ``Q_star`` [N/m].
 
     Mindlin & Deresiewicz (1953): the area of the Masing loop of ``Q`` against ``delta_Q``,
@@ -166,13 +173,13 @@ def mindlin_deresiewicz_energy(contact, Q_star):
     return 4 * cattaneo_mindlin_dissipation(contact, Q_star)
 
 
-def masing_origin(turning):
+def masing_origin(turning: Sequence[float]) -> tuple[float, float]:
     """Start [N/m] and factor of the branch after the open `turning` points: the last of them and 2
     (Masing), or the virgin state ``Q = 0`` and 1."""
     return (turning[-1], 2.0) if turning else (0.0, 1.0)
 
 
-def masing_increment(turning, Q_from, Q_to):
+def masing_increment(turning: Sequence[float], Q_from: float, Q_to: float) -> tuple[tuple[float, ...], list[Piece]]:
     """Turning-point memory of Masing's rule over one change of the load ``Q`` [N/m].
 
     The memory is the stack of open turning points ``Q_1, Q_2, ...``: the path from ``0`` to
@@ -215,7 +222,7 @@ def masing_increment(turning, Q_from, Q_to):
         start, turning = end, turning[:-2]
 
 
-def masing_walk(Q):
+def masing_walk(Q: ArrayLike) -> tuple[list[tuple[float, ...]], list[list[Piece]]]:
     """`masing_increment` along a whole history of ``Q`` [N/m] from the virgin state ``Q[0] = 0``.
 
     Returns

@@ -9,13 +9,19 @@ Positions inside the contact are written ``x = centre + a t`` with ``-1 <= t <= 
 from __future__ import annotations
 
 import abc
+from collections.abc import Callable, Iterable, Sequence
+from typing import NoReturn
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy import fft, optimize, special
 
 from fretting._validate import positive
 
 __all__ = ["Profile", "Hertz", "RoundedFlat", "FlatPunch", "Gap"]
+
+#: A gap ``h0(x)`` [m] or its slope [-] at positions ``x`` [m] (vectorised).
+GapFunction = Callable[[np.ndarray], np.ndarray]
 
 # Root-finding tolerance on lengths and angles, relative: well inside the 1e-10 asked of a.
 _RTOL = 4 * np.finfo(float).eps
@@ -33,21 +39,21 @@ class Profile(abc.ABC):
     breakpoints = ()
 
     @abc.abstractmethod
-    def half_width(self, P, E_star):
+    def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         """Contact half-width `a` [m] and centre [m] for load `P` [N/m] and modulus `E_star` [Pa]."""
 
     @abc.abstractmethod
-    def pressure(self, t, a, centre, P, E_star):
+    def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
         """Contact pressure [Pa] at the normalised positions ``t`` in (-1, 1)."""
 
-    def check(self, a, centre, P, E_star):  # noqa: B027 (a default: closed-form profiles pass)
+    def check(self, a: float, centre: float, P: float, E_star: float) -> None:  # noqa: B027 (a default: closed-form profiles pass)
         """Raise ValueError unless the pressure of the contact `a`, `centre` is admissible.
 
         The closed-form profiles (`Hertz`, `RoundedFlat`, `FlatPunch`) are convex for any
         positive parameters, so their pressure is positive over the one interval; `Gap` checks.
         """
 
-    def peak_pressure(self, a, centre, P, E_star):
+    def peak_pressure(self, a: float, centre: float, P: float, E_star: float) -> float:
         """Largest contact pressure [Pa], found numerically unless a subclass knows it."""
         p = lambda t: self.pressure(np.atleast_1d(t), a, centre, P, E_star)  # noqa: E731
         t = np.linspace(-1, 1, 4097)[1:-1]
@@ -80,20 +86,20 @@ class Hertz(Profile):
     def __init__(self, R: float) -> None:
         self.R = positive("R", R)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Hertz(R={self.R!r})"
 
-    def half_width(self, P, E_star):
+    def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         return np.sqrt(4 * P * self.R / (np.pi * E_star)), 0.0
 
-    def load_slope(self, a, E_star):
+    def load_slope(self, a: ArrayLike, E_star: float) -> np.ndarray:
         """``dP/da = pi E_star a / (2R)`` [N/m^2], from ``a = sqrt(4 P R / (pi E_star))``."""
         return np.pi * E_star * np.asarray(a) / (2 * self.R)
 
-    def pressure(self, t, a, centre, P, E_star):
+    def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
         return self.peak_pressure(a, centre, P, E_star) * np.sqrt(1 - np.square(t))
 
-    def peak_pressure(self, a, centre, P, E_star):
+    def peak_pressure(self, a: float, centre: float, P: float, E_star: float) -> float:
         return 2 * P / (np.pi * a)
 
 
@@ -106,19 +112,19 @@ class FlatPunch(Profile):
 
     SYMMETRIC = True
 
-    def __init__(self, a):
+    def __init__(self, a: float) -> None:
         self.a = positive("a", a)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"FlatPunch(a={self.a!r})"
 
-    def half_width(self, P, E_star):
+    def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         return self.a, 0.0
 
-    def pressure(self, t, a, centre, P, E_star):
+    def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
         return self.peak_pressure(a, centre, P, E_star) / np.sqrt(1 - np.square(t))
 
-    def peak_pressure(self, a, centre, P, E_star):
+    def peak_pressure(self, a: float, centre: float, P: float, E_star: float) -> float:
         return P / (np.pi * a)
 
 
@@ -144,10 +150,10 @@ class RoundedFlat(Profile):
         self.R = positive("R", R)
         self.breakpoints = (-self.b, self.b)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"RoundedFlat(b={self.b!r}, R={self.R!r})"
 
-    def _load(self, a, E_star):
+    def _load(self, a: ArrayLike, E_star: float) -> np.ndarray:
         """``P = E_star a^2 (2e - sin 2e) / (4R)`` with ``e = pi/2 - phi0 = arctan(sqrt(a^2 - b^2) / b)``.
 
         Written in ``e`` so that it keeps its relative precision as ``a -> b``, where
@@ -156,12 +162,12 @@ class RoundedFlat(Profile):
         e = np.arctan2(self._root(a), self.b)
         return E_star * np.square(a) * _x_minus_sin(2 * e) / (4 * self.R)
 
-    def _root(self, a):
+    def _root(self, a: ArrayLike) -> np.ndarray:
         """``sqrt(a^2 - b^2)`` [m], zero for ``a <= b``."""
         a = np.asarray(a, dtype=float)
         return np.sqrt(np.clip((a - self.b) * (a + self.b), 0, None))
 
-    def load_slope(self, a, E_star):
+    def load_slope(self, a: ArrayLike, E_star: float) -> np.ndarray:
         """``dP/da = E_star (2a (2e - sin 2e) + 4 b sqrt(a^2 - b^2) / a) / (4R)``, `_load` differentiated
         with ``de/da = b / (a sqrt(a^2 - b^2))``; zero for ``a <= b``."""
         a = np.asarray(a, dtype=float)
@@ -169,14 +175,14 @@ class RoundedFlat(Profile):
         e = np.arctan2(root, self.b)
         return E_star * (2 * a * _x_minus_sin(2 * e) + 4 * self.b * root / a) / (4 * self.R)
 
-    def half_width(self, P, E_star):
+    def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         high = 2 * self.b
         while self._load(high, E_star) < P:
             high *= 2
         a = optimize.brentq(lambda a: self._load(a, E_star) / P - 1, self.b, high, xtol=1e-300, rtol=_RTOL, maxiter=500)
         return a, 0.0
 
-    def pressure(self, t, a, centre, P, E_star):
+    def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
         phi = np.arcsin(t)
         phi0 = np.arcsin(self.b / a)
         s, s0 = np.sin(phi), np.sin(phi0)
@@ -231,7 +237,7 @@ class Gap(Profile):
     #: Chebyshev points for the expansion of the slope.
     ORDER = 1024
 
-    def __init__(self, h0, slope=None, breakpoints=()):
+    def __init__(self, h0: GapFunction, slope: GapFunction | None = None, breakpoints: Sequence[float] = ()) -> None:
         if not callable(h0) or (slope is not None and not callable(slope)):
             raise ValueError("Gap needs callables h0(x) and, optionally, slope(x)")
         points = np.asarray(breakpoints, dtype=float)
@@ -241,7 +247,7 @@ class Gap(Profile):
         #: ``(x, h0)`` [m] of a profile made by `from_table`, else None.
         self.table = None
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         """``Gap.from_table(x=[...], h0=[...], breakpoints=[...])`` of a table, every value to the last bit."""
         points = _floats(self.breakpoints)
         if self.table is None:
@@ -250,7 +256,7 @@ class Gap(Profile):
         return f"Gap.from_table(x={x}, h0={h0}, breakpoints={points})"
 
     @classmethod
-    def from_table(cls, x, h0, breakpoints=()):
+    def from_table(cls, x: ArrayLike, h0: ArrayLike, breakpoints: Sequence[float] = ()) -> Gap:
         """Profile from a table of gaps ``h0`` [m] at increasing positions ``x`` [m] (cubic spline)."""
         from scipy.interpolate import CubicSpline
 
@@ -260,7 +266,7 @@ class Gap(Profile):
         profile.table = (x, h0)
         return profile
 
-    def check(self, a, centre, P, E_star):  # noqa: B027 (a default: closed-form profiles pass)
+    def check(self, a: float, centre: float, P: float, E_star: float) -> None:  # noqa: B027 (a default: closed-form profiles pass)
         """Raise ValueError naming where the contact fails: outside the table, or a negative pressure.
 
         The pressure is sampled at `CHECK_POINTS` Chebyshev angles; one below `NEGATIVE_PRESSURE`
@@ -280,7 +286,7 @@ class Gap(Profile):
             where = f"the pressure is negative at x = {centre + a * t[k]:.6g} m ({p[k]:.4g} Pa) in the contact"
             self._refuse(low, high, f"{where} [{low:.6g}, {high:.6g}] m")
 
-    def _refuse(self, low, high, problem):
+    def _refuse(self, low: float, high: float, problem: str) -> NoReturn:
         """Raise ValueError with `problem`, after the first knot of a table in [low, high] where it is concave."""
         concave = np.zeros(0)
         if self.table is not None:
@@ -289,32 +295,32 @@ class Gap(Profile):
         first = f"the table's curvature is first negative at x = {concave[0]:.6g} m, so " if concave.size else ""
         raise ValueError(f"{first}{problem}: a gap must be convex where the bodies touch")
 
-    def slope(self, x):
+    def slope(self, x: np.ndarray) -> np.ndarray:
         if self._slope is not None:
             return np.asarray(self._slope(x), float)
         step = 1e-6 * max(np.max(np.abs(x)), np.finfo(float).tiny)
         return (np.asarray(self.h0(x + step), float) - np.asarray(self.h0(x - step), float)) / (2 * step)
 
-    def _coefficients(self, a, centre):
+    def _coefficients(self, a: float, centre: float) -> np.ndarray:
         """Chebyshev coefficients ``b_n`` of ``h0'(centre + a t)``."""
         theta = (np.arange(self.ORDER) + 0.5) * np.pi / self.ORDER
         coefficients = fft.dct(self.slope(centre + a * np.cos(theta)), type=2) / self.ORDER
         coefficients[0] /= 2
         return coefficients
 
-    def _centre(self, a):
+    def _centre(self, a: float) -> float:
         """Centre that makes the pressure bounded at both ends (``b_0 = 0``)."""
         b0 = lambda c: self._coefficients(a, c)[0]  # noqa: E731 - increasing in c for convex h0
         low, high = _bracket(b0, -a, a, lower=-np.inf)
         return optimize.brentq(b0, low, high, xtol=1e-14 * a, rtol=_RTOL)
 
-    def half_width(self, P, E_star):
+    def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         load = lambda a: np.pi * a * E_star * self._coefficients(a, self._centre(a))[1] / 4  # noqa: E731
         low, high = _bracket(lambda a: load(a) - P, 0.5, 2.0, lower=0.0)
         a = optimize.brentq(lambda a: load(a) / P - 1, low, high, xtol=1e-300, rtol=_RTOL)
         return a, self._centre(a)
 
-    def pressure(self, t, a, centre, P, E_star):
+    def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
         coefficients = self._coefficients(a, centre)
         n = np.arange(1, coefficients.size)
         theta = np.arccos(np.clip(t, -1, 1))
@@ -325,7 +331,7 @@ class Gap(Profile):
 _X_MINUS_SIN = [(-1) ** k / special.factorial(2 * k + 3) for k in range(8)]
 
 
-def _x_minus_sin(x):
+def _x_minus_sin(x: ArrayLike) -> np.ndarray:
     """``x - sin(x)`` for ``x >= 0`` without the cancellation of the difference at small ``x``.
 
     Below 0.5 its Taylor series to ``x^17`` (the next term is ``1e-21`` of the sum there), above
@@ -337,12 +343,12 @@ def _x_minus_sin(x):
     return np.where(x < 0.5, series, x - np.sin(x))
 
 
-def _floats(values):
+def _floats(values: Iterable[float]) -> str:
     """``[v, ...]``: each value's shortest repr that reads back to the same float."""
     return "[" + ", ".join(repr(float(v)) for v in values) + "]"
 
 
-def _bracket(function, low, high, lower):
+def _bracket(function: Callable[[float], float], low: float, high: float, lower: float) -> tuple[float, float]:
     """Widen ``[low, high]`` geometrically until the increasing `function` changes sign."""
     for _ in range(400):
         f_low, f_high = function(low), function(high)

@@ -15,12 +15,16 @@ import re
 import secrets
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import h5py
 import numpy as np
 import xarray as xr
 
 from fretting.errors import FrettingError
+
+if TYPE_CHECKING:
+    from fretting.loading.history_file import HistorySource
 
 __all__ = [
     "ENGINE",
@@ -93,7 +97,7 @@ def save(result: xr.Dataset, path: str | os.PathLike) -> None:
         temporary.unlink(missing_ok=True)
 
 
-def remove_temporaries(path):
+def remove_temporaries(path: str | os.PathLike) -> list[Path]:
     """Delete the temporary files that `save` left beside `path` when its process was killed.
 
     Only names ``.NAME.<hex>.tmp`` of `path` itself go, not those of other files whose names start
@@ -113,7 +117,7 @@ def remove_temporaries(path):
     return stale
 
 
-def _write(result, temporary, path):
+def _write(result: xr.Dataset, temporary: Path, path: Path) -> None:
     """Write `result` to the file `temporary` and flush it to disk; errors name `path`, the file asked for."""
     encoding = {name: COMPRESSION for name, variable in result.variables.items() if variable.dtype.kind in "biuf"}
     try:
@@ -179,27 +183,27 @@ def join_results(parts: Sequence[xr.Dataset]) -> xr.Dataset:
 class Joiner:
     """`join_results` of parts that arrive one at a time, holding each run of equal cycle rows once.
 
-    A long run's per-cycle fields outweigh the rest of its result (10^5 cycles of ``w`` and
-    ``slip_amplitude`` at 273 nodes: 218 MB), yet the cycles of a periodic state repeat them
-    exactly. Each part's rows are taken into `_Rows` as the part is added, so the part itself
-    need not be kept and a repeated row is held once; `result` expands them.
+    A long run's per-cycle fields, cycles times nodes of them, outweigh the rest of its result, yet
+    the cycles of a periodic state repeat them exactly. Each part's rows are taken into `_Rows` as
+    the part is added, so the part itself need not be kept and a repeated row is held once;
+    `result` expands them.
     """
 
-    def __init__(self):
+    def __init__(self) -> None:
         self._pieces, self._vertices, self._end = [], {}, 0
         self._first_attrs, self._last = None, None
         self._rows, self._count = {}, 0
 
-    def __len__(self):
+    def __len__(self) -> int:
         """Number of parts added."""
         return len(self._pieces)
 
     @property
-    def steps(self):
+    def steps(self) -> int:
         """Steps of the joined result so far (its ``steps`` attribute)."""
         return self._end + 1
 
-    def add(self, part):
+    def add(self, part: xr.Dataset) -> None:
         """Join `part`, which continues the parts added before (see `join_results`)."""
         per_cycle = [name for name, variable in part.variables.items() if "cycle_number" in variable.dims]
         if self._last is not None:
@@ -216,7 +220,7 @@ class Joiner:
             self._add_rows({name: part[name].variable for name in per_cycle})
         self._last = part.drop_vars(per_cycle)
 
-    def _add_vertices(self, part, later):
+    def _add_vertices(self, part: xr.Dataset, later: bool) -> None:
         """Take the per-vertex variables of `part` (``vertex_step``, the loads) into the run's; a
         later part's vertex at its step 0 is the previous part's last one, and is dropped."""
         steps = part.vertex_step.values
@@ -226,7 +230,7 @@ class Joiner:
                 values = variable.values[kept]
                 self._vertices.setdefault(name, []).append(values + self._end if name == "vertex_step" else values)
 
-    def _add_rows(self, cycles):
+    def _add_rows(self, cycles: dict[str, xr.Variable]) -> None:
         """Take the per-cycle variables `cycles` (name -> xarray.Variable) of a part into the run's rows."""
         numbers = cycles["cycle_number"].values
         held = self._rows.get("cycle_number")
@@ -236,7 +240,7 @@ class Joiner:
             self._rows.setdefault(name, _Rows(variable)).put(start, variable.values)
         self._count = start + numbers.size
 
-    def result(self):
+    def result(self) -> xr.Dataset:
         """The joined result of the parts added so far."""
         if self._last is None:
             raise ResultError("no results to join")
@@ -267,18 +271,18 @@ class _Rows:
     """The rows of one per-cycle variable of a run: each run of equal rows held once, and the
     index of every cycle's row among them."""
 
-    def __init__(self, variable):
+    def __init__(self, variable: xr.Variable) -> None:
         self._dims, self._attrs = variable.dims, variable.attrs
         self._distinct = np.empty((1, *variable.shape[1:]), dtype=variable.dtype)
         self._held = 0  # rows of _distinct in use
         self._index = np.empty(0, dtype=np.int64)
 
     @property
-    def last(self):
+    def last(self) -> np.ndarray:
         """The row of the last cycle held."""
         return self._distinct[self._index[-1]]
 
-    def put(self, start, values):
+    def put(self, start: int, values: np.ndarray) -> None:
         """Rows `values` for the cycles from number `start` (counted from 0) on, replacing any held there."""
         replaced = self._index[start:]
         if replaced.size and replaced[0] == self._held - 1 and (start == 0 or self._index[start - 1] != replaced[0]):
@@ -298,12 +302,12 @@ class _Rows:
         self._held += len(new)
         self._index = np.concatenate([self._index[:start], index])
 
-    def variable(self):
+    def variable(self) -> xr.Variable:
         """The rows of every cycle, as an xarray.Variable."""
         return xr.Variable(self._dims, self._distinct[self._index], self._attrs)
 
 
-def _check_continues(previous, part):
+def _check_continues(previous: xr.Dataset, part: xr.Dataset) -> None:
     """Refuse `part` unless it starts where `previous` ends (checked where its step 0 is recorded)."""
     end = float(previous.state_Q), float(previous.state_sigma)
     if 0 in part.step.values:
@@ -312,7 +316,7 @@ def _check_continues(previous, part):
             raise ResultError(f"a part starts at (Q, sigma) = {start}, not where the previous one ends, {end}")
 
 
-def provenance():
+def provenance() -> dict[str, str]:
     """Attributes that say when and with what a result was written.
 
     Returns
@@ -327,19 +331,19 @@ def provenance():
     return {"created": created, "versions": json.dumps(versions)}
 
 
-def _version(distribution):
+def _version(distribution: str) -> str:
     try:
         return importlib.metadata.version(distribution)
     except importlib.metadata.PackageNotFoundError:  # run from a source tree
         return "not installed"
 
 
-def source_attributes(source):
+def source_attributes(source: HistorySource) -> dict[str, str]:
     """Attributes that record the history file a result was run from.
 
     Parameters
     ----------
-    source : fretting.history_file.HistorySource
+    source : fretting.loading.history_file.HistorySource
 
     Returns
     -------

@@ -1,7 +1,12 @@
 """The dataset contract: every variable of a result, declared once, and the dataset built from it."""
 
+from __future__ import annotations
+
+from collections.abc import Mapping
+
 import numpy as np
 import xarray as xr
+from numpy.typing import ArrayLike
 
 __all__ = ["CYCLE_PEAKS", "VARIABLES", "build_dataset"]
 
@@ -79,7 +84,7 @@ VARIABLES = {
 }
 
 
-def build_dataset(data, attrs):
+def build_dataset(data: Mapping[str, ArrayLike], attrs: dict) -> xr.Dataset:
     """Dataset of the arrays in `data` (names from `VARIABLES`), with units and long names."""
     variables = {}
     for name, values in data.items():
