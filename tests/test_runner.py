@@ -42,3 +42,23 @@ def test_a_run_in_chunks_keeps_the_loads_at_every_vertex(tmp_path, monkeypatch):
     np.testing.assert_array_equal(chunked.vertex_Q.values, history.Q[history.vertex_step])
     np.testing.assert_array_equal(chunked.vertex_sigma.values, history.sigma[history.vertex_step])
     assert chunked.vertex_Q.attrs["units"] == "N/m" and chunked.vertex_sigma.attrs["units"] == "Pa"
+
+
+def test_a_run_saved_in_parts_equals_the_run_in_one_piece(tmp_path, monkeypatch):
+    """Parts of at most PART_CYCLES cycles, each saved as it fills and never held again: the
+    result joined from them is the run in one piece; the checkpoint folder is gone after."""
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 5)
+    monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)
+    monkeypatch.setattr(runner, "PART_CYCLES", 2)
+    saved = []
+    monkeypatch.setattr(runner, "save", lambda result, path: saved.append(result.sizes) or fr.save(result, path))
+    history_file = tmp_path / "path.toml"
+    history_file.write_text(HERTZ_TOML + LOADS)
+    contact, history = fr.read_history(history_file)
+    result = runner.run_file(history_file, tmp_path / "path.h5", Grid(32), checkpoint_interval=1e6).result
+    whole = fr.simulate(contact, history, nodes=32)
+    assert len(saved) >= 3 and max(sizes["cycle_number"] for sizes in saved) <= 3
+    assert not runner.checkpoint_path(tmp_path / "path.h5").exists()
+    for name, variable in whole.variables.items():
+        if name != "cycle_copied":
+            np.testing.assert_array_equal(result[name].values, variable.values, err_msg=name)

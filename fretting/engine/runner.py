@@ -1,10 +1,14 @@
 """The runner: a history file run to a result file in chunks, with checkpoints and resume.
 
 `run_file` steps one `Stepper` through the history chunk by chunk, so the model's set-up (the
-stiffness, the exact model's branches) is built once per run. Each chunk's result is joined as it
-comes (`fretting.results.io.Joiner`); the joined result is written as a checkpoint every
-`CHECKPOINT_SECONDS` and on an interruption, and a run resumed from its checkpoint goes on from the
-checkpoint's final state, to the same result bit for bit.
+stiffness, the exact model's branches) is built once per run. Chunks are joined as they come
+(`fretting.results.io.Joiner`) into a *part*, which is saved to the checkpoint folder
+``OUTPUT.checkpoint/`` every `CHECKPOINT_SECONDS`, when it holds `PART_CYCLES` cycles, and on an
+interruption; a part saved is never rewritten, so memory does not grow with the run's cycles and
+a checkpoint costs only the part. At the end the parts are joined into the result file
+(`fretting.results.io.save_joined`: the per-cycle rows appended part by part) and the folder is
+deleted. A run resumed from its checkpoint goes on from its last part's final state, to the same
+result bit for bit.
 
 Before any stepping a run checks that it can write its output and takes the output's lock
 (`holding`): a second run of the same output is refused at once, and the temporary files of a
@@ -16,6 +20,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import shutil
 import time
 import warnings
 from collections.abc import Callable
@@ -31,14 +36,25 @@ from fretting.engine.recorder import Recorder, final_state, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.errors import GrossSlipError
 from fretting.loading.history_file import read_history_source
-from fretting.results.io import Joiner, ResultError, load, remove_temporaries, save, source_attributes
+from fretting.results.io import (
+    Joiner,
+    ResultError,
+    join_results,
+    joined_steps,
+    load,
+    open_result,
+    remove_temporaries,
+    save,
+    save_joined,
+    source_attributes,
+)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from fretting.models.base import ModelSpec
 
-__all__ = ["CHECKPOINT_SECONDS", "Run", "holding", "run_file"]
+__all__ = ["CHECKPOINT_SECONDS", "PART_CYCLES", "Run", "checkpointed", "holding", "run_file"]
 
 #: Steps of the first chunk run at a time: how often progress is reported and a checkpoint can be
 #: written. A chunk that takes less than CHUNK_SECONDS doubles the next one's steps, so that runs
@@ -51,8 +67,12 @@ CHUNK_SECONDS = 1.0
 MAX_CHUNK_STEPS = 2**18
 
 #: Seconds between checkpoints by default: at most a minute of work lost in a crash. Each
-#: checkpoint rewrites the partial result whole.
+#: checkpoint saves the part joined since the last one.
 CHECKPOINT_SECONDS = 60.0
+
+#: Cycles a part holds at most before it is saved, whatever the time: the per-cycle rows held in
+#: memory (5 rows of N float32 each: 10 MB at 500 nodes).
+PART_CYCLES = 1024
 
 
 @dataclass(frozen=True)
@@ -61,21 +81,43 @@ class Run:
 
     Attributes
     ----------
-    result : xarray.Dataset
     output : Path
     notes : list of str
         One line each: a model that fell back, a resume that found no checkpoint.
     """
 
-    result: object
     output: Path
     notes: list
 
+    @property
+    def result(self):
+        """The result written (xarray.Dataset), opened lazily: its variables are read when used."""
+        return open_result(self.output)
+
 
 def checkpoint_path(output):
-    """The checkpoint file of the result file `output`."""
+    """The checkpoint folder of the result file `output`: its parts, ``000001.h5``, ``000002.h5``, ..."""
     output = Path(output)
     return output.with_name(f"{output.name}.checkpoint")
+
+
+def _parts(checkpoint):
+    """The part files in the folder `checkpoint`, in order (none if there is no folder)."""
+    return sorted(checkpoint.glob("[0-9]" * 6 + ".h5")) if checkpoint.is_dir() else []
+
+
+def checkpointed(checkpoint: str | os.PathLike):
+    """The partial result kept in the checkpoint folder `checkpoint` (its parts joined, in memory).
+
+    Raises
+    ------
+    FileNotFoundError
+        When the folder holds no part.
+    """
+    parts = _parts(Path(checkpoint))
+    if not parts:
+        raise FileNotFoundError(errno.ENOENT, "no checkpoint parts", str(checkpoint))
+    return join_results([load(part) for part in parts])
 
 
 def lock_path(output):
@@ -200,9 +242,11 @@ def run_file(
     output = writable(output)
     with holding(output):
         checkpoint = checkpoint_path(output)
-        for path in (output, checkpoint):
+        for path in (output, checkpoint):  # a checkpoint file: of fretting 0.1
             remove_temporaries(path)
-        joiner, start, state, notes = _started(checkpoint, source, model, resume)
+        if checkpoint.is_dir():
+            remove_temporaries(_next_part(checkpoint))
+        start, state, notes = _started(checkpoint, source, model, resume)
         history = source.history
         stepper = Stepper(source.contact, model if state is None else None, state)
         with warnings.catch_warnings(record=True) as caught:
@@ -215,43 +259,57 @@ def run_file(
                 warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
         attributes = source_attributes(source)
         record = recorded_steps(record, len(history))
-        written = time.monotonic()
+        part, written = Joiner(), time.monotonic()
         try:
-            for part in _chunks(stepper, history, record, start):
-                joiner.add(part)
+            for chunk in _chunks(stepper, history, record, start):
+                part.add(chunk)
+                start += chunk.attrs["steps"] - 1
                 if progress is not None:
-                    progress(joiner.steps - 1, len(history) - 1)
-                if time.monotonic() - written >= checkpoint_interval:
-                    save(joiner.result().assign_attrs(attributes), checkpoint)
-                    written = time.monotonic()
+                    progress(start, len(history) - 1)
+                if time.monotonic() - written >= checkpoint_interval or part.cycles >= PART_CYCLES:
+                    _save_part(part, checkpoint, attributes)
+                    part, written = Joiner(), time.monotonic()
         except KeyboardInterrupt:
-            if len(joiner):
-                save(joiner.result().assign_attrs(attributes), checkpoint)
+            if len(part):
+                _save_part(part, checkpoint, attributes)
+            if _parts(checkpoint):
                 raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
             raise
         except GrossSlipError:
-            checkpoint.unlink(missing_ok=True)  # resuming would only reach it again
+            shutil.rmtree(checkpoint, ignore_errors=True)  # resuming would only reach it again
             raise
         del source, history  # the loads of every step: the result holds what it records
-        result = joiner.result().assign_attrs(attributes)
-        save(result, output)
-        checkpoint.unlink(missing_ok=True)
-    return Run(result, output, notes)
+        if len(part):
+            _save_part(part, checkpoint, attributes)
+        save_joined(_parts(checkpoint), output, attributes)
+        shutil.rmtree(checkpoint)
+    return Run(output, notes)
 
 
 def _started(checkpoint, source, model, resume):
-    """``(joiner, start, state, notes)`` a run begins with: the checkpoint's when resumed, else empty."""
-    if checkpoint.exists() and not resume:
+    """``(start, state, notes)`` a run begins with: the checkpoint's last step and state when
+    resumed, else step 0 and no state."""
+    if _parts(checkpoint) and not resume:
         raise ResultError(
             f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
         )
-    joiner = Joiner()
-    if resume and checkpoint.exists():
+    if resume and _parts(checkpoint):
         done = _resumable(checkpoint, source, model)
-        joiner.add(done)
-        return joiner, done.attrs["steps"] - 1, final_state(done), []  # the joiner holds its cycles
+        return done.attrs["steps"] - 1, final_state(done), []
+    shutil.rmtree(checkpoint, ignore_errors=True)  # a folder without parts: killed before its first
     notes = [f"{checkpoint}: no checkpoint to resume from: the run starts at step 0"] if resume else []
-    return joiner, 0, None, notes
+    return 0, None, notes
+
+
+def _save_part(part, checkpoint, attributes):
+    """Save the joined chunks `part` as the next part file of the folder `checkpoint`."""
+    checkpoint.mkdir(exist_ok=True)
+    save(part.result().assign_attrs(attributes), _next_part(checkpoint))
+
+
+def _next_part(checkpoint):
+    """The file of the next part saved to the folder `checkpoint`."""
+    return checkpoint / f"{len(_parts(checkpoint)) + 1:06d}.h5"
 
 
 def _chunks(stepper, history, record, start):
@@ -262,7 +320,7 @@ def _chunks(stepper, history, record, start):
     """
     steps, first = CHUNK_STEPS, start
     while first == start == 0 or start < len(history) - 1:
-        stop = min(start + steps, len(history) - 1)
+        stop = _cut(history, start, min(start + steps, len(history) - 1))
         began = time.monotonic()
         mine = record[(record >= first) & (record <= stop)] - start
         chunk = history[start : stop + 1]
@@ -279,9 +337,18 @@ def _chunks(stepper, history, record, start):
             return
 
 
+def _cut(history, start, stop):
+    """`stop`, or an earlier step, so that the chunk from `start` touches at most `PART_CYCLES` cycles."""
+    if history.cycle is None:
+        return stop
+    begins = np.flatnonzero(np.diff(history.cycle[start : stop + 1])) + start + 1  # steps that begin a stretch
+    return stop if begins.size < PART_CYCLES else int(begins[PART_CYCLES - 1])
+
+
 def _resumable(checkpoint, source, model):
-    """The partial result in `checkpoint`, checked to belong to this history file and the `model` asked (None: any)."""
-    done = load(checkpoint)
+    """The recorded steps and state of the parts in `checkpoint` (their per-cycle rows left on disk),
+    checked to belong to this history file and the `model` asked (None: any)."""
+    done = joined_steps(_parts(checkpoint))
     if done.attrs.get("history_sha256") != source.sha256:
         raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
     found = recorded_spec(done)
