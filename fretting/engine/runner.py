@@ -32,6 +32,7 @@ import numpy as np
 from filelock import FileLock, Timeout
 
 from fretting.engine.choice import ModelFallbackWarning, could_be_default, recorded_spec
+from fretting.engine.follow import skippable
 from fretting.engine.recorder import Recorder, final_state, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.errors import GrossSlipError
@@ -196,6 +197,7 @@ def run_file(
     resume: bool = False,
     checkpoint_interval: float = CHECKPOINT_SECONDS,
     progress: Callable[[int, int], object] | None = None,
+    every_step: bool = False,
 ) -> Run:
     """Run a history file and write its result to `output`, checkpointed and resumable.
 
@@ -216,6 +218,11 @@ def run_file(
         Seconds between checkpoints (0: after every chunk).
     progress : callable, optional
         ``progress(done, total)``: steps done so far and in all, after each chunk.
+    every_step : bool
+        Solve every step. By default the steps inside straight stretches of the load path that
+        are not recorded (`record`) are skipped (`fretting.engine.follow.skippable`): the energy, ``w`` and
+        slip range are the same to rounding, but the specimen's ``sigma_xx`` peaks per cycle
+        are not tallied (the result's ``cycle_peaks`` attribute says which are).
 
     Returns
     -------
@@ -261,7 +268,8 @@ def run_file(
         record = recorded_steps(record, len(history))
         part, written = Joiner(), time.monotonic()
         try:
-            for chunk in _chunks(stepper, history, record, start):
+            skipping = not every_step and record.size < len(history)  # a recorded step is solved
+            for chunk in _chunks(stepper, history, record, start, skipping):
                 part.add(chunk)
                 start += chunk.attrs["steps"] - 1
                 if progress is not None:
@@ -312,19 +320,20 @@ def _next_part(checkpoint):
     return checkpoint / f"{len(_parts(checkpoint)) + 1:06d}.h5"
 
 
-def _chunks(stepper, history, record, start):
+def _chunks(stepper, history, record, start, skipping):
     """Results of successive chunks of `history` from step `start`, stepped by `stepper`.
 
     Each chunk records the steps of `record` (numbers in the whole history) that it reaches; a
     later chunk's step 0 is the last one's end. Only the stepper's state is kept between chunks.
+    `skipping`: skip the steps inside straight stretches that are not recorded (`Recorder`).
     """
     steps, first = CHUNK_STEPS, start
     while first == start == 0 or start < len(history) - 1:
-        stop = _cut(history, start, min(start + steps, len(history) - 1))
+        stop = _cut(history, record, start, min(start + steps, len(history) - 1), stepper.model.contact, skipping)
         began = time.monotonic()
         mine = record[(record >= first) & (record <= stop)] - start
         chunk = history[start : stop + 1]
-        recorder = Recorder(stepper.model, chunk, mine)
+        recorder = Recorder(stepper.model, chunk, mine, skipping)
         try:
             state = stepper.run(chunk, recorder)
         except GrossSlipError as error:
@@ -337,12 +346,31 @@ def _chunks(stepper, history, record, start):
             return
 
 
-def _cut(history, start, stop):
-    """`stop`, or an earlier step, so that the chunk from `start` touches at most `PART_CYCLES` cycles."""
-    if history.cycle is None:
+def _cut(history, record, start, stop, contact, skipping):
+    """`stop`, or an earlier step, at which the chunk from `start` ends: one that touches at most
+    `PART_CYCLES` cycles and, when `skipping`, ends at a step that the whole run solves too (not
+    `fretting.engine.follow.skippable` in the whole history), so that cutting keeps the run bit
+    for bit; a straight stretch longer than the chunk is cut at its end."""
+    if history.cycle is not None:
+        begins = np.flatnonzero(np.diff(history.cycle[start : stop + 1])) + start + 1  # steps that begin a stretch
+        stop = stop if begins.size < PART_CYCLES else int(begins[PART_CYCLES - 1])
+    if not skipping:
         return stop
-    begins = np.flatnonzero(np.diff(history.cycle[start : stop + 1])) + start + 1  # steps that begin a stretch
-    return stop if begins.size < PART_CYCLES else int(begins[PART_CYCLES - 1])
+    end = stop
+    while True:  # a straight stretch longer than the chunk: the chunk ends where the stretch does
+        solved = _solved(history, record, start, end, contact)
+        if solved.size:
+            below = solved[solved <= stop]
+            return int(below[-1] if below.size else solved[0])
+        end = min(2 * end - start, len(history) - 1)
+
+
+def _solved(history, record, start, end, contact):
+    """Steps in ``(start, end]`` that a run skipping steps solves (not `skippable` in the whole history)."""
+    near = history[start : min(end + 2, len(history))]  # the step after `end` decides if `end` is skippable
+    recorded = np.zeros(len(near), dtype=bool)
+    recorded[record[(record >= start) & (record < start + len(near))] - start] = True
+    return np.flatnonzero(~skippable(near, recorded, contact)[1 : end - start + 1]) + start + 1
 
 
 def _resumable(checkpoint, source, model):

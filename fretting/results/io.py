@@ -220,12 +220,7 @@ def _synced(temporary, path):
 def load(path: str | os.PathLike) -> xr.Dataset:
     """The result in a file written by `save`, read fully into memory; the file is closed on return.
 
-    Raises
-    ------
-    FileNotFoundError
-        When there is no file at `path`.
-    ResultError
-        When it is not a result of `fretting`.
+    Raises the errors of `open_result`.
 
     Examples
     --------
