@@ -3,6 +3,7 @@
 import hashlib
 import importlib
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -377,3 +378,25 @@ def test_resume_without_a_checkpoint_says_so(workdir, capsys):
     out, err = capsys.readouterr()
     assert err == "fretting: note: shear.h5.checkpoint: no checkpoint to resume from: the run starts at step 0\n"
     assert out.startswith("shear.h5: 82 steps")
+
+
+def test_resume_refuses_a_run_that_solved_its_steps_otherwise(workdir, capsys, monkeypatch):
+    """A checkpoint of a run that skipped steps is not continued solving every step (nor the
+    converse): the whole run would do neither. A checkpoint file of fretting 0.1 is refused."""
+    engine = importlib.import_module("fretting.engine.recorder")
+    monkeypatch.setattr(engine, "RECORD_ALL_STEPS", 10)
+    monkeypatch.setattr(engine, "RECORDED_ENDS", 5)
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 20)
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    monkeypatch.setattr(runner, "Stepper", _interrupt_after(2))
+    assert run("run", "shear.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 130
+    monkeypatch.setattr(runner, "Stepper", fr.Stepper)
+    capsys.readouterr()
+    assert run("run", "shear.toml", "--nodes", NODES, "--resume", "--every-step") == 2
+    assert capsys.readouterr().err.endswith(
+        "found a run with steps skipped (without --every-step), expected every step solved (--every-step)\n"
+    )
+    shutil.rmtree(workdir / "shear.h5.checkpoint")
+    write(workdir / "shear.h5.checkpoint", "a result written by fretting 0.1")
+    assert run("run", "shear.toml", "--nodes", NODES) == 2
+    assert "found the checkpoint file of an earlier version of fretting: delete it" in capsys.readouterr().err

@@ -33,7 +33,7 @@ from filelock import FileLock, Timeout
 
 from fretting.engine.choice import ModelFallbackWarning, could_be_default, recorded_spec
 from fretting.engine.follow import skippable
-from fretting.engine.recorder import Recorder, final_state, recorded_steps
+from fretting.engine.recorder import CYCLE_PEAKS_TALLIED, Recorder, final_state, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.errors import GrossSlipError
 from fretting.loading.history_file import read_history_source
@@ -253,8 +253,10 @@ def run_file(
             remove_temporaries(path)
         if checkpoint.is_dir():
             remove_temporaries(_next_part(checkpoint))
-        start, state, notes = _started(checkpoint, source, model, resume)
         history = source.history
+        record = recorded_steps(record, len(history))
+        skipping = not every_step and record.size < len(history)  # a recorded step is solved
+        start, state, notes = _started(checkpoint, source, model, resume, skipping)
         stepper = Stepper(source.contact, model if state is None else None, state)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ModelFallbackWarning)
@@ -265,10 +267,8 @@ def run_file(
             else:
                 warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
         attributes = source_attributes(source)
-        record = recorded_steps(record, len(history))
         part, written = Joiner(), time.monotonic()
         try:
-            skipping = not every_step and record.size < len(history)  # a recorded step is solved
             for chunk in _chunks(stepper, history, record, start, skipping):
                 part.add(chunk)
                 start += chunk.attrs["steps"] - 1
@@ -294,15 +294,17 @@ def run_file(
     return Run(output, notes)
 
 
-def _started(checkpoint, source, model, resume):
+def _started(checkpoint, source, model, resume, skipping):
     """``(start, state, notes)`` a run begins with: the checkpoint's last step and state when
     resumed, else step 0 and no state."""
+    if checkpoint.is_file():
+        raise ResultError(f"{checkpoint}: found the checkpoint file of an earlier version of fretting: delete it")
     if _parts(checkpoint) and not resume:
         raise ResultError(
             f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
         )
     if resume and _parts(checkpoint):
-        done = _resumable(checkpoint, source, model)
+        done = _resumable(checkpoint, source, model, skipping)
         return done.attrs["steps"] - 1, final_state(done), []
     shutil.rmtree(checkpoint, ignore_errors=True)  # a folder without parts: killed before its first
     notes = [f"{checkpoint}: no checkpoint to resume from: the run starts at step 0"] if resume else []
@@ -373,12 +375,16 @@ def _solved(history, record, start, end, contact):
     return np.flatnonzero(~skippable(near, recorded, contact)[1 : end - start + 1]) + start + 1
 
 
-def _resumable(checkpoint, source, model):
+def _resumable(checkpoint, source, model, skipping):
     """The recorded steps and state of the parts in `checkpoint` (their per-cycle rows left on disk),
-    checked to belong to this history file and the `model` asked (None: any)."""
+    checked to belong to this history file, the `model` asked (None: any) and to have `skipping`
+    steps or not."""
     done = joined_steps(_parts(checkpoint))
     if done.attrs.get("history_sha256") != source.sha256:
         raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
+    if done.attrs.get("cycle_peaks") != CYCLE_PEAKS_TALLIED[skipping]:
+        ways = ["every step solved (--every-step)", "steps skipped (without --every-step)"]
+        raise ResultError(f"{checkpoint}: found a run with {ways[not skipping]}, expected {ways[skipping]}")
     found = recorded_spec(done)
     if model is None and not could_be_default(found):
         raise ResultError(
