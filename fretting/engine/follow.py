@@ -10,10 +10,9 @@ A recorder that skips (`Recorder.skipping`) has the steps inside straight stretc
 path solved only where they are recorded (`skippable`): along a straight (proportional) stretch
 every node slips one way only, so one increment from the stretch's start reaches the state at
 its end, and its energy, energy density and slip range are those of the steps it spans, to
-rounding. ``q`` is monotonic along such a stretch, so the largest ``|q|`` over it is at one of its
-ends, but the surface
-``sigma_xx`` is not monotonic along it: the specimen's ``sigma_xx`` peaks are not tallied then
-(NaN), and only ``q_peak`` is.
+rounding. ``q`` is monotonic along such a stretch, so the largest ``|q|`` over it is at one of
+its ends, but the surface ``sigma_xx`` is not (tests/test_skipping.py): the specimen's
+``sigma_xx`` peaks are then not tallied (NaN), only ``q_peak`` is.
 """
 
 from dataclasses import dataclass, replace

@@ -249,7 +249,7 @@ def run_file(
     output = writable(output)
     with holding(output):
         checkpoint = checkpoint_path(output)
-        for path in (output, checkpoint):  # a checkpoint file: of fretting 0.1
+        for path in (output, checkpoint):  # those of `save`; beside the checkpoint: of fretting 0.1
             remove_temporaries(path)
         if checkpoint.is_dir():
             remove_temporaries(_next_part(checkpoint))
