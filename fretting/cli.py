@@ -112,6 +112,12 @@ def _parser():
         metavar="SECONDS",
         help=f"seconds between checkpoints (default {CHECKPOINT_SECONDS:g}; 0: after every chunk of steps)",
     )
+    run.add_argument(
+        "--every-step",
+        action="store_true",
+        help="solve every step (default: the steps inside straight stretches that are not recorded are skipped; "
+        "the energy, w, slip range and q_peak are the same, the sigma_xx peaks per cycle are then not tallied)",
+    )
     run.set_defaults(command=_run)
 
     validate = commands.add_parser("validate", parents=[common], help="check a history file without running it")
@@ -237,6 +243,7 @@ def _run(args):
             resume=args.resume,
             checkpoint_interval=args.checkpoint_interval,
             progress=progress,
+            every_step=args.every_step,
         )
     for note in run.notes:
         print(f"fretting: note: {note}", file=sys.stderr)

@@ -3,6 +3,7 @@
 import hashlib
 import importlib
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -179,7 +180,9 @@ def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeyp
     assert run("run", "shear.toml", "-o", "part.h5", *model, "--checkpoint-interval", "1e6") == 130
     err = capsys.readouterr().err
     assert err == "fretting: error: interrupted: progress kept in part.h5.checkpoint; continue with --resume\n"
-    assert load(workdir / "part.h5.checkpoint").sizes["step"] == 41 and not (workdir / "part.h5").exists()
+    assert (
+        runner.checkpointed(workdir / "part.h5.checkpoint").sizes["step"] == 41 and not (workdir / "part.h5").exists()
+    )
 
     assert run("run", "shear.toml", "-o", "part.h5", *model) == 2  # not without --resume
     assert "--resume" in capsys.readouterr().err
@@ -214,13 +217,23 @@ def test_long_runs_record_their_ends_and_every_cycle_and_resume(workdir, capsys,
     monkeypatch.setattr(runner, "CHUNK_STEPS", 20)
     text = CONTACT + SHEAR.replace("count = 3", "count = 40")
     write(workdir / "long.toml", text)
-    assert run("run", "long.toml", "-o", "whole.h5", "--nodes", NODES) == 0
-    whole = load(workdir / "whole.h5")
+    assert run("run", "long.toml", "-o", "every.h5", "--nodes", NODES, "--every-step") == 0
+    every = load(workdir / "every.h5")
     contact, history = read_history(workdir / "long.toml")
     direct = fr.simulate(contact, history, nodes=int(NODES))
     direct = data_of(direct)
-    xr.testing.assert_identical(data_of(whole)[list(direct.variables)].drop_attrs(), direct.drop_attrs())
+    xr.testing.assert_identical(data_of(every)[list(direct.variables)].drop_attrs(), direct.drop_attrs())
+    assert every.attrs["cycle_peaks"] == "every step"
     steps = len(history)
+    # by default the unrecorded steps inside straight stretches are skipped: the same energy, w,
+    # slip range and q_peak, to rounding (float32 rows: bit for bit here); no sigma_xx peaks
+    assert run("run", "long.toml", "-o", "whole.h5", "--nodes", NODES) == 0
+    whole = load(workdir / "whole.h5")
+    assert "not tallied" in whole.attrs["cycle_peaks"] and "sigma_xx_peak" not in whole
+    for name in ("w", "slip_amplitude", "q_peak"):
+        np.testing.assert_array_equal(whole[name].values, every[name].values, err_msg=name)
+    np.testing.assert_allclose(whole.cycle_dissipation.values, every.cycle_dissipation.values, rtol=1e-13, atol=0)
+    assert not np.array_equal(whole.cycle_dissipation.values, every.cycle_dissipation.values)  # not solved alike
     np.testing.assert_array_equal(whole.step.values, [*range(30), *range(steps - 30, steps)])
     assert whole.sizes["cycle_number"] == 40 and np.all(whole.cycle_dissipation.values > 0)
     assert whole.w.dims == ("cycle_number", "x")
@@ -256,12 +269,12 @@ def test_resume_after_a_killed_process_equals_an_uninterrupted_run(workdir):
     process = subprocess.Popen([*command, "--checkpoint-interval", "0"], stderr=subprocess.PIPE)
     checkpoint = workdir / "killed.h5.checkpoint"
     deadline = time.monotonic() + 60
-    while not checkpoint.exists() and process.poll() is None and time.monotonic() < deadline:
+    while not list(checkpoint.glob("*.h5")) and process.poll() is None and time.monotonic() < deadline:
         time.sleep(0.005)
     process.send_signal(signal.SIGKILL)
     _, err = process.communicate()
     assert process.returncode == -signal.SIGKILL, err.decode()
-    done = load(checkpoint).attrs["steps"]
+    done = runner.checkpointed(checkpoint).attrs["steps"]
     assert 1 < done < 4017 and not (workdir / "killed.h5").exists()
 
     assert run("run", "long.toml", "-o", "killed.h5", "--nodes", NODES, "--resume") == 0
@@ -365,3 +378,25 @@ def test_resume_without_a_checkpoint_says_so(workdir, capsys):
     out, err = capsys.readouterr()
     assert err == "fretting: note: shear.h5.checkpoint: no checkpoint to resume from: the run starts at step 0\n"
     assert out.startswith("shear.h5: 82 steps")
+
+
+def test_resume_refuses_a_run_that_solved_its_steps_otherwise(workdir, capsys, monkeypatch):
+    """A checkpoint of a run that skipped steps is not continued solving every step (nor the
+    converse): the whole run would do neither. A checkpoint file of fretting 0.1 is refused."""
+    engine = importlib.import_module("fretting.engine.recorder")
+    monkeypatch.setattr(engine, "RECORD_ALL_STEPS", 10)
+    monkeypatch.setattr(engine, "RECORDED_ENDS", 5)
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 20)
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    monkeypatch.setattr(runner, "Stepper", _interrupt_after(2))
+    assert run("run", "shear.toml", "--nodes", NODES, "--checkpoint-interval", "0") == 130
+    monkeypatch.setattr(runner, "Stepper", fr.Stepper)
+    capsys.readouterr()
+    assert run("run", "shear.toml", "--nodes", NODES, "--resume", "--every-step") == 2
+    assert capsys.readouterr().err.endswith(
+        "found a run with steps skipped (without --every-step), expected every step solved (--every-step)\n"
+    )
+    shutil.rmtree(workdir / "shear.h5.checkpoint")
+    write(workdir / "shear.h5.checkpoint", "a result written by fretting 0.1")
+    assert run("run", "shear.toml", "--nodes", NODES) == 2
+    assert "found the checkpoint file of an earlier version of fretting: delete it" in capsys.readouterr().err

@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 
 import fretting as fr
-from fretting.results.io import ResultError, join_results, load, save
+from fretting.results.io import CYCLE_CHUNK_ROWS, ResultError, join_results, load, save, save_joined
 
 NODES = 48
 
@@ -158,3 +158,27 @@ def test_parts_recording_some_steps_join_into_the_whole_run(history, record):
         state = fr.final_state(parts[-1]) if parts else None
         parts.append(fr.simulate(contact, history[start : stop + 1], nodes=NODES, state=state, record=mine))
     xr.testing.assert_identical(join_results(parts), whole)
+
+
+@pytest.mark.parametrize("splits", [[24, 25], [7, 30, 31, 58]])
+def test_parts_saved_and_joined_on_disk_equal_the_join_in_memory(tmp_path, history, whole, splits):
+    """`save_joined` appends the per-cycle rows part by part (a cycle that spans parts rewritten by
+    the later part's row) and gives the file `join_results` would: bit for bit, with an unlimited,
+    chunked ``cycle_number`` that h5py sees."""
+    contact = _contact()
+    bounds = [0, *splits, len(history) - 1]
+    parts = [fr.simulate(contact, history[: bounds[1] + 1], nodes=NODES)]
+    for start, stop in itertools.pairwise(bounds[1:]):
+        parts.append(fr.simulate(contact, history[start : stop + 1], nodes=NODES, state=fr.final_state(parts[-1])))
+    paths = [tmp_path / f"{k}.h5" for k in range(len(parts))]
+    for part, path in zip(parts, paths, strict=True):
+        save(part, path)
+    assert sum(part.sizes["cycle_number"] for part in parts) > whole.sizes["cycle_number"]  # cycles span parts
+    save_joined(paths, tmp_path / "joined.h5", {"note": "joined"})
+    joined = load(tmp_path / "joined.h5")
+    assert joined.attrs["note"] == "joined"
+    xr.testing.assert_identical(without_provenance(joined).drop_attrs(), whole.drop_attrs())
+    with h5py.File(tmp_path / "joined.h5", "r") as file:
+        assert file["w"].maxshape == (None, NODES) and file["w"].shape == (5, NODES)
+        assert file["cycle_dissipation"].chunks == (CYCLE_CHUNK_ROWS,) and file["w"].compression == "gzip"
+        np.testing.assert_array_equal(file["cycle_dissipation"][:], whole.cycle_dissipation.values)

@@ -5,6 +5,14 @@ A cycle whose loads repeat those of the cycle just completed, from a state that 
 state before that cycle bit for bit, would repeat its increments bit for bit (the increment
 depends on the loads and the state only); such cycles are copied instead of solved, and the
 recorder is told so (`Recorder.copied`).
+
+A recorder that skips (`Recorder.skipping`) has the steps inside straight stretches of the load
+path solved only where they are recorded (`skippable`): along a straight (proportional) stretch
+every node slips one way only, so one increment from the stretch's start reaches the state at
+its end, and its energy, energy density and slip range are those of the steps it spans, to
+rounding. ``q`` is monotonic along such a stretch, so the largest ``|q|`` over it is at one of
+its ends, but the surface ``sigma_xx`` is not (tests/test_skipping.py): the specimen's
+``sigma_xx`` peaks are then not tallied (NaN), only ``q_peak`` is.
 """
 
 from dataclasses import dataclass, replace
@@ -15,16 +23,23 @@ from fretting.engine.state import State, Tally
 from fretting.errors import GrossSlipError, SolverError
 from fretting.physics.surface import bulk_stress
 
-__all__ = ["advance", "follow"]
+__all__ = ["STRAIGHT", "advance", "follow", "skippable"]
+
+#: Largest ``|sin|`` of the turn between two increments, in units of ``(f P, f p0)``, that counts
+#: as straight: the steps of a linear segment meet it to rounding, and a sampled curve with a
+#: million steps per turn (a turn of 6e-6 rad a step) does not.
+STRAIGHT = 1e-9
 
 
-def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=True):
+def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=True, stress=True):
     """(outcome, state after) of the increment of `model` from `state` to `Q` [N/m], `sigma` [Pa].
 
     `at_rest`: no increment, the state as it stands (the starting state of a history). `step`
     names the step in a `GrossSlipError`. An increment that reports negative dissipation is a
     solver failure (`SolverError`), never a result. `tally`: add the increment to the cycle in
     progress (its energy density and peaks); False where only the slip matters (mesh adaptation).
+    `stress`: tally the specimen's surface stress peaks (False: NaN, not known, as for a run that
+    skips steps).
     """
     contact = model.contact
     sliding = min(model.friction_force, contact.f * contact.P)  # no stick zone from here on
@@ -40,8 +55,11 @@ def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=
         raise SolverError(f"the increment to Q = {Q!r}, sigma = {sigma!r} dissipated {outcome.dissipation!r} J/m")
     if not (tally and state.tally.number):
         return outcome, state.advance(outcome, Q, sigma, None, None, None)
-    stress, shear = specimen_surface(model, outcome, sigma)
-    return outcome, state.advance(outcome, Q, sigma, model.dissipation_density(outcome.ds), stress, shear)
+    if stress:
+        surface, shear = specimen_surface(model, outcome, sigma)
+    else:
+        surface, shear = np.full(model.x.size, np.nan), np.abs(model.traction(outcome))
+    return outcome, state.advance(outcome, Q, sigma, model.dissipation_density(outcome.ds), surface, shear)
 
 
 def specimen_surface(model, outcome, sigma):
@@ -60,16 +78,48 @@ def specimen_surface(model, outcome, sigma):
 def follow(model, history, state, recorder=None, observe=None, guess=None, tally=True):
     """Run `history` on `model` from `state` (whose loads are the history's first); return the last state.
 
-    `recorder` is told of every step and cycle; ``observe(step, ds)`` sees the slip increment of
-    every step solved; ``guess(step)`` gives the slip directions to start the solver from, or None;
+    `recorder` is told of every step and cycle, and says whether steps are skipped
+    (`Recorder.skipping`, `skippable`); ``observe(step, ds)`` sees the slip increment of every
+    step solved; ``guess(step)`` gives the slip directions to start the solver from, or None;
     `tally` as for `advance`.
     """
     return _Run(model, history, recorder, observe, guess, tally).follow(state)
 
 
+def skippable(history, recorded, contact):
+    """Steps of `history` that a run need not solve: those strictly inside a straight stretch.
+
+    A step is skippable when the increments to it and from it point the same way (their turn
+    below `STRAIGHT` in units of ``(f P, f p0)`` of `contact`) and it is not the first or last
+    step, a vertex, a step in the boolean mask `recorded`, or the first or last step of a load
+    cycle or of the steps outside cycles (the cycle's ``|q|`` peak is over its steps, not its
+    starting state: with its first step solved, it is at solved steps, since ``q`` is monotonic
+    along a straight stretch). Which steps are skippable depends on the step and its two
+    neighbours only, so a run cut at steps that are not skippable solves the same steps as
+    the whole run, which keeps a run continued from its state equal to the whole run bit for bit.
+
+    Returns
+    -------
+    ndarray of bool, shape (len(history),)
+    """
+    dQ = np.diff(history.Q) / (contact.f * contact.P)
+    dsigma = np.diff(history.sigma) / (contact.f * contact.p0)
+    dot = dQ[:-1] * dQ[1:] + dsigma[:-1] * dsigma[1:]
+    turn = np.abs(dQ[:-1] * dsigma[1:] - dsigma[:-1] * dQ[1:])
+    skip = np.zeros(len(history), dtype=bool)
+    skip[1:-1] = (dot > 0) & (turn <= STRAIGHT * np.hypot(dQ[:-1], dsigma[:-1]) * np.hypot(dQ[1:], dsigma[1:]))
+    skip[history.vertex_step] = False
+    if history.cycle is not None:
+        same = history.cycle[1:] == history.cycle[:-1]
+        skip[:-1] &= same
+        skip[1:] &= same
+    return skip & ~recorded
+
+
 @dataclass(frozen=True, eq=False)
 class _Cycle:
-    """A complete cycle: its first step, the state before it and each increment's (outcome, state after)."""
+    """A complete cycle: its first step, the state before it and each increment's (outcome, state
+    after), None for a step skipped."""
 
     first: int
     before: State
@@ -83,6 +133,11 @@ class _Run:
         self.model, self.history, self.recorder = model, history, recorder
         self.observe, self.guess, self.tally = observe, guess, tally
         self.cycle = history.cycle if history.cycle is not None else np.zeros(len(history), dtype=np.int64)
+        self.stress = recorder is None or not recorder.skipping
+        if self.stress:
+            self.skip = np.zeros(len(history), dtype=bool)
+        else:
+            self.skip = skippable(history, recorder.row >= 0, model.contact)
 
     def follow(self, state):
         """Run from `state`; return the state at the end."""
@@ -105,10 +160,14 @@ class _Run:
                     step += copies * len(previous.steps)
                     repeated = True
                     continue
+            if self.skip[step]:
+                steps.append(None)
+                step += 1
+                continue
             guess = None if self.guess is None else self.guess(step)
             Q, sigma = self.history.Q[step], self.history.sigma[step]
             at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma)
-            outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally)
+            outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally, self.stress)
             if self.observe is not None and not at_rest:
                 self.observe(step, outcome.ds)
             steps.append((outcome, state))
@@ -126,8 +185,9 @@ class _Run:
     def _repeats(self, previous, state, step):
         """Number of whole cycles from `step` that repeat the complete cycle `previous` bit for bit.
 
-        They must follow `previous` directly, start from its starting state, have its loads
-        and its number of steps, and the last of them must end where a new stretch begins.
+        They must follow `previous` directly, start from its starting state, have its loads,
+        its number of steps and its skipped steps, and the last of them must end where a new
+        stretch begins.
         """
         if previous is None or not state.repeats(previous.before):
             return 0
@@ -140,6 +200,7 @@ class _Run:
             (self.history.Q[later] == self.history.Q[earlier])
             & (self.history.sigma[later] == self.history.sigma[earlier])
             & (cycle[later] == cycle[earlier] + 1)
+            & (self.skip[later] == self.skip[earlier])
         )
         copies = (same.size if same.all() else int(np.argmin(same))) // length
         stop = step + copies * length
@@ -158,7 +219,7 @@ class _Run:
             self._cycle(number, last.tally, True)  # one tally object: the recorder stores its rows once
         if self.recorder is not None:
             self.recorder.copied(step, copies, previous.steps)
-        per_step = np.array([outcome.dissipation for outcome, _ in previous.steps])
+        per_step = np.array([solved[0].dissipation for solved in previous.steps if solved is not None])
         # summed step by step, in order, as solving the cycles would: np.cumsum adds sequentially
         dissipated = np.cumsum(np.concatenate([[last.dissipated], np.tile(per_step, copies)]))[-1]
         return replace(last, tally=replace(last.tally, number=first + copies - 1), dissipated=float(dissipated))

@@ -25,6 +25,17 @@ __all__ = ["RECORDED_ENDS", "RECORD_ALL_STEPS", "Recorder", "final_state", "reco
 RECORD_ALL_STEPS = 20_000
 RECORDED_ENDS = 4096
 
+#: Per-cycle peaks that a run which skips steps does not tally: the surface ``sigma_xx`` is not
+#: monotonic along a straight stretch (`fretting.engine.follow`).
+SKIPPED_PEAKS = ("sigma_xx_peak", "sigma_xx_q_peak")
+
+#: The dataset's ``cycle_peaks`` attribute, by whether the run skipped steps.
+CYCLE_PEAKS_TALLIED = {
+    False: "every step",
+    True: "q_peak over every step (its largest is at the solved ends of a straight stretch); "
+    "sigma_xx_peak and sigma_xx_q_peak not tallied: steps inside straight stretches were skipped",
+}
+
 
 def recorded_steps(record, n):
     """Step numbers to record of an `n`-step history: `record` (increasing steps, or "all"), or
@@ -53,10 +64,14 @@ class Recorder:
     history : History
     steps : ndarray of int
         Steps to record, increasing (`recorded_steps`).
+    skipping : bool
+        Have the run skip the steps inside straight stretches that are not recorded
+        (`fretting.engine.follow.skippable`); the specimen's ``sigma_xx`` peaks per cycle are
+        then not tallied and not stored, and the dataset's ``cycle_peaks`` attribute says so.
     """
 
-    def __init__(self, model, history, steps):
-        self.model, self.history, self.steps = model, history, steps
+    def __init__(self, model, history, steps, skipping=False):
+        self.model, self.history, self.steps, self.skipping = model, history, steps, skipping
         self.row = np.full(len(history), -1)
         self.row[steps] = np.arange(steps.size)
         N = model.x.size
@@ -102,7 +117,7 @@ class Recorder:
         data = self.fields | _zone_ends(model.contact, self.zones)
         if history.cycle is not None:
             data["cycle"] = history.cycle[steps]
-            data |= _cycle_rows(self.cycles, model.x.size)
+            data |= _cycle_rows(self.cycles, model.x.size, SKIPPED_PEAKS if self.skipping else ())
         tally = state.tally
         return (
             data
@@ -146,6 +161,7 @@ class Recorder:
             "nodes": self.model.x.size,
             "model_description": spec.description,
             "steps": len(self.history),
+            "cycle_peaks": CYCLE_PEAKS_TALLIED[self.skipping],
         }
         return build_dataset(self.data(state), attributes | spec.attributes())
 
@@ -191,8 +207,9 @@ def _state_peak(result, name):
     return result[variable].values.copy() if variable in result else np.full(result.sizes["x"], np.nan)
 
 
-def _cycle_rows(cycles, N):
-    """Per-cycle variables from the ``(number, tally, copied)`` of every cycle of a run.
+def _cycle_rows(cycles, N, left_out):
+    """Per-cycle variables from the ``(number, tally, copied)`` of every cycle of a run, but the
+    peaks `left_out`.
 
     Copied cycles share their tally, so each distinct tally is turned into rows once.
     """
@@ -213,7 +230,9 @@ def _cycle_rows(cycles, N):
         "cycle_copied": repeated,
         "w": rows([t.w for t in distinct], np.float32, N),
         "slip_amplitude": rows([t.slip_amplitude for t in distinct], np.float32, N),
-    } | {name: rows([getattr(t, name) for t in distinct], np.float32, N) for name in CYCLE_PEAKS}
+    } | {
+        name: rows([getattr(t, name) for t in distinct], np.float32, N) for name in CYCLE_PEAKS if name not in left_out
+    }
 
 
 def _zone_ends(contact, zones):

@@ -1,10 +1,14 @@
 """The runner: a history file run to a result file in chunks, with checkpoints and resume.
 
 `run_file` steps one `Stepper` through the history chunk by chunk, so the model's set-up (the
-stiffness, the exact model's branches) is built once per run. Each chunk's result is joined as it
-comes (`fretting.results.io.Joiner`); the joined result is written as a checkpoint every
-`CHECKPOINT_SECONDS` and on an interruption, and a run resumed from its checkpoint goes on from the
-checkpoint's final state, to the same result bit for bit.
+stiffness, the exact model's branches) is built once per run. Chunks are joined as they come
+(`fretting.results.io.Joiner`) into a *part*, which is saved to the checkpoint folder
+``OUTPUT.checkpoint/`` every `CHECKPOINT_SECONDS`, when it holds `PART_CYCLES` cycles, and on an
+interruption; a part saved is never rewritten, so memory does not grow with the run's cycles and
+a checkpoint costs only the part. At the end the parts are joined into the result file
+(`fretting.results.io.save_joined`: the per-cycle rows appended part by part) and the folder is
+deleted. A run resumed from its checkpoint goes on from its last part's final state, to the same
+result bit for bit.
 
 Before any stepping a run checks that it can write its output and takes the output's lock
 (`holding`): a second run of the same output is refused at once, and the temporary files of a
@@ -16,6 +20,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import shutil
 import time
 import warnings
 from collections.abc import Callable
@@ -27,18 +32,30 @@ import numpy as np
 from filelock import FileLock, Timeout
 
 from fretting.engine.choice import ModelFallbackWarning, could_be_default, recorded_spec
-from fretting.engine.recorder import Recorder, final_state, recorded_steps
+from fretting.engine.follow import skippable
+from fretting.engine.recorder import CYCLE_PEAKS_TALLIED, Recorder, final_state, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.errors import GrossSlipError
 from fretting.loading.history_file import read_history_source
-from fretting.results.io import Joiner, ResultError, load, remove_temporaries, save, source_attributes
+from fretting.results.io import (
+    Joiner,
+    ResultError,
+    join_results,
+    joined_steps,
+    load,
+    open_result,
+    remove_temporaries,
+    save,
+    save_joined,
+    source_attributes,
+)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from fretting.models.base import ModelSpec
 
-__all__ = ["CHECKPOINT_SECONDS", "Run", "holding", "run_file"]
+__all__ = ["CHECKPOINT_SECONDS", "PART_CYCLES", "Run", "checkpointed", "holding", "run_file"]
 
 #: Steps of the first chunk run at a time: how often progress is reported and a checkpoint can be
 #: written. A chunk that takes less than CHUNK_SECONDS doubles the next one's steps, so that runs
@@ -51,8 +68,12 @@ CHUNK_SECONDS = 1.0
 MAX_CHUNK_STEPS = 2**18
 
 #: Seconds between checkpoints by default: at most a minute of work lost in a crash. Each
-#: checkpoint rewrites the partial result whole.
+#: checkpoint saves the part joined since the last one.
 CHECKPOINT_SECONDS = 60.0
+
+#: Cycles a part holds at most before it is saved, whatever the time: the per-cycle rows held in
+#: memory (5 rows of N float32 each: 10 MB at 500 nodes).
+PART_CYCLES = 1024
 
 
 @dataclass(frozen=True)
@@ -61,21 +82,43 @@ class Run:
 
     Attributes
     ----------
-    result : xarray.Dataset
     output : Path
     notes : list of str
         One line each: a model that fell back, a resume that found no checkpoint.
     """
 
-    result: object
     output: Path
     notes: list
 
+    @property
+    def result(self):
+        """The result written (xarray.Dataset), opened lazily: its variables are read when used."""
+        return open_result(self.output)
+
 
 def checkpoint_path(output):
-    """The checkpoint file of the result file `output`."""
+    """The checkpoint folder of the result file `output`: its parts, ``000001.h5``, ``000002.h5``, ..."""
     output = Path(output)
     return output.with_name(f"{output.name}.checkpoint")
+
+
+def _parts(checkpoint):
+    """The part files in the folder `checkpoint`, in order (none if there is no folder)."""
+    return sorted(checkpoint.glob("[0-9]" * 6 + ".h5")) if checkpoint.is_dir() else []
+
+
+def checkpointed(checkpoint: str | os.PathLike):
+    """The partial result kept in the checkpoint folder `checkpoint` (its parts joined, in memory).
+
+    Raises
+    ------
+    FileNotFoundError
+        When the folder holds no part.
+    """
+    parts = _parts(Path(checkpoint))
+    if not parts:
+        raise FileNotFoundError(errno.ENOENT, "no checkpoint parts", str(checkpoint))
+    return join_results([load(part) for part in parts])
 
 
 def lock_path(output):
@@ -154,6 +197,7 @@ def run_file(
     resume: bool = False,
     checkpoint_interval: float = CHECKPOINT_SECONDS,
     progress: Callable[[int, int], object] | None = None,
+    every_step: bool = False,
 ) -> Run:
     """Run a history file and write its result to `output`, checkpointed and resumable.
 
@@ -174,6 +218,11 @@ def run_file(
         Seconds between checkpoints (0: after every chunk).
     progress : callable, optional
         ``progress(done, total)``: steps done so far and in all, after each chunk.
+    every_step : bool
+        Solve every step. By default the steps inside straight stretches of the load path that
+        are not recorded (`record`) are skipped (`fretting.engine.follow.skippable`): the energy, ``w`` and
+        slip range are the same to rounding, but the specimen's ``sigma_xx`` peaks per cycle
+        are not tallied (the result's ``cycle_peaks`` attribute says which are).
 
     Returns
     -------
@@ -200,10 +249,14 @@ def run_file(
     output = writable(output)
     with holding(output):
         checkpoint = checkpoint_path(output)
-        for path in (output, checkpoint):
+        for path in (output, checkpoint):  # those of `save`; beside the checkpoint: of fretting 0.1
             remove_temporaries(path)
-        joiner, start, state, notes = _started(checkpoint, source, model, resume)
+        if checkpoint.is_dir():
+            remove_temporaries(_next_part(checkpoint))
         history = source.history
+        record = recorded_steps(record, len(history))
+        skipping = not every_step and record.size < len(history)  # a recorded step is solved
+        start, state, notes = _started(checkpoint, source, model, resume, skipping)
         stepper = Stepper(source.contact, model if state is None else None, state)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ModelFallbackWarning)
@@ -214,59 +267,75 @@ def run_file(
             else:
                 warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
         attributes = source_attributes(source)
-        record = recorded_steps(record, len(history))
-        written = time.monotonic()
+        part, written = Joiner(), time.monotonic()
         try:
-            for part in _chunks(stepper, history, record, start):
-                joiner.add(part)
+            for chunk in _chunks(stepper, history, record, start, skipping):
+                part.add(chunk)
+                start += chunk.attrs["steps"] - 1
                 if progress is not None:
-                    progress(joiner.steps - 1, len(history) - 1)
-                if time.monotonic() - written >= checkpoint_interval:
-                    save(joiner.result().assign_attrs(attributes), checkpoint)
-                    written = time.monotonic()
+                    progress(start, len(history) - 1)
+                if time.monotonic() - written >= checkpoint_interval or part.cycles >= PART_CYCLES:
+                    _save_part(part, checkpoint, attributes)
+                    part, written = Joiner(), time.monotonic()
         except KeyboardInterrupt:
-            if len(joiner):
-                save(joiner.result().assign_attrs(attributes), checkpoint)
+            if len(part):
+                _save_part(part, checkpoint, attributes)
+            if _parts(checkpoint):
                 raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
             raise
         except GrossSlipError:
-            checkpoint.unlink(missing_ok=True)  # resuming would only reach it again
+            shutil.rmtree(checkpoint, ignore_errors=True)  # resuming would only reach it again
             raise
         del source, history  # the loads of every step: the result holds what it records
-        result = joiner.result().assign_attrs(attributes)
-        save(result, output)
-        checkpoint.unlink(missing_ok=True)
-    return Run(result, output, notes)
+        if len(part):
+            _save_part(part, checkpoint, attributes)
+        save_joined(_parts(checkpoint), output, attributes)
+        shutil.rmtree(checkpoint)
+    return Run(output, notes)
 
 
-def _started(checkpoint, source, model, resume):
-    """``(joiner, start, state, notes)`` a run begins with: the checkpoint's when resumed, else empty."""
-    if checkpoint.exists() and not resume:
+def _started(checkpoint, source, model, resume, skipping):
+    """``(start, state, notes)`` a run begins with: the checkpoint's last step and state when
+    resumed, else step 0 and no state."""
+    if checkpoint.is_file():
+        raise ResultError(f"{checkpoint}: found the checkpoint file of an earlier version of fretting: delete it")
+    if _parts(checkpoint) and not resume:
         raise ResultError(
             f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
         )
-    joiner = Joiner()
-    if resume and checkpoint.exists():
-        done = _resumable(checkpoint, source, model)
-        joiner.add(done)
-        return joiner, done.attrs["steps"] - 1, final_state(done), []  # the joiner holds its cycles
+    if resume and _parts(checkpoint):
+        done = _resumable(checkpoint, source, model, skipping)
+        return done.attrs["steps"] - 1, final_state(done), []
+    shutil.rmtree(checkpoint, ignore_errors=True)  # a folder without parts: killed before its first
     notes = [f"{checkpoint}: no checkpoint to resume from: the run starts at step 0"] if resume else []
-    return joiner, 0, None, notes
+    return 0, None, notes
 
 
-def _chunks(stepper, history, record, start):
+def _save_part(part, checkpoint, attributes):
+    """Save the joined chunks `part` as the next part file of the folder `checkpoint`."""
+    checkpoint.mkdir(exist_ok=True)
+    save(part.result().assign_attrs(attributes), _next_part(checkpoint))
+
+
+def _next_part(checkpoint):
+    """The file of the next part saved to the folder `checkpoint`."""
+    return checkpoint / f"{len(_parts(checkpoint)) + 1:06d}.h5"
+
+
+def _chunks(stepper, history, record, start, skipping):
     """Results of successive chunks of `history` from step `start`, stepped by `stepper`.
 
     Each chunk records the steps of `record` (numbers in the whole history) that it reaches; a
     later chunk's step 0 is the last one's end. Only the stepper's state is kept between chunks.
+    `skipping`: skip the steps inside straight stretches that are not recorded (`Recorder`).
     """
     steps, first = CHUNK_STEPS, start
     while first == start == 0 or start < len(history) - 1:
-        stop = min(start + steps, len(history) - 1)
+        stop = _cut(history, record, start, min(start + steps, len(history) - 1), stepper.model.contact, skipping)
         began = time.monotonic()
         mine = record[(record >= first) & (record <= stop)] - start
         chunk = history[start : stop + 1]
-        recorder = Recorder(stepper.model, chunk, mine)
+        recorder = Recorder(stepper.model, chunk, mine, skipping)
         try:
             state = stepper.run(chunk, recorder)
         except GrossSlipError as error:
@@ -279,11 +348,43 @@ def _chunks(stepper, history, record, start):
             return
 
 
-def _resumable(checkpoint, source, model):
-    """The partial result in `checkpoint`, checked to belong to this history file and the `model` asked (None: any)."""
-    done = load(checkpoint)
+def _cut(history, record, start, stop, contact, skipping):
+    """`stop`, or an earlier step, at which the chunk from `start` ends: one that touches at most
+    `PART_CYCLES` cycles and, when `skipping`, ends at a step that the whole run solves too (not
+    `fretting.engine.follow.skippable` in the whole history), so that cutting keeps the run bit
+    for bit; a straight stretch longer than the chunk is cut at its end."""
+    if history.cycle is not None:
+        begins = np.flatnonzero(np.diff(history.cycle[start : stop + 1])) + start + 1  # steps that begin a stretch
+        stop = stop if begins.size < PART_CYCLES else int(begins[PART_CYCLES - 1])
+    if not skipping:
+        return stop
+    end = stop
+    while True:  # a straight stretch longer than the chunk: the chunk ends where the stretch does
+        solved = _solved(history, record, start, end, contact)
+        if solved.size:
+            below = solved[solved <= stop]
+            return int(below[-1] if below.size else solved[0])
+        end = min(2 * end - start, len(history) - 1)
+
+
+def _solved(history, record, start, end, contact):
+    """Steps in ``(start, end]`` that a run skipping steps solves (not `skippable` in the whole history)."""
+    near = history[start : min(end + 2, len(history))]  # the step after `end` decides if `end` is skippable
+    recorded = np.zeros(len(near), dtype=bool)
+    recorded[record[(record >= start) & (record < start + len(near))] - start] = True
+    return np.flatnonzero(~skippable(near, recorded, contact)[1 : end - start + 1]) + start + 1
+
+
+def _resumable(checkpoint, source, model, skipping):
+    """The recorded steps and state of the parts in `checkpoint` (their per-cycle rows left on disk),
+    checked to belong to this history file, the `model` asked (None: any) and to have `skipping`
+    steps or not."""
+    done = joined_steps(_parts(checkpoint))
     if done.attrs.get("history_sha256") != source.sha256:
         raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
+    if done.attrs.get("cycle_peaks") != CYCLE_PEAKS_TALLIED[skipping]:
+        ways = ["every step solved (--every-step)", "steps skipped (without --every-step)"]
+        raise ResultError(f"{checkpoint}: found a run with {ways[not skipping]}, expected {ways[skipping]}")
     found = recorded_spec(done)
     if model is None and not could_be_default(found):
         raise ResultError(

@@ -115,7 +115,9 @@ class Stepper:
             Step 0 is the current state; a non-zero first vertex is reached in one increment
             from the contact just formed.
         recorder : Recorder, optional
-            Told of every step (`Recorder.step`, `Recorder.copied`) and every cycle (`Recorder.cycle`).
+            Told of every step (`Recorder.step`, `Recorder.copied`) and every cycle (`Recorder.cycle`);
+            a recorder that skips (`Recorder.skipping`) has the steps of
+            `fretting.engine.follow.skippable` skipped.
         observe : callable, optional
             ``observe(step, ds)`` sees the slip increment of every step solved (mesh adaptation).
         guess : callable, optional

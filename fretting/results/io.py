@@ -5,6 +5,7 @@ The files are netCDF-4 (HDF5), readable by h5py, xarray and the netCDF tools.
 
 from __future__ import annotations
 
+import contextlib
 import datetime
 import errno
 import importlib.metadata
@@ -17,6 +18,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import h5netcdf
 import h5py
 import numpy as np
 import xarray as xr
@@ -31,10 +33,13 @@ __all__ = [
     "Joiner",
     "ResultError",
     "join_results",
+    "joined_steps",
     "load",
+    "open_result",
     "provenance",
     "remove_temporaries",
     "save",
+    "save_joined",
     "source_attributes",
 ]
 
@@ -44,6 +49,10 @@ ENGINE = "h5netcdf"
 #: zlib level 4 with byte shuffling: a higher level saves few bytes of a result and takes longer
 #: to write.
 COMPRESSION = {"zlib": True, "complevel": 4, "shuffle": True}
+
+#: Rows of a per-cycle variable in one HDF5 chunk: the ``cycle_number`` dimension is unlimited, so
+#: that rows are appended (`save_joined`), and a chunk of 256 rows of 500 float32 nodes is 0.5 MB.
+CYCLE_CHUNK_ROWS = 256
 
 #: Random bytes in the name of `save`'s temporary file, ``.NAME.<hex>.tmp``: two saves of one
 #: path never share it.
@@ -87,14 +96,83 @@ def save(result: xr.Dataset, path: str | os.PathLike) -> None:
     >>> bool(again.q.equals(result.q)), again.attrs["model"]
     (True, 'grid')
     """
+    with _replacing(path) as temporary:
+        _write(result.assign_attrs(provenance()), temporary, path)
+
+
+@contextlib.contextmanager
+def _replacing(path):
+    """The temporary file beside `path` to write; renamed over `path` when the block ends without error."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     temporary = path.with_name(f".{path.name}.{secrets.token_hex(TOKEN_BYTES)}.tmp")
     try:
-        _write(result.assign_attrs(provenance()), temporary, path)
+        yield temporary
         os.replace(temporary, path)
     finally:
         temporary.unlink(missing_ok=True)
+
+
+def save_joined(parts: Sequence[str | os.PathLike], path: str | os.PathLike, attributes: dict) -> None:
+    """Write `join_results` of the result files `parts` to `path`, atomically (as `save`), holding
+    in memory the recorded steps of the run and the per-cycle rows of one part at a time.
+
+    The parts' steps and state are joined in memory (`Joiner`): their size is set by the steps
+    recorded. The per-cycle variables are appended to the file part by part along its unlimited
+    ``cycle_number`` dimension; a cycle that spans two parts is rewritten with the later part's
+    row, as `join_results` takes it.
+
+    Parameters
+    ----------
+    parts : sequence of path
+        Result files of successive parts of a run, in order (see `join_results`).
+    path : str or os.PathLike
+        Output file.
+    attributes : dict
+        Attributes added to the first part's.
+    """
+    head = joined_steps(parts).assign_attrs(attributes | provenance())
+    with _replacing(path) as temporary:
+        rows = (found for found in map(_rows, parts) if found.variables)
+        first = next(rows, None)
+        _write(head if first is None else head.assign(first.variables), temporary, path, fsync=False)
+        with h5netcdf.File(temporary, "r+") as file:
+            for found in rows:
+                _append_cycles(file, found)
+        _synced(temporary, path)
+
+
+def joined_steps(parts: Sequence[str | os.PathLike]) -> xr.Dataset:
+    """`join_results` of the result files `parts` without their per-cycle variables, which are
+    not read: the recorded steps, vertices and final state of a run in parts."""
+    joiner = Joiner()
+    for part in parts:
+        with xr.open_dataset(part, engine=ENGINE) as opened:
+            joiner.add(opened.drop_vars(_per_cycle(opened)).load())
+    return joiner.result()
+
+
+def _rows(part):
+    """The per-cycle variables of the result file `part`, read into memory."""
+    with xr.open_dataset(part, engine=ENGINE) as opened:
+        return opened[_per_cycle(opened)].load()
+
+
+def _per_cycle(result):
+    """Names of the per-cycle variables of `result` (those along ``cycle_number``)."""
+    return [name for name, variable in result.variables.items() if "cycle_number" in variable.dims]
+
+
+def _append_cycles(file, rows):
+    """Append the per-cycle variables `rows` (a dataset) to the open h5netcdf `file`; a first row
+    whose cycle is the file's last one replaces it."""
+    held = file.dimensions["cycle_number"].size
+    numbers = rows.cycle_number.values
+    start = held - 1 if held and numbers.size and file.variables["cycle_number"][held - 1] == numbers[0] else held
+    file.resize_dimension("cycle_number", start + numbers.size)
+    for name in _per_cycle(rows):
+        stored, variable = file.variables[name], rows[name]
+        stored[start : start + numbers.size] = variable.values.astype(stored.dtype)
 
 
 def remove_temporaries(path: str | os.PathLike) -> list[Path]:
@@ -117,11 +195,26 @@ def remove_temporaries(path: str | os.PathLike) -> list[Path]:
     return stale
 
 
-def _write(result: xr.Dataset, temporary: Path, path: Path) -> None:
-    """Write `result` to the file `temporary` and flush it to disk; errors name `path`, the file asked for."""
-    encoding = {name: COMPRESSION for name, variable in result.variables.items() if variable.dtype.kind in "biuf"}
+def _write(result: xr.Dataset, temporary: Path, path: Path, fsync: bool = True) -> None:
+    """Write `result` to the file `temporary` and (`fsync`) flush it to disk; errors name `path`,
+    the file asked for. Its ``cycle_number`` dimension is unlimited, in chunks of `CYCLE_CHUNK_ROWS` rows."""
+    encoding = {name: dict(COMPRESSION) for name, variable in result.variables.items() if variable.dtype.kind in "biuf"}
+    for name, variable in result.variables.items():
+        if variable.dims[:1] == ("cycle_number",):
+            encoding.setdefault(name, {})["chunksizes"] = (CYCLE_CHUNK_ROWS, *variable.shape[1:])
     try:
-        result.to_netcdf(temporary, engine=ENGINE, encoding=encoding)
+        result.to_netcdf(
+            temporary, engine=ENGINE, encoding=encoding, unlimited_dims=set(result.dims) & {"cycle_number"}
+        )
+    except OSError as error:
+        raise OSError(error.errno, f"cannot write: {error.strerror or error}", str(path)) from error
+    if fsync:
+        _synced(temporary, path)
+
+
+def _synced(temporary: Path, path: Path) -> None:
+    """Flush the file `temporary` to disk; errors name `path`."""
+    try:
         with open(temporary, "rb") as handle:
             os.fsync(handle.fileno())
     except OSError as error:
@@ -131,26 +224,37 @@ def _write(result: xr.Dataset, temporary: Path, path: Path) -> None:
 def load(path: str | os.PathLike) -> xr.Dataset:
     """The result in a file written by `save`, read fully into memory; the file is closed on return.
 
+    Raises the errors of `open_result`.
+
+    Examples
+    --------
+    See `save`.
+    """
+    with open_result(path) as result:
+        return result.load()
+
+
+def open_result(path: str | os.PathLike) -> xr.Dataset:
+    """The result in a file written by `save`, opened lazily: variables are read when used, and
+    the file stays open until the dataset is closed (``with open_result(path) as result:``).
+
     Raises
     ------
     FileNotFoundError
         When there is no file at `path`.
     ResultError
         When it is not a result of `fretting`.
-
-    Examples
-    --------
-    See `save`.
     """
     if not Path(path).is_file():
         raise FileNotFoundError(errno.ENOENT, os.strerror(errno.ENOENT), str(path))
     try:
-        result = xr.load_dataset(path, engine=ENGINE)
+        result = xr.open_dataset(path, engine=ENGINE)
     except OSError as error:
         raise ResultError(f"{path}: found no netCDF-4 data ({error}), expected a result of fretting") from None
     missing = [f"variable {name}" for name in REQUIRED_VARIABLES if name not in result.variables]
     missing += [f"attribute {name}" for name in REQUIRED_ATTRIBUTES if name not in result.attrs]
     if missing:
+        result.close()
         raise ResultError(f"{path}: found no {missing[0]}, expected a result of fretting")
     return result
 
@@ -197,6 +301,11 @@ class Joiner:
     def __len__(self) -> int:
         """Number of parts added."""
         return len(self._pieces)
+
+    @property
+    def cycles(self) -> int:
+        """Cycles of the joined result so far."""
+        return self._count
 
     @property
     def steps(self) -> int:
