@@ -2,7 +2,6 @@
 stress and of |q| (issue 19 item 3), against the recorded fields, with few steps recorded, in
 chunks and on the shipped out-of-phase example."""
 
-
 import numpy as np
 import pytest
 
