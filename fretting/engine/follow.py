@@ -116,6 +116,7 @@ class _Run:
             guess = None if self.guess is None else self.guess(step)
             Q, sigma = self.history.Q[step], self.history.sigma[step]
             P = None if self.history.P is None else float(self.history.P[step])
+            P = None if P == self.model.contact.P else P  # None: the contact's, which every model runs
             at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma) and P in (None, _load(self.model, state))
             outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally, P)
             if self.observe is not None and not at_rest:

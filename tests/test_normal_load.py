@@ -1,0 +1,169 @@
+"""A varying normal load P(t) (issue 22): closed forms of Jaeger's superposition and Melan's shakedown,
+each on the default model (`fretting.models.Varying` is chosen where the history varies P).
+
+Traction is compared within 1e-3 f p0 away (0.02 a) from the points where it has a square-root kink,
+as in tests/test_closed_forms.py: the edges of the contacts met and the stick/slip boundaries.
+"""
+
+import numpy as np
+import pytest
+
+import fretting as fr
+from fretting.errors import HistoryError
+from fretting.loading.history import History
+from fretting.physics import closed_forms as cf
+
+E_STAR, F = 115e9, 0.5
+BAND = 0.02  # [a]
+
+
+def contact(profile, P=1e5):
+    return fr.Contact(profile, E_star=E_STAR, f=F, P=P)
+
+
+def away_from(x, ends, a):
+    return np.all(np.abs(np.subtract.outer(x, np.asarray(ends))) > BAND * a, axis=-1)
+
+
+def energy_scale(c):
+    """``pi (f p0 a)^2 / (4 E_star)`` [J/m], the scale of the energy of Cattaneo-Mindlin."""
+    return np.pi * (c.f * c.p0 * c.a) ** 2 / (4 * c.E_star)
+
+
+PROFILES = [fr.Hertz(0.05), fr.RoundedFlat(0.0002, 0.05)]
+
+
+@pytest.mark.parametrize("profile", PROFILES, ids=["hertz", "rounded-flat"])
+def test_proportional_loading_slips_nowhere_and_follows_the_pressure(profile):
+    """Q = lambda (P - P0), lambda = 0.3 < f: no dissipation, q = lambda (p(P) - p(P0)) (Jaeger)."""
+    formed = contact(profile)
+    P0, lam = formed.P, 0.3
+    result = fr.simulate(formed, History.piecewise_linear([0.0, lam * P0], None, 16, P=[P0, 2 * P0]))
+    assert result.attrs["model"] == "varying"
+    assert float(result.total_dissipation) == 0.0
+    final = contact(profile, 2 * P0)
+    x = result.x.values
+    expected = lam * (final.pressure(x) - formed.pressure(x))
+    band = away_from(x, [-formed.a, formed.a, -final.a, final.a], final.a)
+    assert np.max(np.abs(result.q.values[-1] - expected)[band]) < 1e-3 * F * formed.p0
+
+
+def test_cattaneo_mindlin_then_the_normal_load_up_and_down():
+    """CM at (P0, Q0): P up to 1.5 P0 and back slips nowhere and keeps the traction; down to 0.8 P0 gives CM there."""
+    formed = contact(fr.Hertz(0.05))
+    P0, Q0 = formed.P, 0.6 * F * formed.P
+    history = History.piecewise_linear([0.0, Q0, Q0, Q0, Q0], None, 16, P=[P0, P0, 1.5 * P0, P0, 0.8 * P0])
+    result = fr.simulate(formed, history)
+    x, q, dissipation = result.x.values, result.q.values, result.dissipation.values
+    start, up, back, down = history.vertex_step[1:]
+    assert np.all(dissipation[start + 1 : back + 1] == 0)  # no slip until back at P0
+    b = cf.stick_half_width(formed, Q0)
+    cm = cf.cattaneo_mindlin_traction(formed, Q0, x)  # zero on the band the contact gains
+    raised = contact(fr.Hertz(0.05), 1.5 * P0)
+    for step, a_now in ((up, raised.a), (back, formed.a)):
+        band = away_from(x, [-b, b, -formed.a, formed.a, -a_now, a_now], a_now)
+        assert np.max(np.abs(q[step] - cm)[band]) < 1e-3 * F * formed.p0
+    lowered = contact(fr.Hertz(0.05), 0.8 * P0)
+    c = cf.stick_half_width(lowered, Q0)
+    band = away_from(x, [-c, c, -lowered.a, lowered.a], lowered.a)
+    assert np.max(np.abs(q[down] - cf.cattaneo_mindlin_traction(lowered, Q0, x))[band]) < 1e-3 * F * formed.p0
+    zones = np.stack([result.stick_start.values[down], result.stick_end.values[down]], axis=-1)
+    np.testing.assert_allclose(zones[~np.isnan(zones[:, 0])], [[-c, c]], rtol=0, atol=1e-3 * lowered.a)
+
+
+@pytest.mark.parametrize("ratio", [0.9, 1.1])
+def test_increment_criterion(ratio):
+    """Increments with dP > 0 and |dQ| + (pi a / 4) |dsigma| = ratio f dP slip nowhere for 0.9, and do for 1.1.
+
+    Half of the budget goes to Q and half to sigma, their signs alternating between the two
+    segments; ``a`` is the largest half-width of the segment for 0.9, the smallest for 1.1.
+    """
+    formed = contact(fr.Hertz(0.05))
+    P = formed.P * np.array([1.0, 1.25, 1.5])
+    widths = [formed.profile.half_width(load, E_STAR)[0] for load in P]
+    Q, sigma = [0.0], [0.0]
+    for k, sign in enumerate((1.0, -1.0)):
+        dP = P[k + 1] - P[k]
+        a = widths[k + 1] if ratio < 1 else widths[k]
+        Q.append(Q[-1] + sign * ratio * F * dP / 2)
+        sigma.append(sigma[-1] - sign * ratio * F * dP / 2 / (np.pi * a / 4))
+    result = fr.simulate(formed, History.piecewise_linear(Q, sigma, 16, P=P))
+    if ratio < 1:
+        assert float(result.total_dissipation) == 0.0
+    else:
+        assert float(result.total_dissipation) > 1e-6 * energy_scale(formed)
+
+
+def cycles(formed, Q_over_P, shift, count=4, steps=32, sigma_amplitude=0.0, before=None):
+    """``P = Pm + 0.3 Pm sin``, ``Q = Qa sin(theta + shift) - Qa sin(shift)``, ``sigma = sigma_a sin``,
+    ``Qa = Q_over_P f 0.3 Pm``, from the contact formed at ``Pm`` (after the history `before`)."""
+    Pm, Pa = formed.P, 0.3 * formed.P
+    theta = 2 * np.pi * np.remainder(np.arange(count * steps + 1), steps) / steps
+    Qa = Q_over_P * F * Pa
+    Q = Qa * (np.sin(theta + shift) - np.sin(shift))
+    number = np.concatenate([[0], np.repeat(np.arange(1, count + 1), steps)])
+    waves = History(Q, sigma_amplitude * np.sin(theta), np.arange(0, Q.size, steps), number, Pm + Pa * np.sin(theta))
+    return waves if before is None else History.concatenate([before, waves])
+
+
+def test_shakedown_in_phase_below_f():
+    """Qa / Pa = 0.67 f in phase: nothing dissipated after the first cycle (Melan; Barber, Davies & Hills 2011)."""
+    formed = contact(fr.Hertz(0.05))
+    energy = fr.simulate(formed, cycles(formed, 0.67, 0.0)).cycle_dissipation.values
+    assert energy[0] > 0
+    assert np.all(energy[1:] <= 1e-9 * energy[0])
+
+
+@pytest.mark.parametrize(("Q_over_P", "shift"), [(1.07, 0.0), (0.67, 0.3)])
+def test_no_shakedown_above_f_or_out_of_phase(Q_over_P, shift):
+    """Qa / Pa = 1.07 f, or Q shifted by 0.3 rad: a steady energy per cycle, that does not vanish."""
+    formed = contact(fr.Hertz(0.05))
+    energy = fr.simulate(formed, cycles(formed, Q_over_P, shift)).cycle_dissipation.values
+    assert energy[-1] > 1e-2 * energy[0]
+    np.testing.assert_allclose(energy[-1], energy[-2], rtol=1e-6)
+
+
+def test_steady_energy_does_not_depend_on_the_path_before():
+    """The same (P, Q, sigma) cycle reached directly or after a detour has the same steady energy per cycle."""
+    formed = contact(fr.Hertz(0.05))
+    P0, fP = formed.P, F * formed.P
+    detour = History.piecewise_linear([0.0, 0.4 * fP, -0.3 * fP, 0.0], [0.0, 40e6, -20e6, 0.0], 8, P=[P0] * 4)
+    detour = History(detour.Q, detour.sigma, detour.vertex_step, np.zeros(len(detour), dtype=np.int64), detour.P)
+    energies = [
+        fr.simulate(
+            formed, cycles(formed, 1.0, 0.3, count=5, sigma_amplitude=30e6, before=before)
+        ).cycle_dissipation.values[-1]
+        for before in (None, detour)
+    ]
+    np.testing.assert_allclose(energies[0], energies[1], rtol=1e-6)
+
+
+def test_lift_off_and_start_are_refused():
+    formed = contact(fr.Hertz(0.05))
+    with pytest.raises(HistoryError, match="step 1"):  # P = 0 there
+        History.piecewise_linear([0.0, 1.0], None, 2, P=[formed.P, -formed.P])
+    with pytest.raises(HistoryError, match="P starts at"):
+        fr.simulate(formed, History.piecewise_linear([0.0, 1.0], None, 2, P=[2 * formed.P, formed.P]))
+    with pytest.raises(HistoryError, match="varies the normal load"):
+        fr.simulate(formed, History.piecewise_linear([0.0, 1.0], None, 2, P=[formed.P, 2 * formed.P]), nodes=64)
+
+
+def test_gross_slip_when_P_falls():
+    """|Q| > f P names the step also when it is P that falls under a constant Q."""
+    formed = contact(fr.Hertz(0.05))
+    Q = 0.5 * F * formed.P
+    history = History.piecewise_linear([0.0, Q, Q], None, 4, P=[formed.P, formed.P, 0.3 * formed.P])
+    first = int(np.argmax(F * history.P <= Q))  # step 7: P = 0.475 P0
+    with pytest.raises(fr.GrossSlipError, match=f"step {first}"):
+        fr.simulate(formed, history)
+
+
+def test_constant_P_is_bit_for_bit_the_history_without_P():
+    formed = contact(fr.Hertz(0.05))
+    fP = F * formed.P
+    Q = [0.0, 0.5 * fP, -0.4 * fP]
+    without = fr.simulate(formed, History.piecewise_linear(Q, [0.0, 30e6, 0.0], 8))
+    held = fr.simulate(formed, History.piecewise_linear(Q, [0.0, 30e6, 0.0], 8, P=[formed.P] * 3))
+    assert without.attrs["model"] == held.attrs["model"]
+    np.testing.assert_array_equal(without.q.values, held.q.values)
+    np.testing.assert_array_equal(without.dissipation.values, held.dissipation.values)
