@@ -142,7 +142,7 @@ def test_lift_off_and_start_are_refused():
     formed = contact(fr.Hertz(0.05))
     with pytest.raises(HistoryError, match="step 1"):  # P = 0 there
         History.piecewise_linear([0.0, 1.0], None, 2, P=[formed.P, -formed.P])
-    with pytest.raises(HistoryError, match="P starts at"):
+    with pytest.raises(HistoryError, match="history starts at P"):
         fr.simulate(formed, History.piecewise_linear([0.0, 1.0], None, 2, P=[2 * formed.P, formed.P]))
     with pytest.raises(HistoryError, match="varies the normal load"):
         fr.simulate(formed, History.piecewise_linear([0.0, 1.0], None, 2, P=[formed.P, 2 * formed.P]), nodes=64)
@@ -167,3 +167,20 @@ def test_constant_P_is_bit_for_bit_the_history_without_P():
     assert without.attrs["model"] == held.attrs["model"]
     np.testing.assert_array_equal(without.q.values, held.q.values)
     np.testing.assert_array_equal(without.dissipation.values, held.dissipation.values)
+
+
+def test_dataset_records_the_normal_load_and_a_split_run_continues_bit_for_bit():
+    formed = contact(fr.Hertz(0.05))
+    history = cycles(formed, 1.07, 0.3, count=2, steps=16)
+    whole = fr.simulate(formed, history)
+    np.testing.assert_array_equal(whole.P.values, history.P)
+    widths = [formed.profile.half_width(load, E_STAR)[0] for load in history.P]
+    np.testing.assert_allclose(whole.a.values, widths, rtol=1e-12)
+    h = whole.x.values[1] - whole.x.values[0]
+    np.testing.assert_allclose(whole.p_step.values.sum(axis=1) * h, history.P, rtol=1e-12)  # the pressure carries P
+    np.testing.assert_allclose(whole.w.values.sum(axis=1) * h, whole.cycle_dissipation.values, rtol=1e-5)  # float32 w
+    assert np.all(whole.p_step.values[:, np.abs(whole.x.values) > whole.a.values.max()] == 0)
+    first = fr.simulate(formed, history[:21])
+    later = fr.simulate(formed, history[20:], state=fr.final_state(first))
+    np.testing.assert_array_equal(later.q.values, whole.q.values[20:])
+    assert float(later.total_dissipation) == float(whole.total_dissipation)

@@ -114,18 +114,8 @@ def varies_P(contact, history):
     return history is not None and history.P is not None and bool(np.any(history.P != contact.P))
 
 
-def formed_at(contact, history):
-    """Raise HistoryError unless a history of ``P`` starts at the contact's ``P``, at which the contact is formed."""
-    if history.P is not None and history.P[0] != contact.P:
-        raise HistoryError(
-            f"the history's P starts at {float(history.P[0])!r}, expected the contact's P = {contact.P!r} (step 0)"
-        )
-
-
 def check(spec, contact, history):
-    """Raise HistoryError if the model of `spec` cannot run `history` on `contact` (`ModelSpec.holds_for`),
-    or a history of ``P`` is not formed at the contact's ``P``."""
-    formed_at(contact, history)
+    """Raise HistoryError if the model of `spec` cannot run `history` on `contact` (`ModelSpec.holds_for`)."""
     reason = spec.holds_for(contact, history)
     if reason is None and varies_P(contact, history) and not isinstance(spec, Varying):
         reason = "the history varies the normal load P (fretting.models.Varying follows it)"
@@ -148,7 +138,6 @@ def built_model(spec, contact, history):
     Raises HistoryError where the model cannot run the history (`ModelSpec.holds_for`).
     """
     if spec is None:
-        formed_at(contact, history)
         return _default_model(contact, history)
     check(spec, contact, history)
     if spec.resolved:

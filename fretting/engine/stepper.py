@@ -128,6 +128,11 @@ class Stepper:
                 f"history starts at Q = {Q!r}, sigma = {sigma!r}; "
                 f"the state is at Q = {float(self._state.Q)!r}, sigma = {float(self._state.sigma)!r}"
             )
+        held = self.contact.P if self._fresh or self._state.P is None else self._state.P
+        if history.P is not None and history.P[0] != held:
+            raise HistoryError(
+                f"history starts at P = {float(history.P[0])!r}; the contact is at P = {held!r}"
+            )
         with one_blas_thread():
             self._state = follow(self._model, history, self._state, recorder, observe, guess)
         self._fresh = False

@@ -185,6 +185,11 @@ class Model(abc.ABC):
         """`surface` under the normal load after `outcome` (the contact's: a model whose ``P`` varies overrides it)."""
         return self.surface
 
+    def pressure_at(self, P):
+        """Contact pressure [Pa] at the nodes under the normal load `P` [N/m] (a model of a constant ``P``: the
+        contact's)."""
+        return self.contact.pressure(self.x)
+
     def energy_density(self, outcome):
         """`dissipation_density` of the increment `outcome` (at its normal load, where a model varies it)."""
         return self.dissipation_density(outcome.ds)

@@ -61,7 +61,15 @@ if TYPE_CHECKING:
     from fretting.loading.history import History
     from fretting.physics.contact import Contact
 
-__all__ = ["DEFAULT_CELLS", "CellSurfaceStress", "NormalModel", "NormalOutcome", "Varying", "flexibility"]
+__all__ = [
+    "DEFAULT_CELLS",
+    "CellSurfaceStress",
+    "NormalModel",
+    "NormalOutcome",
+    "Varying",
+    "flexibility",
+    "toeplitz_inverse",
+]
 
 #: Cells over the largest contact of `Varying()`: the closed forms of tests/test_normal_load.py hold
 #: to 1e-3 at this many (benchmarks/normal_load.py prints the convergence).
@@ -205,10 +213,7 @@ class NormalModel(Model):
     @functools.lru_cache(maxsize=CACHED_CONTACTS)  # noqa: B019 (a model lives as long as its stepper)
     def stiffness(self, m):
         """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring)."""
-        n = 2 * m
-        factor = linalg.cho_factor(linalg.toeplitz(self.column[:n]), lower=True)
-        B = linalg.cho_solve(factor, np.eye(n))
-        B = (B + B.T) / 2
+        B = toeplitz_inverse(self.column[: 2 * m])
         b = B.sum(axis=1)
         return B - np.outer(b, b) / b.sum()
 
@@ -228,8 +233,8 @@ class NormalModel(Model):
         force[self.cells(m)] += (P - self.start[m]) * self.punch(m)
         return force
 
-    def pressure(self, P):
-        """Contact pressure [Pa] at the nodes under the load `P` [N/m]."""
+    def pressure_at(self, P):
+        """Contact pressure [Pa] at the nodes under the load `P` [N/m] (`force` over the cell width)."""
         return self.force(P) / self.h
 
     def half_width(self, P):
@@ -335,7 +340,7 @@ class NormalModel(Model):
 
     def dissipation_density(self, ds):
         """``f p |ds|`` [J/m^2] under the contact's own load (`energy_density`: under an increment's)."""
-        return self.contact.f * self.pressure(self.contact.P) * np.abs(ds)
+        return self.contact.f * self.pressure_at(self.contact.P) * np.abs(ds)
 
     def energy_density(self, outcome):
         return outcome.density
@@ -343,10 +348,28 @@ class NormalModel(Model):
     @functools.cached_property
     def surface(self):
         """The surface direct stress at the nodes (`CellSurfaceStress`) and the pressure of the contact's ``P`` [Pa]."""
-        return CellSurfaceStress(self.x.size), self.pressure(self.contact.P)
+        return CellSurfaceStress(self.x.size), self.pressure_at(self.contact.P)
 
     def surface_at(self, outcome):
-        return self.surface[0], self.pressure(outcome.P)
+        return self.surface[0], self.pressure_at(outcome.P)
+
+
+def toeplitz_inverse(column):
+    """Inverse of the symmetric positive definite Toeplitz matrix of first column `column`, in ``O(n^2)``.
+
+    Trench's recursion (Trench 1964; Gohberg & Semencul 1972): with ``v`` the first column of the
+    inverse ``B`` (one Levinson solve), ``B[i + 1, j + 1] = B[i, j] + (v[i + 1] v[j + 1] -
+    v[n - 1 - i] v[n - 1 - j]) / v[0]``, filled row by row.
+    """
+    n = column.size
+    v = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
+    B = np.empty((n, n))
+    B[0] = v
+    tail = v[::-1][: n - 1]  # v[n - 1 - j], j = 0 .. n - 2
+    for i in range(n - 1):
+        B[i + 1, 0] = v[i + 1]
+        B[i + 1, 1:] = B[i, :-1] + (v[i + 1] * v[1:] - v[n - 1 - i] * tail) / v[0]
+    return B
 
 
 class CellSurfaceStress:
