@@ -184,3 +184,58 @@ def test_dataset_records_the_normal_load_and_a_split_run_continues_bit_for_bit()
     later = fr.simulate(formed, history[20:], state=fr.final_state(first))
     np.testing.assert_array_equal(later.q.values, whole.q.values[20:])
     assert float(later.total_dissipation) == float(whole.total_dissipation)
+
+
+HERTZ = """\
+[contact]
+profile = "hertz"
+R = 0.05
+E_star = 115e9
+f = 0.5
+P = 1e5
+"""
+
+
+def read(tmp_path, text, csv=None):
+    from fretting.loading.history_file import read_history
+
+    if csv is not None:
+        (tmp_path / "loads.csv").write_text(csv)
+    (tmp_path / "history.toml").write_text(HERTZ + text)
+    return read_history(tmp_path / "history.toml")
+
+
+def test_history_files_take_P(tmp_path):
+    """`linear` P vertices, a `csv` P column, `sine` and `random` P_amplitude / P_mean: the same loads as History."""
+    _, linear = read(tmp_path, '[[loading]]\nkind = "linear"\nQ = [1e4, 0]\nP = [1.5e5, 1e5]\nsteps_per_segment = 4\n')
+    expected = History.piecewise_linear([0.0, 1e4, 0.0], None, 4, P=[1e5, 1.5e5, 1e5])
+    np.testing.assert_array_equal(linear.P, expected.P)
+    np.testing.assert_array_equal(linear.Q, expected.Q)
+    _, series = read(
+        tmp_path, '[[loading]]\nkind = "csv"\nfile = "loads.csv"\nsteps_per_segment = 4\n', "P,Q\n1.5e5,1e4\n1e5,0\n"
+    )
+    np.testing.assert_array_equal(series.P, expected.P)
+    sine = '[[loading]]\nkind = "sine"\nQ_amplitude = 1e4\nP_amplitude = 2e4\nP_phase_deg = 90\ncycles = 2\n'
+    _, waves = read(tmp_path, sine)
+    theta = 2 * np.pi * np.remainder(np.arange(2 * 64 + 1), 64) / 64
+    np.testing.assert_allclose(waves.P[-129:], 1e5 + 2e4 * np.cos(theta), rtol=1e-15)  # ramped up from P = 1e5
+    assert waves.P[0] == 1e5
+    _, drawn = read(
+        tmp_path, '[[loading]]\nkind = "random"\ncycles = 3\nQ_amplitude = 1e4\nP_amplitude = 2e4\nseed = 1\n'
+    )
+    u = (drawn.Q[drawn.vertex_step] / 1e4)[1:]
+    np.testing.assert_allclose(drawn.P[drawn.vertex_step][1:], 1e5 + 2e4 * u, rtol=1e-15)  # in phase with Q
+    _, held = read(tmp_path, '[[loading]]\nkind = "linear"\nQ = [1e4, 0]\n')
+    assert held.P is None  # the contact's constant P: no P column, the results of a history without P
+
+
+def test_dovetail_example_runs_the_varying_model():
+    from fretting.loading.examples import example_path
+    from fretting.loading.history_file import read_history
+
+    formed, history = read_history(example_path("hertz_dovetail_cycle"))
+    result = fr.simulate(formed, history)
+    assert result.attrs["model"] == "varying"
+    assert result.a.values.max() > 1.5 * formed.a  # the contact grows in every cycle
+    energy = result.cycle_dissipation.values
+    assert np.all(energy > 0)

@@ -130,9 +130,7 @@ class Stepper:
             )
         held = self.contact.P if self._fresh or self._state.P is None else self._state.P
         if history.P is not None and history.P[0] != held:
-            raise HistoryError(
-                f"history starts at P = {float(history.P[0])!r}; the contact is at P = {held!r}"
-            )
+            raise HistoryError(f"history starts at P = {float(history.P[0])!r}; the contact is at P = {held!r}")
         with one_blas_thread():
             self._state = follow(self._model, history, self._state, recorder, observe, guess)
         self._fresh = False

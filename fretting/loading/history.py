@@ -258,8 +258,11 @@ class History:
         Q_mean: float = 0.0,
         sigma_mean: float = 0.0,
         *,
-        start: tuple[float, float] = (0.0, 0.0),
+        start: tuple[float, ...] = (0.0, 0.0),
         ramp_steps: int = RAMP_STEPS,
+        P_amplitude: float = 0.0,
+        P_mean: float | None = None,
+        P_phase_deg: float = 0.0,
     ) -> History:
         """Sinusoidal load cycles, reached from `start` by a straight ramp when they start elsewhere.
 
@@ -281,9 +284,12 @@ class History:
         Q_mean, sigma_mean : float
             Means [N/m], [Pa].
         start : tuple of float
-            ``(Q, sigma)`` the history starts from [N/m], [Pa].
+            ``(Q, sigma)`` the history starts from [N/m], [Pa]; ``(Q, sigma, P)`` with a normal load.
         ramp_steps : int
             Steps of the ramp to the first point, >= 1.
+        P_amplitude, P_mean, P_phase_deg : float
+            A varying normal load ``P = P_mean + P_amplitude sin(theta + P_phase)`` [N/m], ``P_phase``
+            [deg] by which it leads Q; `P_mean` None: no ``P`` column (the contact's constant ``P``).
 
         Examples
         --------
@@ -304,10 +310,14 @@ class History:
         Q = _wave(theta, amplitude[0], mean[0])
         theta += phase
         sigma = _wave(theta, amplitude[1], mean[1])
+        P = None
+        if P_mean is not None:
+            theta += np.radians(_number("P_phase_deg", P_phase_deg)) - phase
+            P = _wave(theta, _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean))
         del theta  # arrays of a long history are large (51 MB each for 10^5 cycles of 64 steps)
         cycle = np.arange(n) + (steps - 1)
         cycle //= steps  # 0, then each cycle's number over its steps
-        waves = cls(Q, sigma, np.arange(0, n, steps), cycle)
+        waves = cls(Q, sigma, np.arange(0, n, steps), cycle, P)
         return _reached_from(start, waves, _count("ramp_steps", ramp_steps))
 
     @classmethod
@@ -322,6 +332,8 @@ class History:
         steps_per_segment=16,
         *,
         start=(0.0, 0.0),
+        P_amplitude=0.0,
+        P_mean=None,
     ):
         """Cycles of random amplitude: a straight rise to a peak, then a fall to a valley.
 
@@ -344,27 +356,40 @@ class History:
             Equal increments of each rise and fall, >= 1.
         start : tuple of float
             ``(Q, sigma)`` the history starts from [N/m], [Pa]; the first rise starts there.
+            ``(Q, sigma, P)`` with a normal load.
+        P_amplitude, P_mean : float
+            A varying normal load [N/m] in phase with Q (the same draws); `P_mean` None: no ``P``
+            column (the contact's constant ``P``).
         """
         amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
         count = _count("cycles", cycles)
         steps = _count("steps_per_segment", steps_per_segment)
         excursion = (np.random.default_rng(_count("seed", seed, minimum=0)).random((count, 2)) * [1, -1]).ravel()
         start = _start(start)
+        P = None
+        if P_mean is not None:
+            P_amplitude, P_mean = _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean)
+            P = np.concatenate([[start[2] if len(start) > 2 else P_mean], P_mean + P_amplitude * excursion])
         path = cls.piecewise_linear(
             np.concatenate([[start[0]], mean[0] + amplitude[0] * excursion]),
             np.concatenate([[start[1]], mean[1] + amplitude[1] * excursion]),
             steps,
+            P,
         )
         cycle = np.concatenate([[0], np.repeat(np.arange(1, count + 1), 2 * steps)])
-        return cls(path.Q, path.sigma, path.vertex_step, cycle)
+        return cls(path.Q, path.sigma, path.vertex_step, cycle, path.P)
 
 
 def _reached_from(start, history, ramp_steps):
-    """`history`, preceded by a straight ramp of `ramp_steps` steps from `start` if it starts elsewhere."""
+    """`history`, preceded by a straight ramp of `ramp_steps` steps from `start` if it starts elsewhere.
+
+    A history of ``P`` starts from ``start[2]``, or at its own first ``P`` where `start` is a pair.
+    """
     start = _start(start)
-    if history.start == start:
+    P = None if history.P is None else (start[2] if len(start) > 2 else history.normal_start, history.normal_start)
+    if history.start == start[:2] and (P is None or P[0] == P[1]):
         return history
-    ramp = History.piecewise_linear(*zip(start, history.start, strict=True), ramp_steps)
+    ramp = History.piecewise_linear(*zip(start[:2], history.start, strict=True), ramp_steps, P)
     return History.concatenate([ramp, history])
 
 
@@ -436,11 +461,11 @@ def _count(name, value, minimum=1):
 
 
 def _start(start):
-    """``start`` as a pair of floats ``(Q, sigma)``."""
+    """``start`` as a tuple of floats ``(Q, sigma)``, or ``(Q, sigma, P)``."""
     values = _loads("start", start)
-    if values.size != 2:
-        raise HistoryError(f"start must be a pair (Q, sigma), found {start!r}")
-    return float(values[0]), float(values[1])
+    if values.size not in (2, 3):
+        raise HistoryError(f"start must be a pair (Q, sigma) or a triple (Q, sigma, P), found {start!r}")
+    return tuple(float(value) for value in values)
 
 
 def _normal_loads(P, n):
