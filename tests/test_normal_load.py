@@ -239,3 +239,21 @@ def test_dovetail_example_runs_the_varying_model():
     assert result.a.values.max() > 1.5 * formed.a  # the contact grows in every cycle
     energy = result.cycle_dissipation.values
     assert np.all(energy > 0)
+
+
+def test_figures_of_a_varying_P():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from fretting import plots
+
+    formed = contact(fr.Hertz(0.05))
+    result = fr.simulate(formed, cycles(formed, 1.07, 0.0, count=1, steps=16))
+    assert "contact_edges" in plots.figures_for(result)
+    ax = plots.contact_edges(result)
+    upper = ax.lines[0].get_ydata()
+    np.testing.assert_allclose(upper, result.a.values / formed.a)  # the edges move with P
+    assert upper.max() > 1.1 and upper.min() < 0.9
+    plots.traction(result)
+    with pytest.raises(ValueError, match="does not vary P"):
+        plots.contact_edges(fr.simulate(formed, History.piecewise_linear([0.0, 1e3], None, 2)))
