@@ -11,6 +11,7 @@ import pytest
 import fretting as fr
 from fretting.errors import HistoryError
 from fretting.loading.history import History
+from fretting.models.normal import Varying
 from fretting.physics import closed_forms as cf
 
 E_STAR, F = 115e9, 0.5
@@ -257,3 +258,15 @@ def test_figures_of_a_varying_P():
     plots.traction(result)
     with pytest.raises(ValueError, match="does not vary P"):
         plots.contact_edges(fr.simulate(formed, History.piecewise_linear([0.0, 1e3], None, 2)))
+
+
+def test_stepping_with_P_equals_the_run():
+    formed = contact(fr.Hertz(0.05))
+    history = cycles(formed, 1.07, 0.3, count=1, steps=16)
+    stepper = fr.Stepper(formed, Varying().resolved_for(formed, history))
+    for Q, sigma, P in zip(history.Q[1:], history.sigma[1:], history.P[1:], strict=True):
+        stepper.step(Q, sigma, P=P)
+    whole = fr.final_state(fr.simulate(formed, history, model=Varying().resolved_for(formed, history)))
+    np.testing.assert_array_equal(stepper.state.slip, whole.slip)
+    with pytest.raises(HistoryError, match="P must be a finite normal load > 0"):
+        stepper.step(0.0, 0.0, P=-1.0)

@@ -75,9 +75,9 @@ __all__ = [
 #: to 1e-3 at this many (benchmarks/normal_load.py prints the convergence).
 DEFAULT_CELLS = 512
 
-#: Contacts (runs of cells) whose slip-to-traction matrix `NormalModel` keeps, each ``(2m)^2`` floats:
-#: a load cycle meets each of the contacts it sweeps twice.
-CACHED_CONTACTS = 128
+#: Contacts (runs of cells) whose slip-to-traction matrix `NormalModel` keeps, each ``(2m)^2`` floats
+#: (2 MB at 512 cells): a cycle meets each contact it sweeps twice, and one not kept costs ``O(m^2)``.
+CACHED_CONTACTS = 32
 
 
 @dataclass(frozen=True, eq=False)
@@ -260,17 +260,12 @@ class NormalModel(Model):
         """`slip` [m] with the nodes out of the `m` pairs in contact given the relative displacement of
         the free surfaces there, under the nodal forces `g` [N/m] and the bulk tension `sigma` [Pa]."""
         nodes = self.cells(m)
-        elastic = self.bulk_slip(sigma) - self._columns(m) @ g[nodes]
+        columns = self.column[np.abs(np.subtract.outer(np.arange(self.x.size), np.arange(self.x.size)[nodes]))]
+        elastic = self.bulk_slip(sigma) - columns @ g[nodes]  # D[:, nodes] g
         shift = np.mean(slip[nodes] - elastic[nodes])
         out = np.ones(self.x.size, dtype=bool)
         out[nodes] = False
         return np.where(out, elastic + shift, slip)
-
-    @functools.lru_cache(maxsize=CACHED_CONTACTS)  # noqa: B019
-    def _columns(self, m):
-        """``D[:, cells(m)]``: displacements at every node of unit forces on the `m` central pairs."""
-        nodes = np.arange(self.x.size)[self.cells(m)]
-        return self.column[np.abs(np.subtract.outer(np.arange(self.x.size), nodes))]
 
     def at_rest(self, state):
         P = self.load(state)
