@@ -28,7 +28,7 @@ from fretting.models.base import ModelSpec
 from fretting.models.collocation import DEFAULT_NODES, Grid
 from fretting.models.exact import Exact
 from fretting.models.galerkin import DEFAULT_RTOL, Mesh
-from fretting.models.normal import DEFAULT_CELLS, Varying
+from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART, Varying
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
@@ -128,7 +128,7 @@ def could_be_default(spec):
     return (
         isinstance(spec, Exact)
         or (isinstance(spec, Mesh) and spec.rtol == DEFAULT_RTOL)
-        or (isinstance(spec, Varying) and spec.cells == DEFAULT_CELLS)
+        or (isinstance(spec, Varying) and (spec.cells, spec.load_part) == (DEFAULT_CELLS, DEFAULT_LOAD_PART))
     )
 
 

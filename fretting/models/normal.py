@@ -63,6 +63,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "DEFAULT_CELLS",
+    "DEFAULT_LOAD_PART",
     "CellSurfaceStress",
     "NormalModel",
     "NormalOutcome",
@@ -75,9 +76,15 @@ __all__ = [
 #: to 1e-3 at this many (benchmarks/normal_load.py prints the convergence).
 DEFAULT_CELLS = 512
 
+#: Largest change of ``P`` in one part of an increment, relative to the smaller load at its ends,
+#: of `Varying()`. A part is solved as one step of the solver, under the friction limit of its end
+#: load, so its energy errs in proportion to the change of the pressure over it; the energy of a
+#: history then converges with this share (benchmarks/normal_load.py prints the table).
+DEFAULT_LOAD_PART = 1 / 400
+
 #: Contacts (runs of cells) whose slip-to-traction matrix `NormalModel` keeps, each ``(2m)^2`` floats
-#: (2 MB at 512 cells): a cycle meets each contact it sweeps twice, and one not kept costs ``O(m^2)``.
-CACHED_CONTACTS = 32
+#: (at most 2 MB at 512 cells): a cycle meets each contact it sweeps twice, and one not kept costs ``O(m^2)``.
+CACHED_CONTACTS = 64
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,10 +97,13 @@ class Varying(ModelSpec):
         Cells over ``[-A, A]``, even, at least 8.
     half_width : float, optional
         ``A`` [m], the half-width of the largest contact (resolved for a history by `resolved_for`).
+    load_part : float
+        Largest relative change of ``P`` in one part of an increment (`DEFAULT_LOAD_PART`), in (0, 1].
     """
 
     cells: int = DEFAULT_CELLS
     half_width: float | None = None
+    load_part: float = DEFAULT_LOAD_PART
 
     name: ClassVar[str] = "varying"
     description: ClassVar[str] = (
@@ -106,6 +116,8 @@ class Varying(ModelSpec):
             raise ValueError(f"cells must be an even integer >= 8, found {cells!r}")
         if self.half_width is not None and not (np.isfinite(self.half_width) and self.half_width > 0):
             raise ValueError(f"half_width must be a positive length [m], found {self.half_width!r}")
+        if not 0 < self.load_part <= 1:
+            raise ValueError(f"load_part must be in (0, 1], found {self.load_part!r}")
 
     @property
     def resolved(self) -> bool:
@@ -116,13 +128,18 @@ class Varying(ModelSpec):
         if self.resolved:
             return self
         P = contact.P if history is None or history.P is None else max(float(history.P.max()), contact.P)
-        return Varying(self.cells, float(contact.profile.half_width(P, contact.E_star)[0]))
+        return Varying(self.cells, float(contact.profile.half_width(P, contact.E_star)[0]), self.load_part)
 
     def build(self, contact: Contact) -> NormalModel:
         return NormalModel(contact, self)
 
     def attributes(self) -> dict:
-        return {"model": self.name, "cells": int(self.cells), "half_width": float(self.half_width)}
+        return {
+            "model": self.name,
+            "cells": int(self.cells),
+            "half_width": float(self.half_width),
+            "load_part": float(self.load_part),
+        }
 
     def holds_for(self, contact: Contact, history: History | None) -> str | None:
         if not (contact.profile.SYMMETRIC and hasattr(contact.profile, "load")):
@@ -135,7 +152,7 @@ class Varying(ModelSpec):
 
     @classmethod
     def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Varying:
-        return cls(int(attrs["cells"]), float(attrs["half_width"]))
+        return cls(int(attrs["cells"]), float(attrs["half_width"]), float(attrs["load_part"]))
 
 
 def flexibility(N, h, E_star):
@@ -183,6 +200,7 @@ class NormalModel(Model):
         self.t = (self.x - contact.centre) / contact.a
         self.friction_force = np.inf  # f P at each step: the engine checks the load of the step
         self.column = flexibility(N, self.h, contact.E_star)
+        self._kernel = np.concatenate([self.column[:0:-1], self.column])  # D_ij = kernel[N - 1 + i - j]
         self.start = self._starts()
         self._sums = self._cumulative()
 
@@ -260,8 +278,10 @@ class NormalModel(Model):
         """`slip` [m] with the nodes out of the `m` pairs in contact given the relative displacement of
         the free surfaces there, under the nodal forces `g` [N/m] and the bulk tension `sigma` [Pa]."""
         nodes = self.cells(m)
-        columns = self.column[np.abs(np.subtract.outer(np.arange(self.x.size), np.arange(self.x.size)[nodes]))]
-        elastic = self.bulk_slip(sigma) - columns @ g[nodes]  # D[:, nodes] g
+        forces = np.zeros(self.x.size)
+        forces[nodes] = g[nodes]
+        N = self.x.size
+        elastic = self.bulk_slip(sigma) - np.convolve(forces, self._kernel)[N - 1 : 2 * N - 1]  # D g, D Toeplitz
         shift = np.mean(slip[nodes] - elastic[nodes])
         out = np.ones(self.x.size, dtype=bool)
         out[nodes] = False
@@ -300,9 +320,12 @@ class NormalModel(Model):
     def parts(self, P_from, P_to):
         """``(fraction, pairs)`` of the parts of the increment from `P_from` to `P_to` [N/m]: the end of each
         part as a fraction of the increment (the last is 1), and the pairs in contact over it (those of
-        its middle load)."""
+        its middle load). Parts end where cells enter or leave, and at equal steps of ``P`` no larger
+        than ``load_part`` of the smaller load."""
         low, high = sorted((P_from, P_to))
-        crossed = self.start[2:][(self.start[2:] > low) & (self.start[2:] < high)]
+        count = int(np.ceil((high - low) / (self.spec.load_part * low)))
+        even = low + (high - low) * np.arange(1, count) / count
+        crossed = np.union1d(self.start[2:][(self.start[2:] > low) & (self.start[2:] < high)], even)
         ends = np.concatenate([crossed[:: 1 if P_to > P_from else -1], [P_to]])
         begins = np.concatenate([[P_from], ends[:-1]])
         fractions = np.ones(ends.size)
