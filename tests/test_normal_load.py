@@ -270,3 +270,16 @@ def test_stepping_with_P_equals_the_run():
     np.testing.assert_array_equal(stepper.state.slip, whole.slip)
     with pytest.raises(HistoryError, match="P must be a finite normal load > 0"):
         stepper.step(0.0, 0.0, P=-1.0)
+
+
+def test_surface_stress_of_a_varying_P_is_the_engine_tally():
+    """`nucleation.surface_stress` of each recorded step (the pressure of that step) peaks as the engine's tally."""
+    from fretting.analysis import nucleation
+
+    formed = contact(fr.Hertz(0.05))
+    result = fr.simulate(formed, cycles(formed, 1.07, 0.3, count=1, steps=16, sigma_amplitude=30e6))
+    stress = nucleation.surface_stress(result).values
+    cycle = result.cycle.values == 1
+    np.testing.assert_allclose(
+        result.sigma_xx_peak.values[0], stress[cycle].max(axis=0), rtol=1e-6, atol=1e-6 * formed.p0
+    )
