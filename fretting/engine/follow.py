@@ -33,8 +33,6 @@ def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=
         raise GrossSlipError(step, Q, sigma, sliding)
     if at_rest:
         return model.at_rest(state), state
-    if P is not None:
-        state = model.carried(state, Q, sigma, P)
     try:
         outcome = model.increment(state, Q, sigma, guess) if P is None else model.increment(state, Q, sigma, guess, P)
     except GrossSlipError:  # within rounding of the friction force: the increment found no stick zone

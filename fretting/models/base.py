@@ -193,8 +193,3 @@ class Model(abc.ABC):
     def energy_density(self, outcome):
         """`dissipation_density` of the increment `outcome` (at its normal load, where a model varies it)."""
         return self.dissipation_density(outcome.ds)
-
-    def carried(self, state, Q, sigma, P):
-        """`state` moved onto the nodes of the contact under the normal load `P` [N/m], before the increment
-        to `Q`, `sigma`, `P`: itself for a model of a constant ``P`` (`fretting.models.normal` moves its nodes)."""
-        return state
