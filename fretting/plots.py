@@ -401,6 +401,7 @@ def _position(result, x=None):
 def _label(result, row):
     """Legend of the recorded `row`: its step number (not the row) and loads."""
     Q, sigma = float(result.Q[row]), float(result.sigma[row])
-    return f"step {int(result.step[row])}: $Q/(fP)$ = {Q / (result.attrs['f'] * result.attrs['P']):.2f}, " + (
+    P = float(result.P[row]) if "P" in result else result.attrs["P"]  # a varying P: that of the step
+    return f"step {int(result.step[row])}: $Q/(fP)$ = {Q / (result.attrs['f'] * P):.2f}, " + (
         f"$\\sigma/(f p_0)$ = {sigma / (result.attrs['f'] * result.attrs['p0']):.2f}"
     )
