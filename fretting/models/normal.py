@@ -34,7 +34,9 @@ displaces by ``(2 / (pi E_star)) ln(2L / c)``). The pressure is a function of ``
 flat punches as the fully stuck traction increments of ``Q``. An increment is solved in parts that
 cross no change of the cells in contact, so that Jaeger's rule holds exactly on the grid: an
 increment with ``|dQ| + (pi a / 4) |dsigma| <= f dP`` slips nowhere, and proportional loading
-``Q = lambda (P - P0)``, ``lambda < f``, carries ``q = lambda (p(P) - p(P0))``.
+``Q = lambda (P - P0)``, ``lambda < f``, carries ``q = lambda (p(P) - p(P0))``. The parts also
+change ``P`` by at most ``load_part`` of the load (`DEFAULT_LOAD_PART`): each is one implicit
+step of the solver, under the friction limit of its end load.
 
 Memory. ``s`` at a node in contact is its relative displacement since the contact was formed; at
 a node out of contact it is that of the two free surfaces there, computed after every part of
