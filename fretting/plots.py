@@ -15,6 +15,7 @@ from fretting.analysis import nucleation
 __all__ = [
     "FIGURES",
     "accumulated_density",
+    "contact_edges",
     "cycle_energy",
     "dissipation_density",
     "figures_for",
@@ -93,12 +94,21 @@ def traction(result, steps=None, ax=None):
     fp0 = result.attrs["f"] * result.attrs["p0"]
     for row in _rows(result, steps):
         (line,) = ax.plot(t, result.q.values[row] / fp0, label=_label(result, row))
+        if "p_step" in result:  # a varying P: the limit of this step
+            at = result.p_step.values[row] / result.attrs["p0"]
+            ax.plot(t, at, t, -at, color=line.get_color(), linestyle=":", linewidth=0.8)
         for start, end in zip(result.stick_start.values[row], result.stick_end.values[row], strict=True):
             if np.isfinite(start):
                 ax.axvspan(*_position(result, np.array([start, end])), color=line.get_color(), alpha=0.12, linewidth=0)
-    span = 1.1 * limit[np.abs(t) <= INNER].max()
+    limits = result.p_step.values / result.attrs["p0"] if "p_step" in result else limit
+    reach = max(1.0, float(np.abs(t).max()))  # the nodes of a varying P span its largest contact
+    span = 1.1 * limits[..., np.abs(t) <= INNER * reach].max()
     ax.set(
-        xlim=(-1, 1), ylim=(-span, span), xlabel="$x / a$", ylabel="$q / (f p_0)$", title="shear traction, stick shaded"
+        xlim=(-reach, reach),
+        ylim=(-span, span),
+        xlabel="$x / a$",
+        ylabel="$q / (f p_0)$",
+        title="shear traction, stick shaded",
     )
     ax.legend(fontsize="small")
     return ax
@@ -227,6 +237,31 @@ def peak_density(result, ax=None):
     return ax
 
 
+def contact_edges(result, ax=None):
+    """The contact edges ``+-a / a_formed`` and the stick zones' ends against the step, where ``P`` varies.
+
+    Parameters
+    ----------
+    result : xarray.Dataset
+        A result of a history of ``P`` (it has ``a``).
+    ax : matplotlib.axes.Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if "a" not in result:
+        raise ValueError("the result has no contact half-width a: its history does not vary P")
+    ax = _axes(ax)
+    steps, edge = result.step.values, result.a.values / result.attrs["a"]
+    ax.plot(steps, edge, steps, -edge, color="k", linewidth=1)
+    for name in ("stick_start", "stick_end"):
+        ends = _position(result, result[name].values)
+        ax.plot(np.repeat(steps, ends.shape[1]), ends.ravel(), ".", color="C0", markersize=2)
+    ax.set(xlabel="step", ylabel="$x / a$ (contact formed)", title="contact edges (lines) and stick-zone ends (dots)")
+    return ax
+
+
 def surface_stress(result, steps=None, ax=None, body=None, bulk=None):
     """Surface direct stress ``sigma_xx / (f p0)`` of `body` against ``x / a`` at `steps`.
 
@@ -315,6 +350,7 @@ FIGURES = {
     "accumulated_density": accumulated_density,
     "slip_amplitude": slip_amplitude,
     "peak_density": peak_density,
+    "contact_edges": contact_edges,
 }
 
 
@@ -326,7 +362,7 @@ def figures_for(result):
     sigma) when Q (sigma) varies in a cycle recorded whole, densities and slip amplitudes when
     they are known for a cycle.
     """
-    names = {"traction", "slip", "surface_stress"}
+    names = {"traction", "slip", "surface_stress"} | ({"contact_edges"} if "a" in result else set())
     if np.any(result.Q.values != 0):
         names.add("hysteresis")
     if "cycle_number" in result.dims and result.sizes["cycle_number"]:
@@ -421,6 +457,7 @@ def _position(result, x=None):
 def _label(result, row):
     """Legend of the recorded `row`: its step number (not the row) and loads."""
     Q, sigma = float(result.Q[row]), float(result.sigma[row])
-    return f"step {int(result.step[row])}: $Q/(fP)$ = {Q / (result.attrs['f'] * result.attrs['P']):.2f}, " + (
+    P = float(result.P[row]) if "P" in result else result.attrs["P"]  # a varying P: that of the step
+    return f"step {int(result.step[row])}: $Q/(fP)$ = {Q / (result.attrs['f'] * P):.2f}, " + (
         f"$\\sigma/(f p_0)$ = {sigma / (result.attrs['f'] * result.attrs['p0']):.2f}"
     )

@@ -34,7 +34,7 @@ def axes():
 
 def test_every_figure_draws_on_the_given_axes(cycled):
     names = plots.figures_for(cycled)
-    assert names == list(plots.FIGURES)
+    assert names == [name for name in plots.FIGURES if name != "contact_edges"]  # that one: P varies
     for name in names:
         ax = axes()
         assert plots.FIGURES[name](cycled, ax=ax) is ax, name

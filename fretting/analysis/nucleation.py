@@ -44,6 +44,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
 
+from fretting.models.normal import CellSurfaceStress
 from fretting.physics.contact import SPECIMEN
 from fretting.physics.surface import SurfaceStress, bulk_stress
 from fretting.results.variables import CYCLE_PEAKS
@@ -315,7 +316,9 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     in body 1, a tension ``2 f p0`` at the trailing edge ``x = -a`` (McEwen 1949 [3]_).
 
     The principal value is integrated exactly for ``sqrt(1 - t^2) q`` interpolated linearly
-    between the nodes (`fretting.physics.surface.hilbert_matrix`). Its error against
+    between the nodes (`fretting.physics.surface.hilbert_matrix`); for a result of a varying ``P``,
+    for ``q`` constant on each cell, with the pressure of each step
+    (`fretting.models.normal.CellSurfaceStress`). Its error against
     Cattaneo-Mindlin away from the stick/slip boundaries is held by
     tests/test_nucleation.py::test_surface_stress_of_cattaneo_mindlin; at a boundary the stress has a
     square-root profile with a vertical tangent that no fixed grid resolves, so the error is largest
@@ -341,8 +344,12 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
         (``"specimen"`` or ``"pad"``).
     """
     body, role = _body(result, body)
-    t = (result.x.values - result.attrs["centre"]) / result.attrs["a"]
-    stress = SurfaceStress(t)(result.q.values, result.p.values, _bulk(result, body, bulk)[:, None], body)
+    bulk = _bulk(result, body, bulk)[:, None]
+    if "p_step" in result:  # a varying P: the equal cells of fretting.models.normal, the pressure of each step
+        stress = CellSurfaceStress(result.sizes["x"])(result.q.values, result.p_step.values, bulk, body)
+    else:
+        t = (result.x.values - result.attrs["centre"]) / result.attrs["a"]
+        stress = SurfaceStress(t)(result.q.values, result.p.values, bulk, body)
     definition = (
         f"sigma_xx = -(2/pi) PV int t_x(xi)/(x - xi) dxi - p(x) + sigma_b, t_x = {'+q' if body == 1 else '-q'} "
         f"(body {body}), sigma_b its bulk stress (half-plane surface stress, Johnson 1985 section 2.3; "

@@ -2,6 +2,8 @@
 
 The default for a contact and a history (`choose_model`):
 
+0. where the history varies the normal load ``P``, method 4 on cells fixed in ``x`` over its
+   largest contact (`Varying()`), the one model that follows ``P``;
 1. the exact model of ``Q`` alone (`Exact`) where it holds: no ``sigma`` in the history and a
    symmetric profile (`Exact.holds_for`); where the answer is known in closed form it is not
    solved for;
@@ -21,12 +23,15 @@ import warnings
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from fretting.engine.adaptation import MeshTooLarge, adapted_model, refined_for
 from fretting.errors import HistoryError
 from fretting.models.base import ModelSpec
 from fretting.models.collocation import DEFAULT_NODES, Grid
 from fretting.models.exact import Exact
 from fretting.models.galerkin import DEFAULT_RTOL, Mesh
+from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART, Varying
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
@@ -47,7 +52,7 @@ __all__ = [
 ]
 
 #: Every kind of model, by the name the dataset records: a new model adds its spec here.
-SPECS = {spec.name: spec for spec in (Exact, Mesh, Grid)}
+SPECS = {spec.name: spec for spec in (Exact, Mesh, Grid, Varying)}
 
 #: The ``model`` attribute of results written by fretting 0.1.0, before models had names: the name
 #: it stands for, so that a result kept from then can still be continued or resumed.
@@ -99,6 +104,8 @@ def choose_model(contact: Contact, history: History) -> ModelSpec:
 
 def _default_model(contact, history):
     """The built model of `choose_model` (a mesh's stiffness is assembled once, by its adaptation)."""
+    if varies_P(contact, history):
+        return Varying().resolved_for(contact, history).build(contact)
     exact = Exact()
     if exact.holds_for(contact, history) is None:
         return exact.resolved_for(contact, history).build(contact)
@@ -112,16 +119,27 @@ def _default_model(contact, history):
     return model
 
 
+def varies_P(contact, history):
+    """True if `history` moves the normal load away from the contact's ``P``."""
+    return history is not None and history.P is not None and bool(np.any(history.P != contact.P))
+
+
 def check(spec, contact, history):
     """Raise HistoryError if the model of `spec` cannot run `history` on `contact` (`ModelSpec.holds_for`)."""
     reason = spec.holds_for(contact, history)
+    if reason is None and varies_P(contact, history) and not isinstance(spec, Varying):
+        reason = "the history varies the normal load P (fretting.models.Varying follows it)"
     if reason is not None:
         raise HistoryError(f"{spec.description} cannot run this history: {reason}")
 
 
 def could_be_default(spec):
     """True if `choose_model` can give the resolved `spec` (one read from a result, say)."""
-    return isinstance(spec, Exact) or (isinstance(spec, Mesh) and spec.rtol == DEFAULT_RTOL)
+    return (
+        isinstance(spec, Exact)
+        or (isinstance(spec, Mesh) and spec.rtol == DEFAULT_RTOL)
+        or (isinstance(spec, Varying) and (spec.cells, spec.load_part) == (DEFAULT_CELLS, DEFAULT_LOAD_PART))
+    )
 
 
 def built_model(spec, contact, history):

@@ -31,35 +31,36 @@ __all__ = ["STRAIGHT", "advance", "follow", "skippable"]
 STRAIGHT = 1e-9
 
 
-def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=True, stress=True):
-    """(outcome, state after) of the increment of `model` from `state` to `Q` [N/m], `sigma` [Pa].
+def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=True, stress=True, P=None):
+    """(outcome, state after) of the increment of `model` from `state` to `Q` [N/m], `sigma` [Pa], `P` [N/m].
 
     `at_rest`: no increment, the state as it stands (the starting state of a history). `step`
     names the step in a `GrossSlipError`. An increment that reports negative dissipation is a
     solver failure (`SolverError`), never a result. `tally`: add the increment to the cycle in
     progress (its energy density and peaks); False where only the slip matters (mesh adaptation).
     `stress`: tally the specimen's surface stress peaks (False: NaN, not known, as for a run that
-    skips steps).
+    skips steps). `P` None: the contact's normal load, which the models of a constant ``P`` are
+    given no other.
     """
     contact = model.contact
-    sliding = min(model.friction_force, contact.f * contact.P)  # no stick zone from here on
+    sliding = min(model.friction_force, contact.f * (contact.P if P is None else P))  # no stick zone from here on
     if abs(Q) >= sliding:
         raise GrossSlipError(step, Q, sigma, sliding)
     if at_rest:
         return model.at_rest(state), state
     try:
-        outcome = model.increment(state, Q, sigma, guess)
+        outcome = model.increment(state, Q, sigma, guess) if P is None else model.increment(state, Q, sigma, guess, P)
     except GrossSlipError:  # within rounding of the friction force: the increment found no stick zone
         raise GrossSlipError(step, Q, sigma, sliding) from None
     if not outcome.dissipation >= 0:
         raise SolverError(f"the increment to Q = {Q!r}, sigma = {sigma!r} dissipated {outcome.dissipation!r} J/m")
     if not (tally and state.tally.number):
-        return outcome, state.advance(outcome, Q, sigma, None, None, None)
+        return outcome, state.advance(outcome, Q, sigma, None, None, None, P)
     if stress:
         surface, shear = specimen_surface(model, outcome, sigma)
     else:
         surface, shear = np.full(model.x.size, np.nan), np.abs(model.traction(outcome))
-    return outcome, state.advance(outcome, Q, sigma, model.dissipation_density(outcome.ds), surface, shear)
+    return outcome, state.advance(outcome, Q, sigma, model.energy_density(outcome), surface, shear, P)
 
 
 def specimen_surface(model, outcome, sigma):
@@ -70,7 +71,7 @@ def specimen_surface(model, outcome, sigma):
     (`Model.surface`), the formula `fretting.analysis.nucleation.surface_stress`
     evaluates at the recorded steps.
     """
-    surface, p = model.surface
+    surface, p = model.surface_at(outcome)
     body, q = model.contact.specimen, model.traction(outcome)
     return surface(q, p, bulk_stress(sigma, body, specimen=body), body), np.abs(q)
 
@@ -107,6 +108,8 @@ def skippable(history, recorded, contact):
     dot = dQ[:-1] * dQ[1:] + dsigma[:-1] * dsigma[1:]
     turn = np.abs(dQ[:-1] * dsigma[1:] - dsigma[:-1] * dQ[1:])
     skip = np.zeros(len(history), dtype=bool)
+    if history.P is not None:  # a straight stretch of (Q, sigma) need not be one of P
+        return skip
     skip[1:-1] = (dot > 0) & (turn <= STRAIGHT * np.hypot(dQ[:-1], dsigma[:-1]) * np.hypot(dQ[1:], dsigma[1:]))
     skip[history.vertex_step] = False
     if history.cycle is not None:
@@ -114,6 +117,11 @@ def skippable(history, recorded, contact):
         skip[:-1] &= same
         skip[1:] &= same
     return skip & ~recorded
+
+
+def _load(model, state):
+    """The normal load [N/m] of `state` on `model`'s contact."""
+    return model.contact.P if state.P is None else state.P
 
 
 @dataclass(frozen=True, eq=False)
@@ -166,8 +174,10 @@ class _Run:
                 continue
             guess = None if self.guess is None else self.guess(step)
             Q, sigma = self.history.Q[step], self.history.sigma[step]
-            at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma)
-            outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally, self.stress)
+            P = None if self.history.P is None else float(self.history.P[step])
+            P = None if P == self.model.contact.P else P  # None: the contact's, which every model runs
+            at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma) and P in (None, _load(self.model, state))
+            outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally, self.stress, P)
             if self.observe is not None and not at_rest:
                 self.observe(step, outcome.ds)
             steps.append((outcome, state))
@@ -199,6 +209,7 @@ class _Run:
         same = (
             (self.history.Q[later] == self.history.Q[earlier])
             & (self.history.sigma[later] == self.history.sigma[earlier])
+            & (True if self.history.P is None else self.history.P[later] == self.history.P[earlier])
             & (cycle[later] == cycle[earlier] + 1)
             & (self.skip[later] == self.skip[earlier])
         )

@@ -144,6 +144,7 @@ class Recorder:
             | {f"state_{name}": getattr(tally, name) for name in CYCLE_PEAKS}
             | ({} if model.theta is None else {"theta": model.theta[::-1]})
             | ({} if model.memory_variable is None else {model.memory_variable: np.array(state.memory, dtype=float)})
+            | ({} if history.P is None else _normal_loads(model, history, steps, state))
         )
 
     def dataset(self, state):
@@ -198,6 +199,7 @@ def final_state(result: xr.Dataset) -> State:
         recorded_spec(result),
         float(result.total_dissipation),
         tuple(result.state_turning.values.tolist()) if "state_turning" in result else (),
+        None if "state_P" not in result or float(result.state_P) == result.attrs["P"] else float(result.state_P),
     )
 
 
@@ -232,6 +234,18 @@ def _cycle_rows(cycles, N, left_out):
         "slip_amplitude": rows([t.slip_amplitude for t in distinct], np.float32, N),
     } | {
         name: rows([getattr(t, name) for t in distinct], np.float32, N) for name in CYCLE_PEAKS if name not in left_out
+    }
+
+
+def _normal_loads(model, history, steps, state):
+    """``P``, ``a``, ``p_step`` of the recorded `steps` of a history of ``P``; its vertices' and the state's ``P``."""
+    contact, P = model.contact, history.P[steps]
+    return {
+        "P": P,
+        "a": np.array([contact.profile.half_width(load, contact.E_star)[0] for load in P]),
+        "p_step": np.array([model.pressure_at(load) for load in P]).reshape(P.size, model.x.size),
+        "vertex_P": history.P[history.vertex_step],
+        "state_P": contact.P if state.P is None else state.P,
     }
 
 

@@ -101,6 +101,8 @@ class State:
     memory : tuple of float
         What the model remembers beyond the slip (the open turning points [N/m] of the exact
         model of ``Q`` alone, oldest first; empty for method 4).
+    P : float, optional
+        Normal load [N/m] where the history varies it (None: the contact's ``P``).
     """
 
     Q: float
@@ -111,6 +113,7 @@ class State:
     model: object
     dissipated: float = 0.0
     memory: tuple = ()
+    P: float | None = None
 
     @classmethod
     def virgin(cls, model):
@@ -118,8 +121,8 @@ class State:
         slip = np.zeros(model.x.size)
         return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip), model.spec)
 
-    def advance(self, outcome, Q, sigma, w, stress, shear):
-        """The state after the increment `outcome` to the loads `Q`, `sigma`, which dissipated `w` [J/m^2]
+    def advance(self, outcome, Q, sigma, w, stress, shear, P=None):
+        """The state after the increment `outcome` to the loads `Q`, `sigma`, `P`, which dissipated `w` [J/m^2]
         and left the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]
         (the three None where nothing is tallied: outside a load cycle, or where only the slip
         matters)."""
@@ -137,12 +140,13 @@ class State:
             tally=tally,
             dissipated=self.dissipated + outcome.dissipation,
             memory=outcome.memory,
+            P=P,
         )
 
     def repeats(self, other):
         """True if this state is `other`'s memory bit for bit: the same loads, slip fields and model memory."""
         return (
-            (self.Q, self.sigma, self.memory) == (other.Q, other.sigma, other.memory)
+            (self.Q, self.sigma, self.memory, self.P) == (other.Q, other.sigma, other.memory, other.P)
             and np.array_equal(self.slip, other.slip)
             and np.array_equal(self.episode_start, other.episode_start)
         )
@@ -171,7 +175,6 @@ class State:
         for name, value in numbers.items():
             if not np.isfinite(value):
                 raise HistoryError(f"state.{name} = {value!r}, expected a finite number")
-        if abs(self.Q) >= contact.f * contact.P:
-            raise HistoryError(
-                f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * contact.P!r})"
-            )
+        P = contact.P if self.P is None else self.P
+        if abs(self.Q) >= contact.f * P:
+            raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")

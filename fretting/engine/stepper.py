@@ -81,11 +81,13 @@ class Stepper:
         """The current `State` (None until a model is built)."""
         return self._state
 
-    def step(self, Q: float, sigma: float = 0.0, cycle: int = 0) -> Outcome:
+    def step(self, Q: float, sigma: float = 0.0, cycle: int = 0, P: float | None = None) -> Outcome:
         """Advance by one increment to the loads `Q` [N/m], `sigma` [Pa]; return its `Outcome`.
 
         `cycle` is the load cycle the increment belongs to (0: none): its energy, ``w`` and slip
-        range are tallied in `State.tally` from the increment that begins it.
+        range are tallied in `State.tally` from the increment that begins it. `P` [N/m] is the
+        normal load after the increment, for a model that follows it (`fretting.models.Varying`);
+        None: the contact's.
         """
         if self._model is None:
             raise ValueError("the stepper has no model yet: give model= (e.g. fretting.models.Grid()) or run a history")
@@ -95,7 +97,8 @@ class Stepper:
         with one_blas_thread():
             if cycle != self._state.tally.number:
                 self._state = replace(self._state, tally=Tally.begin(cycle, self._state.slip))
-            outcome, self._state = advance(self._model, self._state, Q, sigma)
+            P = None if P is None or P == self.contact.P else positive_load(P)
+            outcome, self._state = advance(self._model, self._state, Q, sigma, P=P)
         self._fresh = False
         return outcome
 
@@ -130,6 +133,9 @@ class Stepper:
                 f"history starts at Q = {Q!r}, sigma = {sigma!r}; "
                 f"the state is at Q = {float(self._state.Q)!r}, sigma = {float(self._state.sigma)!r}"
             )
+        held = self.contact.P if self._fresh or self._state.P is None else self._state.P
+        if history.P is not None and history.P[0] != held:
+            raise HistoryError(f"history starts at P = {float(history.P[0])!r}; the contact is at P = {held!r}")
         with one_blas_thread():
             self._state = follow(self._model, history, self._state, recorder, observe, guess)
         self._fresh = False
@@ -154,6 +160,14 @@ class Stepper:
             self._state = State.virgin(self._model)
         else:
             self._state.check(self.contact, self._model)
+
+
+def positive_load(P):
+    """`P` [N/m] as a float, or a HistoryError unless it is a finite number > 0."""
+    P = float(P)
+    if not (np.isfinite(P) and P > 0):
+        raise HistoryError(f"P must be a finite normal load > 0 (the contact lifts off otherwise), found {P!r}")
+    return P
 
 
 def _spec(model):

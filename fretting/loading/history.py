@@ -1,4 +1,4 @@
-"""Load histories: the trajectory of the shear force Q and the bulk tension sigma."""
+"""Load histories: the shear force Q, the bulk tension sigma and, where it varies, the normal load P, at every step."""
 
 from __future__ import annotations
 
@@ -34,12 +34,16 @@ class History:
         Load cycle (1, 2, ...) that the increment ending at each step belongs to; 0 for
         steps outside any cycle (the starting state, ramps). Each cycle is one run of steps:
         the non-zero numbers never decrease. None for histories without cycles.
+    P : ndarray, shape (n_steps,), optional
+        Normal load per unit length [N/m], positive; step 0 is the load at which the contact is
+        formed (the contact's ``P``). None: the contact's constant ``P``.
     """
 
     Q: np.ndarray
     sigma: np.ndarray
     vertex_step: np.ndarray
     cycle: np.ndarray | None = None
+    P: np.ndarray | None = None
 
     def __post_init__(self):
         Q = _loads("Q", self.Q)
@@ -55,6 +59,8 @@ class History:
             if cycle.shape != Q.shape or np.any(cycle < 0) or _decreases(cycle[cycle > 0]):
                 raise HistoryError("cycle must give a cycle number >= 0 for every step, non-zero ones non-decreasing")
             arrays["cycle"] = cycle
+        if self.P is not None:
+            arrays["P"] = _normal_loads(self.P, Q.size)
         for name, value in arrays.items():
             value.setflags(write=False)
             object.__setattr__(self, name, value)
@@ -75,7 +81,13 @@ class History:
             raise HistoryError(f"steps {start}:{stop} of a {len(self)}-step history are empty")
         inside = (self.vertex_step >= start) & (self.vertex_step < stop)
         cycle = None if self.cycle is None else self.cycle[start:stop]
-        return History(self.Q[start:stop], self.sigma[start:stop], self.vertex_step[inside] - start, cycle)
+        P = None if self.P is None else self.P[start:stop]
+        return History(self.Q[start:stop], self.sigma[start:stop], self.vertex_step[inside] - start, cycle, P)
+
+    @property
+    def normal_start(self):
+        """Normal load ``P`` at step 0 [N/m], None where the history does not vary it."""
+        return None if self.P is None else float(self.P[0])
 
     @property
     def start(self):
@@ -86,6 +98,11 @@ class History:
     def end(self):
         """Loads ``(Q, sigma)`` at the last step [N/m], [Pa]."""
         return float(self.Q[-1]), float(self.sigma[-1])
+
+    @property
+    def normal_end(self):
+        """Normal load ``P`` at the last step [N/m], None where the history does not vary it."""
+        return None if self.P is None else float(self.P[-1])
 
     @property
     def cycle_count(self):
@@ -115,7 +132,7 @@ class History:
         kept = np.zeros(len(self), dtype=bool)
         kept[[0, -1]] = True
         kept[self.vertex_step] = True
-        for load in (self.Q, self.sigma):
+        for load in (self.Q, self.sigma) if self.P is None else (self.Q, self.sigma, self.P):
             direction = np.diff(load)
             np.sign(direction, out=direction)  # in place: the history may be long
             before, after = direction[:-1], direction[1:]
@@ -125,13 +142,14 @@ class History:
             kept[_bends(self.Q, self.sigma, kept, max_turn, units)] = True
         steps = np.flatnonzero(kept)
         cycle = None if self.cycle is None else self.cycle[steps]
-        return History(self.Q[steps], self.sigma[steps], np.searchsorted(steps, self.vertex_step), cycle)
+        P = None if self.P is None else self.P[steps]
+        return History(self.Q[steps], self.sigma[steps], np.searchsorted(steps, self.vertex_step), cycle, P)
 
     def as_cycle(self):
         """The same path counted as one load cycle: every step after the first belongs to cycle 1."""
         cycle = np.ones(len(self), dtype=np.int64)
         cycle[0] = 0
-        return History(self.Q, self.sigma, self.vertex_step, cycle)
+        return History(self.Q, self.sigma, self.vertex_step, cycle, self.P)
 
     @classmethod
     def concatenate(cls, histories):
@@ -155,30 +173,44 @@ class History:
         if len(histories) == 1:  # not copied: its arrays may be large, and they cannot change
             return histories[0]
         first = histories[0]
+        varies = {history.P is not None for history in histories}
+        if len(varies) > 1:
+            raise HistoryError("histories with a normal load P and without one cannot be concatenated")
         Q, sigma, vertex_step, cycle = [first.Q], [first.sigma], [first.vertex_step], [_cycles(first)]
+        P = [first.P] if first.P is not None else None
         end, last_vertex, counted = len(first) - 1, first.vertex_step.max(initial=-1), first.cycle_count
         for number, (previous, history) in enumerate(itertools.pairwise(histories), start=2):
-            if history.start != previous.end:
+            if (history.start, history.normal_start) != (previous.end, previous.normal_end):
                 raise HistoryError(
-                    f"history {number} starts at (Q, sigma) = {history.start}, "
-                    f"expected the end of the previous one, {previous.end}"
+                    f"history {number} starts at (Q, sigma) = {history.start}, P = {history.normal_start}, "
+                    f"expected the end of the previous one, {previous.end}, P = {previous.normal_end}"
                 )
             vertices = history.vertex_step[history.vertex_step > 0] if last_vertex == end else history.vertex_step
             later = _cycles(history)[1:]
             Q.append(history.Q[1:])
             sigma.append(history.sigma[1:])
+            if P is not None:
+                P.append(history.P[1:])
             vertex_step.append(vertices + end)
             cycle.append(np.where(later > 0, later + counted, 0))
             last_vertex = vertices[-1] + end if vertices.size else last_vertex
             end, counted = end + len(history) - 1, counted + history.cycle_count
         has_cycles = any(history.cycle is not None for history in histories)
-        return cls(*map(np.concatenate, (Q, sigma, vertex_step)), np.concatenate(cycle) if has_cycles else None)
+        return cls(
+            *map(np.concatenate, (Q, sigma, vertex_step)),
+            np.concatenate(cycle) if has_cycles else None,
+            None if P is None else np.concatenate(P),
+        )
 
     @classmethod
     def piecewise_linear(
-        cls, Q: ArrayLike, sigma: ArrayLike | None = None, steps_per_segment: int | ArrayLike = 16
+        cls,
+        Q: ArrayLike,
+        sigma: ArrayLike | None = None,
+        steps_per_segment: int | ArrayLike = 16,
+        P: ArrayLike | None = None,
     ) -> History:
-        """Straight segments between vertices of the (Q, sigma) path.
+        """Straight segments between vertices of the (Q, sigma) path, or of the (P, Q, sigma) path.
 
         Parameters
         ----------
@@ -188,6 +220,9 @@ class History:
             Bulk tension at the vertices [Pa]; zero when omitted.
         steps_per_segment : int or array_like of int
             Equal increments of each segment (one number for all, or one per segment).
+        P : array_like, optional
+            Normal load at the vertices [N/m], positive; the first is the contact's ``P``, the
+            load at which the contact is formed. None: the contact's constant ``P``.
 
         Examples
         --------
@@ -203,7 +238,14 @@ class History:
         if steps.size and (not np.issubdtype(steps.dtype, np.integer) or np.any(steps < 1)):
             raise HistoryError(f"steps_per_segment must be integers >= 1, found {steps_per_segment!r}")
         fractions = [np.arange(1, n + 1) / n for n in steps]
-        return cls(_segments(Q, fractions), _segments(sigma, fractions), np.concatenate([[0], np.cumsum(steps)]))
+        if P is not None:
+            P = _loads("P", P)
+            if P.shape != Q.shape:
+                raise HistoryError(f"Q and P need one value per vertex, found {Q.size} and {P.size}")
+            P = _segments(P, fractions)
+        return cls(
+            _segments(Q, fractions), _segments(sigma, fractions), np.concatenate([[0], np.cumsum(steps)]), None, P
+        )
 
     @classmethod
     def sinusoidal(
@@ -216,8 +258,11 @@ class History:
         Q_mean: float = 0.0,
         sigma_mean: float = 0.0,
         *,
-        start: tuple[float, float] = (0.0, 0.0),
+        start: tuple[float, ...] = (0.0, 0.0),
         ramp_steps: int = RAMP_STEPS,
+        P_amplitude: float = 0.0,
+        P_mean: float | None = None,
+        P_phase_deg: float = 0.0,
     ) -> History:
         """Sinusoidal load cycles, reached from `start` by a straight ramp when they start elsewhere.
 
@@ -239,9 +284,12 @@ class History:
         Q_mean, sigma_mean : float
             Means [N/m], [Pa].
         start : tuple of float
-            ``(Q, sigma)`` the history starts from [N/m], [Pa].
+            ``(Q, sigma)`` the history starts from [N/m], [Pa]; ``(Q, sigma, P)`` with a normal load.
         ramp_steps : int
             Steps of the ramp to the first point, >= 1.
+        P_amplitude, P_mean, P_phase_deg : float
+            A varying normal load ``P = P_mean + P_amplitude sin(theta + P_phase)`` [N/m], ``P_phase``
+            [deg] by which it leads Q; `P_mean` None: no ``P`` column (the contact's constant ``P``).
 
         Examples
         --------
@@ -262,10 +310,14 @@ class History:
         Q = _wave(theta, amplitude[0], mean[0])
         theta += phase
         sigma = _wave(theta, amplitude[1], mean[1])
+        P = None
+        if P_mean is not None:
+            theta += np.radians(_number("P_phase_deg", P_phase_deg)) - phase
+            P = _wave(theta, _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean))
         del theta  # arrays of a long history are large (51 MB each for 10^5 cycles of 64 steps)
         cycle = np.arange(n) + (steps - 1)
         cycle //= steps  # 0, then each cycle's number over its steps
-        waves = cls(Q, sigma, np.arange(0, n, steps), cycle)
+        waves = cls(Q, sigma, np.arange(0, n, steps), cycle, P)
         return _reached_from(start, waves, _count("ramp_steps", ramp_steps))
 
     @classmethod
@@ -280,6 +332,8 @@ class History:
         steps_per_segment=16,
         *,
         start=(0.0, 0.0),
+        P_amplitude=0.0,
+        P_mean=None,
     ):
         """Cycles of random amplitude: a straight rise to a peak, then a fall to a valley.
 
@@ -302,27 +356,40 @@ class History:
             Equal increments of each rise and fall, >= 1.
         start : tuple of float
             ``(Q, sigma)`` the history starts from [N/m], [Pa]; the first rise starts there.
+            ``(Q, sigma, P)`` with a normal load.
+        P_amplitude, P_mean : float
+            A varying normal load [N/m] in phase with Q (the same draws); `P_mean` None: no ``P``
+            column (the contact's constant ``P``).
         """
         amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
         count = _count("cycles", cycles)
         steps = _count("steps_per_segment", steps_per_segment)
         excursion = (np.random.default_rng(_count("seed", seed, minimum=0)).random((count, 2)) * [1, -1]).ravel()
         start = _start(start)
+        P = None
+        if P_mean is not None:
+            P_amplitude, P_mean = _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean)
+            P = np.concatenate([[start[2] if len(start) > 2 else P_mean], P_mean + P_amplitude * excursion])
         path = cls.piecewise_linear(
             np.concatenate([[start[0]], mean[0] + amplitude[0] * excursion]),
             np.concatenate([[start[1]], mean[1] + amplitude[1] * excursion]),
             steps,
+            P,
         )
         cycle = np.concatenate([[0], np.repeat(np.arange(1, count + 1), 2 * steps)])
-        return cls(path.Q, path.sigma, path.vertex_step, cycle)
+        return cls(path.Q, path.sigma, path.vertex_step, cycle, path.P)
 
 
 def _reached_from(start, history, ramp_steps):
-    """`history`, preceded by a straight ramp of `ramp_steps` steps from `start` if it starts elsewhere."""
+    """`history`, preceded by a straight ramp of `ramp_steps` steps from `start` if it starts elsewhere.
+
+    A history of ``P`` starts from ``start[2]``, or at its own first ``P`` where `start` is a pair.
+    """
     start = _start(start)
-    if history.start == start:
+    P = None if history.P is None else (start[2] if len(start) > 2 else history.normal_start, history.normal_start)
+    if history.start == start[:2] and (P is None or P[0] == P[1]):
         return history
-    ramp = History.piecewise_linear(*zip(start, history.start, strict=True), ramp_steps)
+    ramp = History.piecewise_linear(*zip(start[:2], history.start, strict=True), ramp_steps, P)
     return History.concatenate([ramp, history])
 
 
@@ -394,11 +461,23 @@ def _count(name, value, minimum=1):
 
 
 def _start(start):
-    """``start`` as a pair of floats ``(Q, sigma)``."""
+    """``start`` as a tuple of floats ``(Q, sigma)``, or ``(Q, sigma, P)``."""
     values = _loads("start", start)
-    if values.size != 2:
-        raise HistoryError(f"start must be a pair (Q, sigma), found {start!r}")
-    return float(values[0]), float(values[1])
+    if values.size not in (2, 3):
+        raise HistoryError(f"start must be a pair (Q, sigma) or a triple (Q, sigma, P), found {start!r}")
+    return tuple(float(value) for value in values)
+
+
+def _normal_loads(P, n):
+    """The normal loads `P` [N/m] of an `n`-step history: finite and positive at every step."""
+    P = _loads("P", P)
+    if P.shape != (n,):
+        raise HistoryError(f"P must give one normal load per step, found {P.size} for {n} steps")
+    lifted = np.flatnonzero(P <= 0)
+    if lifted.size:
+        step = int(lifted[0])
+        raise HistoryError(f"P must stay positive (the contact lifts off): P = {float(P[step])!r} at step {step}")
+    return P
 
 
 def _loads(name, values):

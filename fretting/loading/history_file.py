@@ -148,7 +148,10 @@ class _Document:
         contact = _contact(top.table("contact"))
         if "loading" not in self.data:
             raise self.error((), "found no [[loading]] blocks, expected at least one")
-        return contact, _sequence(top.tables("loading"), start=(0.0, 0.0))
+        history = _sequence(top.tables("loading"), start=(0.0, 0.0, contact.P))
+        if np.all(history.P == contact.P):  # the contact's constant P: the history of Q and sigma alone
+            history = History(history.Q, history.sigma, history.vertex_step, history.cycle)
+        return contact, history
 
     def error(self, path, problem):
         """`HistoryFileError` at the key `path` (a tuple of names and indices)."""
@@ -248,35 +251,38 @@ def _sequence(tables, start):
         keys, build = BLOCKS[kind]
         table.reject_unknown(("kind", *keys))
         histories.append(build(table, start))
-        start = histories[-1].end
+        start = (*histories[-1].end, histories[-1].normal_end)
     return History.concatenate(histories)
 
 
 def _linear(table, start):
-    return _polyline(table, table.get("Q", _numbers, None), table.get("sigma", _numbers, None), start, LINEAR_STEPS)
+    loads = [table.get(name, _numbers, None) for name in LOADS]
+    return _polyline(table, loads, start, LINEAR_STEPS)
 
 
 def _series(table, start):
     path = table.file("file")
-    columns = _read_columns(table, "file", path, ("Q", "sigma"), all_required=False)
-    return _polyline(table, columns.get("Q"), columns.get("sigma"), start, CSV_STEPS)
+    columns = _read_columns(table, "file", path, LOADS, all_required=False)
+    return _polyline(table, [columns.get(name) for name in LOADS], start, CSV_STEPS)
 
 
-def _polyline(table, Q, sigma, start, default_steps):
-    """Straight segments from `start` through the vertices `Q`, `sigma`; an absent one holds its value."""
-    if Q is None and sigma is None:
-        raise table.error(None, "missing key 'Q' or 'sigma', expected the vertices of at least one")
-    n = len(Q if Q is not None else sigma)
-    if Q is not None and sigma is not None and len(sigma) != n:
-        raise table.error("sigma", f"found {len(sigma)} values, expected one for each of the {n} values of Q")
+def _polyline(table, loads, start, default_steps):
+    """Straight segments from `start` through the vertices `loads` (of `LOADS`); an absent one holds its value."""
+    given = [(name, values) for name, values in zip(LOADS, loads, strict=True) if values is not None]
+    if not given:
+        raise table.error(None, "missing key 'Q', 'sigma' or 'P', expected the vertices of at least one")
+    first, n = given[0][0], len(given[0][1])
+    for name, other in given[1:]:
+        if len(other) != n:
+            raise table.error(name, f"found {len(other)} values, expected one for each of the {n} values of {first}")
     vertices = [
         np.concatenate([[held], np.full(n, held) if values is None else values])
-        for held, values in zip(start, (Q, sigma), strict=True)
+        for held, values in zip(start, loads, strict=True)
     ]
     steps = table.get("steps_per_segment", _counts, default_steps)
     if np.ndim(steps) and len(steps) != n:
         raise table.error("steps_per_segment", f"found {len(steps)} values, expected one for each of the {n} vertices")
-    history = History.piecewise_linear(*vertices, steps)
+    history = History.piecewise_linear(*vertices[:2], steps, vertices[2])
     return history.as_cycle() if table.get("cycle", _boolean, False) else history
 
 
@@ -291,6 +297,9 @@ def _sine(table, start):
         table.get("sigma_mean", _number, 0.0),
         start=start,
         ramp_steps=table.get("ramp_steps", _count, RAMP_STEPS),
+        P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
+        P_mean=table.get("P_mean", _positive, start[2]),
+        P_phase_deg=table.get("P_phase_deg", _number, 0.0),
     )
 
 
@@ -304,6 +313,8 @@ def _random(table, start):
         table.get("seed", _count_from(0)),
         table.get("steps_per_segment", _count, LINEAR_STEPS),
         start=start,
+        P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
+        P_mean=table.get("P_mean", _positive, start[2]),
     )
 
 
@@ -312,13 +323,16 @@ def _repeat(table, start):
     histories = []
     for _ in range(count):
         histories.append(_sequence(blocks, start))
-        start = histories[-1].end
+        start = (*histories[-1].end, histories[-1].normal_end)
     return History.concatenate(histories)
 
 
-#: block kind -> (its keys besides `kind`, builder of its history from the table and the start).
+#: The loads a block may give the vertices (or columns) of; an absent one holds its value.
+LOADS = ("Q", "sigma", "P")
+
+#: block kind -> (its keys besides `kind`, builder of its history from the table and the start ``(Q, sigma, P)``).
 BLOCKS = {
-    "linear": (("Q", "sigma", "steps_per_segment", "cycle"), _linear),
+    "linear": (("Q", "sigma", "P", "steps_per_segment", "cycle"), _linear),
     "csv": (("file", "steps_per_segment", "cycle"), _series),
     "sine": (
         (
@@ -330,11 +344,24 @@ BLOCKS = {
             "Q_mean",
             "sigma_mean",
             "ramp_steps",
+            "P_amplitude",
+            "P_mean",
+            "P_phase_deg",
         ),
         _sine,
     ),
     "random": (
-        ("cycles", "Q_amplitude", "sigma_amplitude", "Q_mean", "sigma_mean", "seed", "steps_per_segment"),
+        (
+            "cycles",
+            "Q_amplitude",
+            "sigma_amplitude",
+            "Q_mean",
+            "sigma_mean",
+            "seed",
+            "steps_per_segment",
+            "P_amplitude",
+            "P_mean",
+        ),
         _random,
     ),
     "repeat": (("count", "blocks"), _repeat),

@@ -150,7 +150,9 @@ class Model(abc.ABC):
         """`Outcome` of the increment from `state` to the loads `Q` [N/m], `sigma` [Pa].
 
         `guess`, if given, is the slip direction (+1, -1, 0) to try first at each node; a start
-        only, which the answer does not depend on. A model may ignore it.
+        only, which the answer does not depend on. A model may ignore it. A model that follows a
+        varying normal load (`fretting.models.normal`) also takes the load ``P`` [N/m] after the
+        increment as a fifth argument; the engine gives it only where the history varies ``P``.
         """
 
     @abc.abstractmethod
@@ -178,3 +180,16 @@ class Model(abc.ABC):
         """The surface direct stress at the nodes (`fretting.physics.surface.SurfaceStress`, its
         Hilbert matrix built at the first use) and the contact pressure there [Pa]."""
         return SurfaceStress(self.t), self.contact.pressure(self.x)
+
+    def surface_at(self, outcome):
+        """`surface` under the normal load after `outcome` (the contact's: a model whose ``P`` varies overrides it)."""
+        return self.surface
+
+    def pressure_at(self, P):
+        """Contact pressure [Pa] at the nodes under the normal load `P` [N/m] (a model of a constant ``P``: the
+        contact's)."""
+        return self.contact.pressure(self.x)
+
+    def energy_density(self, outcome):
+        """`dissipation_density` of the increment `outcome` (at its normal load, where a model varies it)."""
+        return self.dissipation_density(outcome.ds)

@@ -32,8 +32,9 @@ class Profile(abc.ABC):
 
     #: The gap, and so the pressure, is even about the centre of the contact. A symmetric profile
     #: whose contact grows with the load gives ``load_slope(a, E_star)``, ``dP/da`` [N/m^2], from
-    #: which `fretting.models.exact` builds the gap outside a contact (`Hertz`, `RoundedFlat`; the sharp
-    #: `FlatPunch`, whose contact does not grow, needs none).
+    #: which `fretting.models.exact` builds the gap outside a contact, and ``load(a, E_star)``, the
+    #: load ``P`` [N/m] of half-width ``a``, at which `fretting.models.normal` lets nodes enter
+    #: (`Hertz`, `RoundedFlat`; the sharp `FlatPunch`, whose contact does not grow, needs neither).
     SYMMETRIC = False
     #: Positions [m] where the gap's curvature jumps: the pressure's derivative is singular there.
     breakpoints = ()
@@ -91,6 +92,10 @@ class Hertz(Profile):
 
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         return np.sqrt(4 * P * self.R / (np.pi * E_star)), 0.0
+
+    def load(self, a: ArrayLike, E_star: float) -> np.ndarray:
+        """``P = pi E_star a^2 / (4R)`` [N/m], the load of the contact of half-width `a` [m] (eq 6 inverted)."""
+        return np.pi * E_star * np.square(a) / (4 * self.R)
 
     def load_slope(self, a: ArrayLike, E_star: float) -> np.ndarray:
         """``dP/da = pi E_star a / (2R)`` [N/m^2], from ``a = sqrt(4 P R / (pi E_star))``."""
@@ -153,8 +158,9 @@ class RoundedFlat(Profile):
     def __repr__(self) -> str:
         return f"RoundedFlat(b={self.b!r}, R={self.R!r})"
 
-    def _load(self, a: ArrayLike, E_star: float) -> np.ndarray:
-        """``P = E_star a^2 (2e - sin 2e) / (4R)`` with ``e = pi/2 - phi0 = arctan(sqrt(a^2 - b^2) / b)``.
+    def load(self, a: ArrayLike, E_star: float) -> np.ndarray:
+        """``P = E_star a^2 (2e - sin 2e) / (4R)`` [N/m], the load of the contact of half-width `a` [m],
+        with ``e = pi/2 - phi0 = arctan(sqrt(a^2 - b^2) / b)``.
 
         Written in ``e`` so that it keeps its relative precision as ``a -> b``, where
         ``P ~ E_star b^2 (2e)^3 / (24 R)``; zero for ``a <= b``.
@@ -168,7 +174,7 @@ class RoundedFlat(Profile):
         return np.sqrt(np.clip((a - self.b) * (a + self.b), 0, None))
 
     def load_slope(self, a: ArrayLike, E_star: float) -> np.ndarray:
-        """``dP/da = E_star (2a (2e - sin 2e) + 4 b sqrt(a^2 - b^2) / a) / (4R)``, `_load` differentiated
+        """``dP/da = E_star (2a (2e - sin 2e) + 4 b sqrt(a^2 - b^2) / a) / (4R)``, `load` differentiated
         with ``de/da = b / (a sqrt(a^2 - b^2))``; zero for ``a <= b``."""
         a = np.asarray(a, dtype=float)
         root = self._root(a)
@@ -177,9 +183,9 @@ class RoundedFlat(Profile):
 
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         high = 2 * self.b
-        while self._load(high, E_star) < P:
+        while self.load(high, E_star) < P:
             high *= 2
-        a = optimize.brentq(lambda a: self._load(a, E_star) / P - 1, self.b, high, xtol=1e-300, rtol=_RTOL, maxiter=500)
+        a = optimize.brentq(lambda a: self.load(a, E_star) / P - 1, self.b, high, xtol=1e-300, rtol=_RTOL, maxiter=500)
         return a, 0.0
 
     def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:

@@ -1,0 +1,412 @@
+"""A normal load that varies: the contact grows and recedes over cells fixed in ``x``.
+
+For elastically similar half-planes the normal and tangential problems uncouple (seed paper,
+section 2) and both are governed by the same kernel: a traction ``q`` on the contact moves the
+two surfaces apart tangentially by
+
+    s(x) = -(2 / (pi E_star)) int q(xi) ln(L / |x - xi|) dxi + s_sigma(x) + c,
+
+with ``s_sigma = sigma x / (2 E_star)`` the relative displacement of the bulk tension (the slip
+that cancels the fully stuck traction ``sigma x / (4 sqrt(a^2 - x^2))`` of eq 20), ``c`` a rigid
+shift and ``L`` any length (it changes ``c`` only); the pressure obeys the same law normally (eq 1).
+
+Discretisation. The interval ``[-A, A]`` of the largest contact of the history is cut into ``N``
+equal cells of width ``h``, a node at the middle of each, the traction constant on each. The
+flexibility ``D_ij = (2 / (pi E_star h)) int_{cell j} ln(L / |x_i - xi|) dxi`` (`flexibility`)
+is a symmetric Toeplitz matrix, the same for every contact: a contact is a run of ``2m`` cells
+about the centre (``m`` pairs), and only which cells are in contact changes with ``P``. On them,
+with ``B = D^-1``, ``b = B 1`` and ``beta = 1^T b``, the nodal forces ``g = h q`` [N/m] are
+
+    g = Q b / beta - G (s - s_sigma),    G = B - b b^T / beta,
+
+the discrete method 4 (eqs 9, 20, A.4): ``b / beta`` is the flat punch of unit load (the fully
+stuck traction of ``Q``), ``G`` the slip-to-traction matrix, symmetric positive semi-definite
+with ``G 1 = 0``; an increment is the problem `fretting.models.solver.solve_increment` solves,
+with the limit ``f p h``.
+
+Normal problem (Jaeger 1998). The pressure is built by superposing flat punches on the same
+cells: each ``dP`` adds ``dP b / beta`` of the cells in contact. The ``m`` pairs carry the load
+added while ``a(P)`` is nearer their effective half-width than their neighbours' (`NormalModel.start`):
+that of the continuous flat punch with the same compliance, ``c_m = 2L exp(-pi E_star delta_m / 2)``
+with ``delta_m`` the rigid displacement of ``b / beta`` (a continuous flat punch of half-width ``c``
+displaces by ``(2 / (pi E_star)) ln(2L / c)``). The pressure is a function of ``P`` alone, sums to
+``P``, is zero at the nodes of a pair when it enters or leaves, and its increments are the same
+flat punches as the fully stuck traction increments of ``Q``. An increment is solved in parts that
+cross no change of the cells in contact, so that Jaeger's rule holds exactly on the grid: an
+increment with ``|dQ| + (pi a / 4) |dsigma| <= f dP`` slips nowhere, and proportional loading
+``Q = lambda (P - P0)``, ``lambda < f``, carries ``q = lambda (p(P) - p(P0))``. The parts also
+change ``P`` by at most ``load_part`` of the load (`DEFAULT_LOAD_PART`): each is one implicit
+step of the solver, under the friction limit of its end load.
+
+Memory. ``s`` at a node in contact is its relative displacement since the contact was formed; at
+a node out of contact it is that of the two free surfaces there, computed after every part of
+an increment (`NormalModel.free_surface`). A node that enters sticks with the displacement it had
+just before (continuity) under a traction that starts from zero; a node that leaves carries no
+traction and forgets its slip. Everything depends on the loads and the slip alone, so a periodic
+history that shakes down repeats its cycles bit for bit.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+from scipy import linalg
+
+from fretting.models.base import Model, ModelSpec, Outcome
+from fretting.models.method4 import stick_zones
+from fretting.models.solver import solve_increment
+
+if TYPE_CHECKING:
+    from fretting.loading.history import History
+    from fretting.physics.contact import Contact
+
+__all__ = [
+    "DEFAULT_CELLS",
+    "DEFAULT_LOAD_PART",
+    "CellSurfaceStress",
+    "NormalModel",
+    "NormalOutcome",
+    "Varying",
+    "flexibility",
+    "toeplitz_inverse",
+]
+
+#: Cells over the largest contact of `Varying()`: the closed forms of tests/test_normal_load.py hold
+#: to 1e-3 at this many (benchmarks/normal_load.py prints the convergence).
+DEFAULT_CELLS = 512
+
+#: Largest change of ``P`` in one part of an increment, relative to the smaller load at its ends,
+#: of `Varying()`. A part is solved as one step of the solver, under the friction limit of its end
+#: load, so its energy errs in proportion to the change of the pressure over it; the energy of a
+#: history then converges with this share (benchmarks/normal_load.py prints the table).
+DEFAULT_LOAD_PART = 1 / 400
+
+#: Contacts (runs of cells) whose slip-to-traction matrix `NormalModel` keeps, each ``(2m)^2`` floats
+#: (at most 2 MB at 512 cells): a cycle meets each contact it sweeps twice, and one not kept costs ``O(m^2)``.
+CACHED_CONTACTS = 64
+
+
+@dataclass(frozen=True, eq=False)
+class Varying(ModelSpec):
+    """Method 4 on `cells` equal cells fixed in ``x`` over the largest contact of a history of ``P``.
+
+    Parameters
+    ----------
+    cells : int
+        Cells over ``[-A, A]``, even, at least 8.
+    half_width : float, optional
+        ``A`` [m], the half-width of the largest contact (resolved for a history by `resolved_for`).
+    load_part : float
+        Largest relative change of ``P`` in one part of an increment (`DEFAULT_LOAD_PART`), in (0, 1].
+    """
+
+    cells: int = DEFAULT_CELLS
+    half_width: float | None = None
+    load_part: float = DEFAULT_LOAD_PART
+
+    name: ClassVar[str] = "varying"
+    description: ClassVar[str] = (
+        "method 4 under a varying normal load: cells fixed in x over the largest contact, Jaeger's superposition"
+    )
+
+    def __post_init__(self):
+        cells = self.cells
+        if isinstance(cells, bool) or not isinstance(cells, (int, np.integer)) or cells < 8 or cells % 2:
+            raise ValueError(f"cells must be an even integer >= 8, found {cells!r}")
+        if self.half_width is not None and not (np.isfinite(self.half_width) and self.half_width > 0):
+            raise ValueError(f"half_width must be a positive length [m], found {self.half_width!r}")
+        if not 0 < self.load_part <= 1:
+            raise ValueError(f"load_part must be in (0, 1], found {self.load_part!r}")
+
+    @property
+    def resolved(self) -> bool:
+        return self.half_width is not None
+
+    def resolved_for(self, contact: Contact, history: History | None) -> Varying:
+        """This spec over the largest contact of `history` (None, or no ``P`` in it: the contact's own)."""
+        if self.resolved:
+            return self
+        P = contact.P if history is None or history.P is None else max(float(history.P.max()), contact.P)
+        return Varying(self.cells, float(contact.profile.half_width(P, contact.E_star)[0]), self.load_part)
+
+    def build(self, contact: Contact) -> NormalModel:
+        return NormalModel(contact, self)
+
+    def attributes(self) -> dict:
+        return {
+            "model": self.name,
+            "cells": int(self.cells),
+            "half_width": float(self.half_width),
+            "load_part": float(self.load_part),
+        }
+
+    def holds_for(self, contact: Contact, history: History | None) -> str | None:
+        if not (contact.profile.SYMMETRIC and hasattr(contact.profile, "load")):
+            return f"{contact.profile!r} is not a symmetric profile whose contact grows with P (Hertz, RoundedFlat)"
+        if self.resolved and history is not None and history.P is not None:
+            largest = float(contact.profile.half_width(float(history.P.max()), contact.E_star)[0])
+            if largest > self.half_width:
+                return f"its largest contact, a = {largest!r} m, is wider than the cells, A = {self.half_width!r} m"
+        return None
+
+    @classmethod
+    def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Varying:
+        return cls(int(attrs["cells"]), float(attrs["half_width"]), float(attrs["load_part"]))
+
+
+def flexibility(N, h, E_star):
+    """First column of the Toeplitz flexibility ``D`` [m/(N/m)] of `N` cells of width `h` [m].
+
+    ``D_k = (2 / (pi E_star h)) int_{(k - 1/2) h}^{(k + 1/2) h} ln(L / |u|) du`` with ``L = 2 N h``,
+    twice the cells' length, so that ``D`` is positive definite (the logarithmic capacity of an
+    interval is a quarter of its length); ``int ln(L / |u|) du = u (1 + ln(L / |u|))``.
+    """
+    L = 2 * N * h
+    u = (np.arange(N + 1) - 0.5) * h
+    F = u * (1 + np.log(L / np.abs(u)))
+    return 2 / (np.pi * E_star * h) * np.diff(F)
+
+
+@dataclass(frozen=True, eq=False)
+class NormalOutcome(Outcome):
+    """An `Outcome` of `NormalModel`: also the normal load ``P`` [N/m] after the increment and its energy
+    density [J/m^2] (the pressure changes within the increment)."""
+
+    P: float = np.nan
+    density: np.ndarray | None = None
+
+
+class NormalModel(Model):
+    """A contact whose normal load varies, on the cells of a resolved `Varying` spec (module docstring).
+
+    Attributes
+    ----------
+    h : float
+        Cell width [m].
+    start : ndarray, shape (N // 2 + 1,)
+        ``start[m]``: the load [N/m] from which the ``m`` central pairs of cells carry the load added
+        (zero for the first pair and for the pairs inside the contact of no load, such as a rounded
+        flat's flat); ``start[0]`` is unused.
+    """
+
+    theta = None
+
+    def __init__(self, contact, spec):
+        self.contact, self.spec = contact, spec
+        N, A = spec.cells, spec.half_width
+        self.h = 2 * A / N
+        self.x = (np.arange(N) + 0.5) * self.h - A + contact.centre
+        self.t = (self.x - contact.centre) / contact.a
+        self.friction_force = np.inf  # f P at each step: the engine checks the load of the step
+        self.column = flexibility(N, self.h, contact.E_star)
+        self._kernel = np.concatenate([self.column[:0:-1], self.column])  # D_ij = kernel[N - 1 + i - j]
+        self.start = self._starts()
+        self._sums = self._cumulative()
+
+    def _starts(self):
+        """`start`: the loads at the midpoints of consecutive effective half-widths (module docstring)."""
+        N, L = self.x.size, 2 * self.x.size * self.h
+        delta = np.array([self.column[: 2 * m] @ self.punch(m) for m in range(1, N // 2 + 1)])
+        effective = 2 * L * np.exp(-np.pi * self.contact.E_star * delta / 2)
+        between = (effective[:-1] + effective[1:]) / 2
+        loads = np.array([self.contact.profile.load(c, self.contact.E_star) for c in between])
+        return np.concatenate([[0.0, 0.0], np.maximum.accumulate(loads)])
+
+    def pairs(self, P):
+        """Pairs of cells in contact under the load `P` [N/m] (`start`)."""
+        return max(1, int(np.searchsorted(self.start[1:], P, side="left")))
+
+    def cells(self, m):
+        """Slice of the nodes of the `m` central pairs."""
+        middle = self.x.size // 2
+        return slice(middle - m, middle + m)
+
+    @functools.cache  # noqa: B019 (one array per run of cells, as long as the model)
+    def punch(self, m):
+        """``b / beta``: the nodal forces of the unit load on the `m` central pairs, flat punch (Levinson)."""
+        b = linalg.solve_toeplitz(self.column[: 2 * m], np.ones(2 * m))
+        return b / b.sum()
+
+    @functools.lru_cache(maxsize=CACHED_CONTACTS)  # noqa: B019 (a model lives as long as its stepper)
+    def stiffness(self, m):
+        """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring)."""
+        B = toeplitz_inverse(self.column[: 2 * m])
+        b = B.sum(axis=1)
+        return B - np.outer(b, b) / b.sum()
+
+    def _cumulative(self):
+        """Nodal forces ``p h`` [N/m] at each load `start` (Jaeger's superposition of the `punch` of each run)."""
+        N = self.x.size
+        sums = np.zeros((N // 2 + 1, N))
+        for m in range(2, N // 2 + 1):
+            sums[m] = sums[m - 1]
+            sums[m, self.cells(m - 1)] += (self.start[m] - self.start[m - 1]) * self.punch(m - 1)
+        return sums
+
+    def force(self, P, m=None):
+        """``p h`` [N/m] at the nodes under the load `P` [N/m], carried by `m` pairs (default: those of `P`)."""
+        m = self.pairs(P) if m is None else m
+        force = self._sums[m].copy()
+        force[self.cells(m)] += (P - self.start[m]) * self.punch(m)
+        return force
+
+    def pressure_at(self, P):
+        """Contact pressure [Pa] at the nodes under the load `P` [N/m] (`force` over the cell width)."""
+        return self.force(P) / self.h
+
+    def half_width(self, P):
+        """Contact half-width [m] under the load `P` [N/m]."""
+        return float(self.contact.profile.half_width(P, self.contact.E_star)[0])
+
+    def bulk_slip(self, sigma):
+        """``s_sigma = sigma x / (2 E_star)`` [m], the relative displacement of the bulk tension `sigma` [Pa]."""
+        return sigma * (self.x - self.contact.centre) / (2 * self.contact.E_star)
+
+    def load(self, state):
+        """The normal load [N/m] of `state` (the contact's where the state records none)."""
+        return self.contact.P if state.P is None else state.P
+
+    def forces(self, slip, Q, sigma, P, m=None):
+        """Nodal forces ``g = h q`` [N/m] of the slip `slip` [m] under `Q`, `sigma`, `P` on `m` pairs."""
+        m = self.pairs(P) if m is None else m
+        nodes, g = self.cells(m), np.zeros(self.x.size)
+        g[nodes] = Q * self.punch(m) - self.stiffness(m) @ (slip[nodes] - self.bulk_slip(sigma)[nodes])
+        return g
+
+    def free_surface(self, slip, g, sigma, m):
+        """`slip` [m] with the nodes out of the `m` pairs in contact given the relative displacement of
+        the free surfaces there, under the nodal forces `g` [N/m] and the bulk tension `sigma` [Pa]."""
+        nodes = self.cells(m)
+        forces = np.zeros(self.x.size)
+        forces[nodes] = g[nodes]
+        N = self.x.size
+        elastic = self.bulk_slip(sigma) - np.convolve(forces, self._kernel)[N - 1 : 2 * N - 1]  # D g, D Toeplitz
+        shift = np.mean(slip[nodes] - elastic[nodes])
+        out = np.ones(self.x.size, dtype=bool)
+        out[nodes] = False
+        return np.where(out, elastic + shift, slip)
+
+    def at_rest(self, state):
+        P = self.load(state)
+        g = self.forces(state.slip, state.Q, state.sigma, P)
+        return NormalOutcome(g, np.zeros(self.x.size), state.slip, 0.0, P=P, density=np.zeros(self.x.size))
+
+    def increment(self, state, Q, sigma, guess=None, P=None):
+        """The increment to `Q`, `sigma`, `P` [N/m], solved in parts at the loads where cells enter or leave
+        (`parts`), each on the cells in contact over it."""
+        P = self.contact.P if P is None else P
+        if guess is None:
+            guess = np.sign(state.slip - state.episode_start).astype(np.int8)
+        loads = (state.Q, state.sigma, self.load(state))
+        slip, ds, density = state.slip, np.zeros(self.x.size), np.zeros(self.x.size)
+        g, dissipation = None, 0.0
+        for fraction, m in self.parts(loads[2], P):
+            Q_, sigma_, P_ = (
+                after if fraction == 1 else before + fraction * (after - before)
+                for before, after in zip(loads, (Q, sigma, P), strict=True)
+            )
+            nodes, limit = self.cells(m), self.contact.f * self.force(P_, m)
+            g_stuck = Q_ * self.punch(m) + self.stiffness(m) @ self.bulk_slip(sigma_)[nodes]
+            solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes])
+            slip, g = slip.copy(), np.zeros(self.x.size)
+            slip[nodes], g[nodes] = solved.slip, solved.g
+            ds[nodes] += solved.ds
+            density[nodes] += limit[nodes] / self.h * np.abs(solved.ds)
+            dissipation += float(np.dot(limit[nodes], np.abs(solved.ds)))
+            slip = self.free_surface(slip, g, sigma_, m)
+        return NormalOutcome(g, ds, slip, dissipation, P=P, density=density)
+
+    def parts(self, P_from, P_to):
+        """``(fraction, pairs)`` of the parts of the increment from `P_from` to `P_to` [N/m]: the end of each
+        part as a fraction of the increment (the last is 1), and the pairs in contact over it (those of
+        its middle load). Parts end where cells enter or leave, and at equal steps of ``P`` no larger
+        than ``load_part`` of the smaller load."""
+        low, high = sorted((P_from, P_to))
+        count = int(np.ceil((high - low) / (self.spec.load_part * low)))
+        even = low + (high - low) * np.arange(1, count) / count
+        crossed = np.union1d(self.start[2:][(self.start[2:] > low) & (self.start[2:] < high)], even)
+        ends = np.concatenate([crossed[:: 1 if P_to > P_from else -1], [P_to]])
+        begins = np.concatenate([[P_from], ends[:-1]])
+        fractions = np.ones(ends.size)
+        fractions[:-1] = (ends[:-1] - P_from) / (P_to - P_from)
+        return [(float(u), self.pairs((b + e) / 2)) for u, b, e in zip(fractions, begins, ends, strict=True)]
+
+    def traction(self, outcome):
+        """Shear traction [Pa]: the nodal forces over the cell width."""
+        return outcome.g / self.h
+
+    def stick_zones(self, outcome, state):
+        """Stick intervals in ``t = (x - centre) / a`` of the contact formed, within the contact of the
+        increment's load (a run of stuck nodes that reaches its last cell ends at its edge)."""
+        nodes, a = self.cells(self.pairs(outcome.P)), self.half_width(outcome.P)
+        x = self.x[nodes] - self.contact.centre
+        zones = stick_zones(x / a, (outcome.slip - state.episode_start)[nodes])
+        scale = a / self.contact.a
+        return [(start * scale, end * scale) for start, end in zones]
+
+    def delta_Q(self, outcome):
+        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m]: the slip weighted by the flat punch of unit load."""
+        m = self.pairs(outcome.P)
+        return float(np.dot(self.punch(m), outcome.slip[self.cells(m)]))
+
+    def delta_sigma(self, outcome):
+        """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2]: ``pi / 4`` of the flat punch's moment of the slip."""
+        m = self.pairs(outcome.P)
+        x = self.x[self.cells(m)] - self.contact.centre
+        return float(np.pi / 4 * np.dot(self.punch(m), outcome.slip[self.cells(m)] * x))
+
+    def dissipation_density(self, ds):
+        """``f p |ds|`` [J/m^2] under the contact's own load (`energy_density`: under an increment's)."""
+        return self.contact.f * self.pressure_at(self.contact.P) * np.abs(ds)
+
+    def energy_density(self, outcome):
+        return outcome.density
+
+    @functools.cached_property
+    def surface(self):
+        """The surface direct stress at the nodes (`CellSurfaceStress`) and the pressure of the contact's ``P`` [Pa]."""
+        return CellSurfaceStress(self.x.size), self.pressure_at(self.contact.P)
+
+    def surface_at(self, outcome):
+        return self.surface[0], self.pressure_at(outcome.P)
+
+
+def toeplitz_inverse(column):
+    """Inverse of the symmetric positive definite Toeplitz matrix of first column `column`, in ``O(n^2)``.
+
+    Trench's recursion (Trench 1964; Gohberg & Semencul 1972): with ``v`` the first column of the
+    inverse ``B`` (one Levinson solve), ``B[i + 1, j + 1] = B[i, j] + (v[i + 1] v[j + 1] -
+    v[n - 1 - i] v[n - 1 - j]) / v[0]``, filled row by row.
+    """
+    n = column.size
+    v = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
+    B = np.empty((n, n))
+    B[0] = v
+    tail = v[::-1][: n - 1]  # v[n - 1 - j], j = 0 .. n - 2
+    for i in range(n - 1):
+        B[i + 1, 0] = v[i + 1]
+        B[i + 1, 1:] = B[i, :-1] + (v[i + 1] * v[1:] - v[n - 1 - i] * tail) / v[0]
+    return B
+
+
+class CellSurfaceStress:
+    """``sigma_xx`` [Pa] along the surface of either body at the nodes of `N` equal cells.
+
+    The formula of `fretting.physics.surface.SurfaceStress` (Johnson 1985, section 2.3) with the
+    traction constant on each cell, whose principal value is exact:
+    ``(2/pi) int_cell dxi / (xi - x_i) = (2/pi) ln|(k + 1/2) / (k - 1/2)|`` for the cell ``k``
+    cells from the node (zero on its own cell).
+    """
+
+    def __init__(self, N):
+        k = np.arange(1 - N, N, dtype=float)
+        column = 2 / np.pi * np.log(np.abs((k + 0.5) / (k - 0.5)))
+        self._kernel = linalg.toeplitz(column[N - 1 :], column[N - 1 :: -1])  # [j, i]: cell j at node i
+
+    def __call__(self, q, p, bulk, body):
+        """``sigma_xx`` [Pa] of `body` (1 or 2) at the nodes, as `fretting.physics.surface.SurfaceStress`."""
+        sign = 1.0 if body == 1 else -1.0
+        return sign * (q @ self._kernel) - p + bulk

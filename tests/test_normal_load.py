@@ -1,0 +1,285 @@
+"""A varying normal load P(t) (issue 22): closed forms of Jaeger's superposition and Melan's shakedown,
+each on the default model (`fretting.models.Varying` is chosen where the history varies P).
+
+Traction is compared within 1e-3 f p0 away (0.02 a) from the points where it has a square-root kink,
+as in tests/test_closed_forms.py: the edges of the contacts met and the stick/slip boundaries.
+"""
+
+import numpy as np
+import pytest
+
+import fretting as fr
+from fretting.errors import HistoryError
+from fretting.loading.history import History
+from fretting.models.normal import Varying
+from fretting.physics import closed_forms as cf
+
+E_STAR, F = 115e9, 0.5
+BAND = 0.02  # [a]
+
+
+def contact(profile, P=1e5):
+    return fr.Contact(profile, E_star=E_STAR, f=F, P=P)
+
+
+def away_from(x, ends, a):
+    return np.all(np.abs(np.subtract.outer(x, np.asarray(ends))) > BAND * a, axis=-1)
+
+
+def energy_scale(c):
+    """``pi (f p0 a)^2 / (4 E_star)`` [J/m], the scale of the energy of Cattaneo-Mindlin."""
+    return np.pi * (c.f * c.p0 * c.a) ** 2 / (4 * c.E_star)
+
+
+PROFILES = [fr.Hertz(0.05), fr.RoundedFlat(0.0002, 0.05)]
+
+
+@pytest.mark.parametrize("profile", PROFILES, ids=["hertz", "rounded-flat"])
+def test_proportional_loading_slips_nowhere_and_follows_the_pressure(profile):
+    """Q = lambda (P - P0), lambda = 0.3 < f: no dissipation, q = lambda (p(P) - p(P0)) (Jaeger)."""
+    formed = contact(profile)
+    P0, lam = formed.P, 0.3
+    result = fr.simulate(formed, History.piecewise_linear([0.0, lam * P0], None, 16, P=[P0, 2 * P0]))
+    assert result.attrs["model"] == "varying"
+    assert float(result.total_dissipation) == 0.0
+    final = contact(profile, 2 * P0)
+    x = result.x.values
+    expected = lam * (final.pressure(x) - formed.pressure(x))
+    band = away_from(x, [-formed.a, formed.a, -final.a, final.a], final.a)
+    assert np.max(np.abs(result.q.values[-1] - expected)[band]) < 1e-3 * F * formed.p0
+
+
+def test_cattaneo_mindlin_then_the_normal_load_up_and_down():
+    """CM at (P0, Q0): P up to 1.5 P0 and back slips nowhere and keeps the traction; down to 0.8 P0 gives CM there."""
+    formed = contact(fr.Hertz(0.05))
+    P0, Q0 = formed.P, 0.6 * F * formed.P
+    history = History.piecewise_linear([0.0, Q0, Q0, Q0, Q0], None, 16, P=[P0, P0, 1.5 * P0, P0, 0.8 * P0])
+    result = fr.simulate(formed, history)
+    x, q, dissipation = result.x.values, result.q.values, result.dissipation.values
+    start, up, back, down = history.vertex_step[1:]
+    assert np.all(dissipation[start + 1 : back + 1] == 0)  # no slip until back at P0
+    b = cf.stick_half_width(formed, Q0)
+    cm = cf.cattaneo_mindlin_traction(formed, Q0, x)  # zero on the band the contact gains
+    raised = contact(fr.Hertz(0.05), 1.5 * P0)
+    for step, a_now in ((up, raised.a), (back, formed.a)):
+        band = away_from(x, [-b, b, -formed.a, formed.a, -a_now, a_now], a_now)
+        assert np.max(np.abs(q[step] - cm)[band]) < 1e-3 * F * formed.p0
+    lowered = contact(fr.Hertz(0.05), 0.8 * P0)
+    c = cf.stick_half_width(lowered, Q0)
+    band = away_from(x, [-c, c, -lowered.a, lowered.a], lowered.a)
+    assert np.max(np.abs(q[down] - cf.cattaneo_mindlin_traction(lowered, Q0, x))[band]) < 1e-3 * F * formed.p0
+    zones = np.stack([result.stick_start.values[down], result.stick_end.values[down]], axis=-1)
+    np.testing.assert_allclose(zones[~np.isnan(zones[:, 0])], [[-c, c]], rtol=0, atol=1e-3 * lowered.a)
+
+
+@pytest.mark.parametrize("ratio", [0.9, 1.1])
+def test_increment_criterion(ratio):
+    """Increments with dP > 0 and |dQ| + (pi a / 4) |dsigma| = ratio f dP slip nowhere for 0.9, and do for 1.1.
+
+    Half of the budget goes to Q and half to sigma, their signs alternating between the two
+    segments; ``a`` is the largest half-width of the segment for 0.9, the smallest for 1.1.
+    """
+    formed = contact(fr.Hertz(0.05))
+    P = formed.P * np.array([1.0, 1.25, 1.5])
+    widths = [formed.profile.half_width(load, E_STAR)[0] for load in P]
+    Q, sigma = [0.0], [0.0]
+    for k, sign in enumerate((1.0, -1.0)):
+        dP = P[k + 1] - P[k]
+        a = widths[k + 1] if ratio < 1 else widths[k]
+        Q.append(Q[-1] + sign * ratio * F * dP / 2)
+        sigma.append(sigma[-1] - sign * ratio * F * dP / 2 / (np.pi * a / 4))
+    result = fr.simulate(formed, History.piecewise_linear(Q, sigma, 16, P=P))
+    if ratio < 1:
+        assert float(result.total_dissipation) == 0.0
+    else:
+        assert float(result.total_dissipation) > 1e-6 * energy_scale(formed)
+
+
+def cycles(formed, Q_over_P, shift, count=4, steps=32, sigma_amplitude=0.0, before=None):
+    """``P = Pm + 0.3 Pm sin``, ``Q = Qa sin(theta + shift) - Qa sin(shift)``, ``sigma = sigma_a sin``,
+    ``Qa = Q_over_P f 0.3 Pm``, from the contact formed at ``Pm`` (after the history `before`)."""
+    Pm, Pa = formed.P, 0.3 * formed.P
+    theta = 2 * np.pi * np.remainder(np.arange(count * steps + 1), steps) / steps
+    Qa = Q_over_P * F * Pa
+    Q = Qa * (np.sin(theta + shift) - np.sin(shift))
+    number = np.concatenate([[0], np.repeat(np.arange(1, count + 1), steps)])
+    waves = History(Q, sigma_amplitude * np.sin(theta), np.arange(0, Q.size, steps), number, Pm + Pa * np.sin(theta))
+    return waves if before is None else History.concatenate([before, waves])
+
+
+def test_shakedown_in_phase_below_f():
+    """Qa / Pa = 0.67 f in phase: nothing dissipated after the first cycle (Melan; Barber, Davies & Hills 2011)."""
+    formed = contact(fr.Hertz(0.05))
+    energy = fr.simulate(formed, cycles(formed, 0.67, 0.0)).cycle_dissipation.values
+    assert energy[0] > 0
+    assert np.all(energy[1:] <= 1e-9 * energy[0])
+
+
+@pytest.mark.parametrize(("Q_over_P", "shift"), [(1.07, 0.0), (0.67, 0.3)])
+def test_no_shakedown_above_f_or_out_of_phase(Q_over_P, shift):
+    """Qa / Pa = 1.07 f, or Q shifted by 0.3 rad: a steady energy per cycle, that does not vanish."""
+    formed = contact(fr.Hertz(0.05))
+    energy = fr.simulate(formed, cycles(formed, Q_over_P, shift)).cycle_dissipation.values
+    assert energy[-1] > 1e-2 * energy[0]
+    np.testing.assert_allclose(energy[-1], energy[-2], rtol=1e-6)
+
+
+def test_steady_energy_does_not_depend_on_the_path_before():
+    """The same (P, Q, sigma) cycle reached directly or after a detour has the same steady energy per cycle."""
+    formed = contact(fr.Hertz(0.05))
+    P0, fP = formed.P, F * formed.P
+    detour = History.piecewise_linear([0.0, 0.4 * fP, -0.3 * fP, 0.0], [0.0, 40e6, -20e6, 0.0], 8, P=[P0] * 4)
+    detour = History(detour.Q, detour.sigma, detour.vertex_step, np.zeros(len(detour), dtype=np.int64), detour.P)
+    energies = [
+        fr.simulate(
+            formed, cycles(formed, 1.0, 0.3, count=5, sigma_amplitude=30e6, before=before)
+        ).cycle_dissipation.values[-1]
+        for before in (None, detour)
+    ]
+    np.testing.assert_allclose(energies[0], energies[1], rtol=1e-6)
+
+
+def test_lift_off_and_start_are_refused():
+    formed = contact(fr.Hertz(0.05))
+    with pytest.raises(HistoryError, match="step 1"):  # P = 0 there
+        History.piecewise_linear([0.0, 1.0], None, 2, P=[formed.P, -formed.P])
+    with pytest.raises(HistoryError, match="history starts at P"):
+        fr.simulate(formed, History.piecewise_linear([0.0, 1.0], None, 2, P=[2 * formed.P, formed.P]))
+    with pytest.raises(HistoryError, match="varies the normal load"):
+        fr.simulate(formed, History.piecewise_linear([0.0, 1.0], None, 2, P=[formed.P, 2 * formed.P]), nodes=64)
+
+
+def test_gross_slip_when_P_falls():
+    """|Q| > f P names the step also when it is P that falls under a constant Q."""
+    formed = contact(fr.Hertz(0.05))
+    Q = 0.5 * F * formed.P
+    history = History.piecewise_linear([0.0, Q, Q], None, 4, P=[formed.P, formed.P, 0.3 * formed.P])
+    first = int(np.argmax(F * history.P <= Q))  # step 7: P = 0.475 P0
+    with pytest.raises(fr.GrossSlipError, match=f"step {first}"):
+        fr.simulate(formed, history)
+
+
+def test_constant_P_is_bit_for_bit_the_history_without_P():
+    formed = contact(fr.Hertz(0.05))
+    fP = F * formed.P
+    Q = [0.0, 0.5 * fP, -0.4 * fP]
+    without = fr.simulate(formed, History.piecewise_linear(Q, [0.0, 30e6, 0.0], 8))
+    held = fr.simulate(formed, History.piecewise_linear(Q, [0.0, 30e6, 0.0], 8, P=[formed.P] * 3))
+    assert without.attrs["model"] == held.attrs["model"]
+    np.testing.assert_array_equal(without.q.values, held.q.values)
+    np.testing.assert_array_equal(without.dissipation.values, held.dissipation.values)
+
+
+def test_dataset_records_the_normal_load_and_a_split_run_continues_bit_for_bit():
+    formed = contact(fr.Hertz(0.05))
+    history = cycles(formed, 1.07, 0.3, count=2, steps=16)
+    whole = fr.simulate(formed, history)
+    np.testing.assert_array_equal(whole.P.values, history.P)
+    widths = [formed.profile.half_width(load, E_STAR)[0] for load in history.P]
+    np.testing.assert_allclose(whole.a.values, widths, rtol=1e-12)
+    h = whole.x.values[1] - whole.x.values[0]
+    np.testing.assert_allclose(whole.p_step.values.sum(axis=1) * h, history.P, rtol=1e-12)  # the pressure carries P
+    np.testing.assert_allclose(whole.w.values.sum(axis=1) * h, whole.cycle_dissipation.values, rtol=1e-5)  # float32 w
+    assert np.all(whole.p_step.values[:, np.abs(whole.x.values) > whole.a.values.max()] == 0)
+    first = fr.simulate(formed, history[:21])
+    later = fr.simulate(formed, history[20:], state=fr.final_state(first))
+    np.testing.assert_array_equal(later.q.values, whole.q.values[20:])
+    assert float(later.total_dissipation) == float(whole.total_dissipation)
+
+
+HERTZ = """\
+[contact]
+profile = "hertz"
+R = 0.05
+E_star = 115e9
+f = 0.5
+P = 1e5
+"""
+
+
+def read(tmp_path, text, csv=None):
+    from fretting.loading.history_file import read_history
+
+    if csv is not None:
+        (tmp_path / "loads.csv").write_text(csv)
+    (tmp_path / "history.toml").write_text(HERTZ + text)
+    return read_history(tmp_path / "history.toml")
+
+
+def test_history_files_take_P(tmp_path):
+    """`linear` P vertices, a `csv` P column, `sine` and `random` P_amplitude / P_mean: the same loads as History."""
+    _, linear = read(tmp_path, '[[loading]]\nkind = "linear"\nQ = [1e4, 0]\nP = [1.5e5, 1e5]\nsteps_per_segment = 4\n')
+    expected = History.piecewise_linear([0.0, 1e4, 0.0], None, 4, P=[1e5, 1.5e5, 1e5])
+    np.testing.assert_array_equal(linear.P, expected.P)
+    np.testing.assert_array_equal(linear.Q, expected.Q)
+    _, series = read(
+        tmp_path, '[[loading]]\nkind = "csv"\nfile = "loads.csv"\nsteps_per_segment = 4\n', "P,Q\n1.5e5,1e4\n1e5,0\n"
+    )
+    np.testing.assert_array_equal(series.P, expected.P)
+    sine = '[[loading]]\nkind = "sine"\nQ_amplitude = 1e4\nP_amplitude = 2e4\nP_phase_deg = 90\ncycles = 2\n'
+    _, waves = read(tmp_path, sine)
+    theta = 2 * np.pi * np.remainder(np.arange(2 * 64 + 1), 64) / 64
+    np.testing.assert_allclose(waves.P[-129:], 1e5 + 2e4 * np.cos(theta), rtol=1e-15)  # ramped up from P = 1e5
+    assert waves.P[0] == 1e5
+    _, drawn = read(
+        tmp_path, '[[loading]]\nkind = "random"\ncycles = 3\nQ_amplitude = 1e4\nP_amplitude = 2e4\nseed = 1\n'
+    )
+    u = (drawn.Q[drawn.vertex_step] / 1e4)[1:]
+    np.testing.assert_allclose(drawn.P[drawn.vertex_step][1:], 1e5 + 2e4 * u, rtol=1e-15)  # in phase with Q
+    _, held = read(tmp_path, '[[loading]]\nkind = "linear"\nQ = [1e4, 0]\n')
+    assert held.P is None  # the contact's constant P: no P column, the results of a history without P
+
+
+def test_dovetail_example_runs_the_varying_model():
+    from fretting.loading.examples import example_path
+    from fretting.loading.history_file import read_history
+
+    formed, history = read_history(example_path("hertz_dovetail_cycle"))
+    result = fr.simulate(formed, history)
+    assert result.attrs["model"] == "varying"
+    assert result.a.values.max() > 1.5 * formed.a  # the contact grows in every cycle
+    energy = result.cycle_dissipation.values
+    assert np.all(energy > 0)
+
+
+def test_figures_of_a_varying_P():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from fretting import plots
+
+    formed = contact(fr.Hertz(0.05))
+    result = fr.simulate(formed, cycles(formed, 1.07, 0.0, count=1, steps=16))
+    assert "contact_edges" in plots.figures_for(result)
+    ax = plots.contact_edges(result)
+    upper = ax.lines[0].get_ydata()
+    np.testing.assert_allclose(upper, result.a.values / formed.a)  # the edges move with P
+    assert upper.max() > 1.1 and upper.min() < 0.9
+    plots.traction(result)
+    with pytest.raises(ValueError, match="does not vary P"):
+        plots.contact_edges(fr.simulate(formed, History.piecewise_linear([0.0, 1e3], None, 2)))
+
+
+def test_stepping_with_P_equals_the_run():
+    formed = contact(fr.Hertz(0.05))
+    history = cycles(formed, 1.07, 0.3, count=1, steps=16)
+    stepper = fr.Stepper(formed, Varying().resolved_for(formed, history))
+    for Q, sigma, P in zip(history.Q[1:], history.sigma[1:], history.P[1:], strict=True):
+        stepper.step(Q, sigma, P=P)
+    whole = fr.final_state(fr.simulate(formed, history, model=Varying().resolved_for(formed, history)))
+    np.testing.assert_array_equal(stepper.state.slip, whole.slip)
+    with pytest.raises(HistoryError, match="P must be a finite normal load > 0"):
+        stepper.step(0.0, 0.0, P=-1.0)
+
+
+def test_surface_stress_of_a_varying_P_is_the_engine_tally():
+    """`nucleation.surface_stress` of each recorded step (the pressure of that step) peaks as the engine's tally."""
+    from fretting.analysis import nucleation
+
+    formed = contact(fr.Hertz(0.05))
+    result = fr.simulate(formed, cycles(formed, 1.07, 0.3, count=1, steps=16, sigma_amplitude=30e6))
+    stress = nucleation.surface_stress(result).values
+    cycle = result.cycle.values == 1
+    np.testing.assert_allclose(
+        result.sigma_xx_peak.values[0], stress[cycle].max(axis=0), rtol=1e-6, atol=1e-6 * formed.p0
+    )
