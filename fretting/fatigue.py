@@ -16,8 +16,8 @@ pi/2)``, and ``theta`` [rad] from the out-of-plane axis ``y``. The in-plane fami
     tau = tau_xz cos(2 phi) - (sigma_xx - sigma_zz)/2 sin(2 phi),
 
 and the shear stress has the fixed direction ``(-sin(phi), 0, cos(phi))``, so its amplitude is half
-its range. Its search is exact: `SAMPLES` planes, then a bracketed golden-section refine of the
-best one to `XTOL`. Planes tilted out of the family (``theta < pi/2``) carry
+its range. Its search: `SAMPLES` planes, then a golden-section search on either side of the `PEAKS`
+best sampled peaks, to `XTOL`. Planes tilted out of the family (``theta < pi/2``) carry
 ``sigma_n = sin^2(theta) sigma_n(phi) + cos^2(theta) sigma_yy`` and a shear vector with components
 ``sin(theta) tau(phi)`` and ``sin(theta) cos(theta) (sigma_n(phi) - sigma_yy)``, which turns in the
 plane when the loading is not proportional; its amplitude is then half the longest chord of its
@@ -90,16 +90,19 @@ __all__ = [
     "swt_life",
 ]
 
-#: Planes sampled over ``phi`` in ``[-pi/2, pi/2)`` (1 degree apart) before the refine: the refine
-#: finds the maximum when the parameter has a single peak within a sample step of the best sample.
-SAMPLES = 180
+#: Planes sampled over ``phi`` in ``[-pi/2, pi/2)`` (0.5 degree apart) before the refine.
+SAMPLES = 360
+
+#: Sampled peaks refined, the best first: a history sampled in time can give the parameter twin peaks
+#: closer than a sample step, and the sample nearer the lower one may be the higher.
+PEAKS = 2
 
 #: Width [rad] of the bracket that ends the golden-section refine of the in-plane family: near a smooth
 #: maximum the parameter changes by less than its rounding over about 1e-8 rad, so no search locates the
 #: angle more closely; the parameter itself is then found to rounding.
 XTOL = 1e-8
 
-#: Planes whose searched quantity is within this fraction of the best are tied (MWCM's tie-break).
+#: Sampled planes whose searched quantity is within this fraction of the best are tied (`planes="all"`).
 TIE_RTOL = 1e-9
 
 #: Elements of the arrays of one block of planes: the sample stage's memory bound.
@@ -359,12 +362,17 @@ class _Terms(NamedTuple):
     eps_a: np.ndarray
 
 
-def _terms(history, material, phi, theta):
-    """`_Terms` on the planes ``(phi, theta)`` at every point: arrays ``(point, plane)``."""
+def _terms(history, material, phi, theta, strain):
+    """`_Terms` on the planes ``(phi, theta)`` at every point: arrays ``(point, plane)``.
+
+    With `strain`, ``eps_a`` and not ``tau_a`` (None); without, the reverse: no criterion reads both.
+    """
     sigma_n, shear = _plane_stresses(history, phi, theta)
+    if not strain:
+        return _Terms(sigma_n.max(axis=0), _half_longest_chord(shear), None)
     trace = (2 * history.mean + history.sigma_yy)[..., None]
     eps_n = ((1 + material.nu) * sigma_n - material.nu * trace) / material.E
-    return _Terms(sigma_n.max(axis=0), _half_longest_chord(shear), _half_range(eps_n))
+    return _Terms(sigma_n.max(axis=0), None, _half_range(eps_n))
 
 
 @dataclass(frozen=True)
@@ -373,6 +381,7 @@ class _Criterion:
 
     parameter: object
     amplitude: object
+    strain: bool = False  # reads eps_a, not tau_a
     plane_by_shear: bool = False  # the plane of largest tau_a (ties: largest sigma_n_max), not of the parameter
 
     def searched(self, terms, material):
@@ -380,90 +389,108 @@ class _Criterion:
 
 
 def _critical_plane(criterion, history, material, planes):
-    m = history.mean.shape[1]
     if planes not in ("in-plane", "all"):
         raise ValueError(f"planes: found {planes!r}, expected 'in-plane' or 'all'")
-    step = np.pi / SAMPLES
-    phis = -np.pi / 2 + step * np.arange(SAMPLES)
-    phi, theta = _best_sample(criterion, history, material, phis, np.full(SAMPLES, np.pi / 2))
-    phi = _refine(criterion, history, material, phi, step)
-    theta = np.full(m, np.pi / 2)
+    phi = _in_plane_search(criterion, history, material)
+    theta = np.full(phi.shape, np.pi / 2)
     if planes == "all":
-        thetas = np.arange(SAMPLES // 2) * step
-        grid_phi, grid_theta = (a.ravel() for a in np.meshgrid(phis, thetas))
+        step = np.pi / SAMPLES
+        grid_phi, grid_theta = (
+            grid.ravel() for grid in np.meshgrid(-np.pi / 2 + step * np.arange(SAMPLES), step * np.arange(SAMPLES // 2))
+        )
         tilted_phi, tilted_theta = _best_sample(criterion, history, material, grid_phi, grid_theta)
         better = _searched_at(criterion, history, material, tilted_phi, tilted_theta) > _searched_at(
             criterion, history, material, phi, theta
         )
         phi, theta = np.where(better, tilted_phi, phi), np.where(better, tilted_theta, theta)
-    terms = _terms_at(history, material, phi, theta)
-    return Plane(
-        *(
-            value.reshape(history.shape)
-            for value in (
-                criterion.parameter(terms, material),
-                phi,
-                theta,
-                terms.sigma_n_max,
-                criterion.amplitude(terms, material),
-            )
-        )
-    )
+    terms = _terms_at(history, material, phi, theta, criterion.strain)
+    values = (criterion.parameter(terms, material), phi, theta, terms.sigma_n_max, criterion.amplitude(terms, material))
+    return Plane(*(value.reshape(history.shape) for value in values))
 
 
-def _terms_at(history, material, phi, theta):
+def _terms_at(history, material, phi, theta, strain):
     """`_Terms` on one plane per point: ``phi``, ``theta`` and the terms of shape ``(point,)``."""
-    return _Terms(*(term[:, 0] for term in _terms(history, material, phi[:, None], theta[:, None])))
+    terms = _terms(history, material, phi[:, None], theta[:, None], strain)
+    return _Terms(*(None if term is None else term[:, 0] for term in terms))
 
 
 def _searched_at(criterion, history, material, phi, theta):
-    return criterion.searched(_terms_at(history, material, phi, theta), material)
+    return criterion.searched(_terms_at(history, material, phi, theta, criterion.strain), material)
 
 
-def _best_sample(criterion, history, material, phis, thetas):
-    """The sampled plane ``(phi, theta)`` of each point that maximises the criterion's searched quantity."""
+def _sampled(criterion, history, material, phis, thetas):
+    """The searched quantity and ``sigma_n,max`` on the planes ``(phis, thetas)``: arrays ``(point, plane)``."""
     nt, m = history.mean.shape
     per_block = max(1, BLOCK // (nt * m))
     searched, normal = [], []
     for start in range(0, phis.size, per_block):
-        terms = _terms(history, material, phis[start : start + per_block], thetas[start : start + per_block])
+        chunk = slice(start, start + per_block)
+        terms = _terms(history, material, phis[chunk], thetas[chunk], criterion.strain)
         searched.append(criterion.searched(terms, material))
         normal.append(terms.sigma_n_max)
-    searched, normal = np.concatenate(searched, axis=1), np.concatenate(normal, axis=1)
+    return np.concatenate(searched, axis=1), np.concatenate(normal, axis=1)
+
+
+def _best_sample(criterion, history, material, phis, thetas):
+    """The sampled plane ``(phi, theta)`` of each point of largest searched quantity (ties: largest sigma_n,max)."""
+    searched, normal = _sampled(criterion, history, material, phis, thetas)
     best = searched.max(axis=1, keepdims=True)
     tied = searched >= best - TIE_RTOL * np.abs(best)
     index = np.argmax(np.where(tied, normal, -np.inf), axis=1)
     return phis[index], thetas[index]
 
 
-def _refine(criterion, history, material, phi, step):
-    """Golden-section search of the in-plane family in ``[phi - step, phi + step]``, every point at once.
+def _in_plane_search(criterion, history, material):
+    """The in-plane normal [rad] of each point of largest searched quantity.
 
-    Keeps the sample where the refine finds less (a maximum at a kink the bracket misses).
+    `SAMPLES` normals over ``[-pi/2, pi/2)``, then a golden-section search on each side of the `PEAKS` best
+    sampled peaks. The MWCM's ``tau_a`` repeats every ``pi/2`` (``tau(phi + pi/2) = -tau(phi)``): it is
+    searched over ``[-pi/2, 0)``, and of a normal and its conjugate ``phi + pi/2`` the one of larger
+    ``sigma_n,max`` is kept.
     """
-    theta = np.full(phi.shape, np.pi / 2)
+    step = np.pi / SAMPLES
+    count = SAMPLES // 2 if criterion.plane_by_shear else SAMPLES
+    phis = -np.pi / 2 + step * np.arange(count)
+    theta = np.full(history.mean.shape[1], np.pi / 2)
+    searched, _ = _sampled(criterion, history, material, phis, np.full(count, np.pi / 2))
+    peak = (searched >= np.roll(searched, 1, axis=1)) & (searched >= np.roll(searched, -1, axis=1))
+    ranked = np.argsort(np.where(peak, -searched, np.inf), axis=1)[:, :PEAKS]
+    best, found = phis[ranked[:, 0]], searched[np.arange(searched.shape[0]), ranked[:, 0]]
 
-    def searched(angle):
+    def function(angle):
         return _searched_at(criterion, history, material, angle, theta)
 
+    for index in ranked.T:
+        for low, high in ((phis[index] - step, phis[index]), (phis[index], phis[index] + step)):
+            angle, value = _golden_section(function, low, high)
+            better = value > found
+            best, found = np.where(better, angle, best), np.where(better, value, found)
+    best = (best + np.pi / 2) % np.pi - np.pi / 2
+    if not criterion.plane_by_shear:
+        return best
+    other = (best + np.pi) % np.pi - np.pi / 2
+    normal = [_terms_at(history, material, angle, theta, strain=False).sigma_n_max for angle in (best, other)]
+    return np.where(normal[1] > normal[0], other, best)
+
+
+def _golden_section(function, low, high):
+    """A local maximum of `function` (vectorised) in each bracket ``[low, high]``, to `XTOL`, and its value."""
     ratio = (math.sqrt(5) - 1) / 2
-    low, high = phi - step, phi + step
     inner, outer = high - ratio * (high - low), low + ratio * (high - low)
-    f_inner, f_outer = searched(inner), searched(outer)
-    for _ in range(math.ceil(math.log(XTOL / (2 * step)) / math.log(ratio))):
+    f_inner, f_outer = function(inner), function(outer)
+    for _ in range(math.ceil(math.log(XTOL / np.max(high - low)) / math.log(ratio))):
         right = f_outer > f_inner
         low, high = np.where(right, inner, low), np.where(right, high, outer)
         trial = np.where(right, low + ratio * (high - low), high - ratio * (high - low))
-        f_trial = searched(trial)
+        f_trial = function(trial)
         inner, outer, f_inner, f_outer = (
             np.where(right, outer, trial),
             np.where(right, trial, inner),
             np.where(right, f_outer, f_trial),
             np.where(right, f_trial, f_inner),
         )
-    found = np.where(f_outer > f_inner, outer, inner)
-    keep = np.maximum(f_inner, f_outer) < searched(phi)
-    return (np.where(keep, phi, found) + np.pi / 2) % np.pi - np.pi / 2
+    right = f_outer > f_inner
+    return np.where(right, outer, inner), np.where(right, f_outer, f_inner)
 
 
 def _swt(terms, material):
@@ -486,7 +513,7 @@ def _mwcm(terms, material):
     return np.where(sheared, terms.tau_a + kappa * rho, 0.0)
 
 
-_SWT = _Criterion(_swt, lambda terms, material: terms.eps_a)
+_SWT = _Criterion(_swt, lambda terms, material: terms.eps_a, strain=True)
 _FINDLEY = _Criterion(_findley, lambda terms, material: terms.tau_a)
 _FATEMI_SOCIE = _Criterion(_fatemi_socie, lambda terms, material: terms.tau_a / material.G)
 _MWCM = _Criterion(_mwcm, lambda terms, material: terms.tau_a, plane_by_shear=True)
