@@ -72,6 +72,7 @@ from fretting.physics.contact import plane_strain_modulus
 
 __all__ = [
     "CRITERIA",
+    "PEAKS",
     "SAMPLES",
     "XTOL",
     "CriticalDistance",
@@ -319,8 +320,10 @@ def _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, nu):
         arrays["sigma_yy"] = sigma_yy
     arrays = {name: np.asarray(value, dtype=float) for name, value in arrays.items()}
     shape = arrays["sigma_xx"].shape
+    if not shape:
+        raise ValueError("sigma_xx: found a number, expected an array with the time axis first")
     for name, array in arrays.items():
-        if array.shape != shape or array.ndim == 0:
+        if array.shape != shape:
             raise ValueError(f"{name}: found shape {array.shape}, expected that of sigma_xx {shape}, time axis first")
         if not np.all(np.isfinite(array)):
             raise ValueError(f"{name}: expected finite stresses [Pa], found NaN or inf")
@@ -655,8 +658,8 @@ def point_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance
         The critical distance [m] (`Material.critical_distance`).
     direction : {"down", "max"} or float
         Straight down into the body (``+z``); the direction that maximises the value, sampled on
-        `DIRECTIONS` angles over ``[-pi/2, pi/2]`` (1 degree apart); or an angle [rad] from ``+z``
-        toward ``+x``.
+        `DIRECTIONS` angles over ``[-pi/2, pi/2]`` (1 degree apart; those that leave the grid are
+        skipped); or an angle [rad] from ``+z`` toward ``+x``.
     x_hot : float, optional
         The surface point to start from [m]; by default the largest surface value (``z = 0``).
 
@@ -709,10 +712,10 @@ def _critical_distance(parameter, L, direction, x_hot, fractions):
     px, pz = x_hot + r[None, :] * np.sin(angles)[:, None], r[None, :] * np.cos(angles)[:, None]
     inside = np.all((px >= x[0]) & (px <= x[-1]) & (pz <= z[-1]), axis=1)
     if not inside.any():
+        along = "along any direction" if angles.size > 1 else f"at {np.degrees(angles[0]):.6g} deg from +z"
         raise ValueError(
             f"parameter: the grid spans x in [{x[0]:.6g}, {x[-1]:.6g}] m and z up to {z[-1]:.6g} m, expected it "
-            f"to reach {r[-1]:.6g} m from x = {x_hot:.6g} m at {np.degrees(angles[0]):.6g} deg from +z"
-            + (" (or any direction)" if direction == "max" else "")
+            f"to reach {r[-1]:.6g} m from x = {x_hot:.6g} m {along}"
         )
     interpolate = RegularGridInterpolator((z, x), values)
     read = interpolate(np.stack([pz[inside], px[inside]], axis=-1))
