@@ -23,7 +23,9 @@ best sampled peaks, to `XTOL`. Planes tilted out of the family (``theta < pi/2``
 plane when the loading is not proportional; its amplitude is then half the longest chord of its
 path. They govern where the in-plane stresses are nearly equal (under the middle of a contact,
 where ``sigma_xx ~ sigma_zz``, the shear of the x-z planes vanishes and that between ``x`` and
-``y`` does not), so ``planes="all"`` adds them, sampled on the same angular step (no refine).
+``y`` does not), so ``planes="all"`` adds them, sampled on the same angular step (no refine). The
+normals with ``phi`` in ``[-pi/2, pi/2)`` and ``theta`` in ``[0, pi/2]`` stand for all planes: a normal
+and its opposite name one plane, and the reflection ``y -> -y`` leaves the stress unchanged.
 
 The strain on a plane is elastic (Hooke's law, isotropic): the normal strain
 ``eps_n = ((1 + nu) sigma_n - nu (sigma_xx + sigma_yy + sigma_zz)) / E`` and the engineering
@@ -447,9 +449,9 @@ def _in_plane_search(criterion, history, material):
     """The in-plane normal [rad] of each point of largest searched quantity.
 
     `SAMPLES` normals over ``[-pi/2, pi/2)``, then a golden-section search on each side of the `PEAKS` best
-    sampled peaks. The MWCM's ``tau_a`` repeats every ``pi/2`` (``tau(phi + pi/2) = -tau(phi)``): it is
-    searched over ``[-pi/2, 0)``, and of a normal and its conjugate ``phi + pi/2`` the one of larger
-    ``sigma_n,max`` is kept.
+    sampled peaks, every point at once (scipy's bounded scalar searches take one point per call). The MWCM's
+    ``tau_a`` repeats every ``pi/2`` (``tau(phi + pi/2) = -tau(phi)``): it is searched over ``[-pi/2, 0)``,
+    and of a normal and its conjugate ``phi + pi/2`` the one of larger ``sigma_n,max`` is kept.
     """
     step = np.pi / SAMPLES
     count = SAMPLES // 2 if criterion.plane_by_shear else SAMPLES

@@ -464,3 +464,34 @@ def test_mwcm_keeps_the_conjugate_plane_of_larger_normal_stress():
     result = mwcm(*stress, STEEL)
     assert result.phi == pytest.approx(phi, abs=1e-7)
     assert result.parameter == pytest.approx(tau_a + kappa * sigma_n_max / tau_a, rel=PLANE_FIRST_ORDER)
+
+
+def sphere_findley(xx, zz, xz):
+    """Findley's parameter by brute force over normals 2 degrees apart over the whole sphere, in 3-D:
+    traction ``s n``, ``sigma_n = n . s n``, shear vector ``s n - sigma_n n``, ``tau_a`` half the longest
+    chord of its path (plane strain ``sigma_yy``)."""
+    stress = np.zeros((xx.size, 3, 3))
+    stress[:, 0, 0], stress[:, 1, 1], stress[:, 2, 2] = xx, STEEL.nu * (xx + zz), zz
+    stress[:, 0, 2] = stress[:, 2, 0] = xz
+    phi, theta = np.meshgrid(np.radians(np.arange(0, 360, 2)), np.radians(np.arange(0, 181, 2)))
+    n = np.stack([np.sin(theta) * np.cos(phi), np.cos(theta), np.sin(theta) * np.sin(phi)], axis=-1).reshape(-1, 3)
+    traction = np.einsum("tij,pj->tpi", stress, n)
+    sigma_n = np.einsum("tpi,pi->tp", traction, n)
+    shear = traction - sigma_n[..., None] * n
+    chords = np.linalg.norm(shear[:, None] - shear[None, :], axis=-1)
+    return np.max(chords.max(axis=(0, 1)) / 2 + STEEL.findley_constant() * sigma_n.max(axis=0))
+
+
+@pytest.mark.parametrize("mirror", [1, -1], ids=["history", "mirrored x"])
+def test_the_search_over_all_planes_covers_the_whole_sphere(mirror):
+    """The normals of `sphere_findley`, folded by ``n ~ -n`` and ``y -> -y``, are among the samples of
+    ``planes="all"``, so it finds at least as much. The history is nearly equi-biaxial, so that tilted
+    planes govern (the x-z family alone finds less); mirrored (``x -> -x``), its best normal turns to
+    ``-phi``: a search missing either half of ``phi`` fails one of the two."""
+    biaxial = 150e6 * np.sin(2 * np.pi * np.arange(16) / 16)
+    xx, zz, xz = random_history(5, steps=16)
+    xx, zz, xz = biaxial + 0.05 * xx, biaxial + 0.05 * zz, 0.05 * mirror * xz
+    reference = sphere_findley(xx, zz, xz)
+    found = findley(xx, zz, xz, STEEL, planes="all").parameter
+    assert reference * (1 - 1e-12) <= found <= reference * (1 + 1e-3)
+    assert findley(xx, zz, xz, STEEL).parameter < reference * 0.9
