@@ -1,0 +1,792 @@
+"""Multiaxial fatigue criteria on the critical plane, strain-life and the theory of critical distances.
+
+Pure functions of a stress history at points: arrays ``sigma_xx``, ``sigma_zz``, ``tau_xz`` and
+``sigma_yy`` [Pa] with the time axis first and any trailing shape of points (``x`` along the
+surface, ``z`` the depth, ``y`` out of the plane; ``tau_xy = tau_yz = 0``, so ``sigma_yy`` is a
+principal stress; plane strain gives ``sigma_yy = nu (sigma_xx + sigma_zz)``, the default). The
+history is taken as one cycle. `apply` maps a criterion over a stress field, a Dataset on dims
+``(step, z, x)``; `point_method` and `line_method` read such a map at a critical distance.
+
+Planes. A plane is named by its unit normal ``n = (sin(theta) cos(phi), cos(theta), sin(theta)
+sin(phi))`` in ``(x, y, z)``: ``phi`` [rad] from ``+x`` toward ``+z`` (depth), in ``[-pi/2,
+pi/2)``, and ``theta`` [rad] from the out-of-plane axis ``y``. The in-plane family,
+``theta = pi/2``, holds the planes that contain ``y``; on them
+
+    sigma_n = (sigma_xx + sigma_zz)/2 + (sigma_xx - sigma_zz)/2 cos(2 phi) + tau_xz sin(2 phi),
+    tau = tau_xz cos(2 phi) - (sigma_xx - sigma_zz)/2 sin(2 phi),
+
+and the shear stress has the fixed direction ``(-sin(phi), 0, cos(phi))``, so its amplitude is half
+its range. Its search: `SAMPLES` planes, then a golden-section search on either side of the `PEAKS`
+best sampled peaks, to `XTOL`. Planes tilted out of the family (``theta < pi/2``) carry
+``sigma_n = sin^2(theta) sigma_n(phi) + cos^2(theta) sigma_yy`` and a shear vector with components
+``sin(theta) tau(phi)`` and ``sin(theta) cos(theta) (sigma_n(phi) - sigma_yy)``, which turns in the
+plane when the loading is not proportional; its amplitude is then half the longest chord of its
+path. They govern where the in-plane stresses are nearly equal (under the middle of a contact,
+where ``sigma_xx ~ sigma_zz``, the shear of the x-z planes vanishes and that between ``x`` and
+``y`` does not), so ``planes="all"`` adds them, sampled on the same angular step (no refine). The
+normals with ``phi`` in ``[-pi/2, pi/2)`` and ``theta`` in ``[0, pi/2]`` stand for all planes: a normal
+and its opposite name one plane, and the reflection ``y -> -y`` leaves the stress unchanged.
+
+The strain on a plane is elastic (Hooke's law, isotropic): the normal strain
+``eps_n = ((1 + nu) sigma_n - nu (sigma_xx + sigma_yy + sigma_zz)) / E`` and the engineering
+shear strain ``gamma = tau / G``, ``G = E / (2 (1 + nu))``.
+
+References
+----------
+.. [1] K. N. Smith, P. Watson and T. H. Topper, A stress-strain function for the fatigue of
+   metals, Journal of Materials 5 (1970) 767-778.
+.. [2] W. N. Findley, A theory for the effect of mean stress on fatigue of metals under combined
+   torsion and axial load or bending, Journal of Engineering for Industry 81 (1959) 301-306.
+.. [3] A. Fatemi and D. F. Socie, A critical plane approach to multiaxial fatigue damage
+   including out-of-phase loading, Fatigue Fract. Engng Mater. Struct. 11 (1988) 149-165.
+.. [4] L. Susmel and P. Lazzarin, A bi-parametric Wohler curve for high cycle multiaxial fatigue
+   assessment, Fatigue Fract. Engng Mater. Struct. 25 (2002) 63-78.
+.. [5] L. Susmel and D. Taylor, Two methods for predicting the multiaxial fatigue limits of sharp
+   notches, Fatigue Fract. Engng Mater. Struct. 26 (2003) 821-833.
+.. [6] B. Crossland, Effect of large hydrostatic pressures on the torsional fatigue strength of an
+   alloy steel, Proc. Int. Conf. on Fatigue of Metals, IMechE, London (1956) 138-149.
+.. [7] O. H. Basquin, The exponential law of endurance tests, Proc. ASTM 10 (1910) 625-630;
+   L. F. Coffin, Trans. ASME 76 (1954) 931-950; S. S. Manson, NACA TN 2933 (1953).
+.. [8] D. Taylor, Geometrical effects in fatigue: a unifying theoretical model, International
+   Journal of Fatigue 21 (1999) 413-420.
+.. [9] J. A. Araujo and D. Nowell, The effect of rapidly varying contact stress fields on
+   fretting fatigue, International Journal of Fatigue 24 (2002) 763-775.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import tomllib
+from dataclasses import dataclass, fields
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+import xarray as xr
+from scipy.interpolate import RegularGridInterpolator
+from scipy.optimize import brentq
+
+from fretting._validate import finite, positive
+from fretting.errors import FrettingError
+from fretting.physics.contact import plane_strain_modulus
+
+__all__ = [
+    "CRITERIA",
+    "PEAKS",
+    "SAMPLES",
+    "XTOL",
+    "CriticalDistance",
+    "Invariant",
+    "Material",
+    "MaterialFileError",
+    "Plane",
+    "apply",
+    "crossland",
+    "fatemi_socie",
+    "findley",
+    "line_method",
+    "mwcm",
+    "point_method",
+    "swt",
+    "swt_life",
+]
+
+#: Planes sampled over ``phi`` in ``[-pi/2, pi/2)`` (0.5 degree apart) before the refine.
+SAMPLES = 360
+
+#: Sampled peaks refined, the best first: a history sampled in time can give the parameter twin peaks
+#: closer than a sample step, and the sample nearer the lower one may be the higher.
+PEAKS = 2
+
+#: Width [rad] of the bracket that ends the golden-section refine of the in-plane family: near a smooth
+#: maximum the parameter changes by less than its rounding over about 1e-8 rad, so no search locates the
+#: angle more closely; the parameter itself is then found to rounding.
+XTOL = 1e-8
+
+#: Sampled planes whose searched quantity is within this fraction of the best are tied (`planes="all"`).
+TIE_RTOL = 1e-9
+
+#: Elements of the arrays of one block of planes: the sample stage's memory bound.
+BLOCK = 2_000_000
+
+#: Directions sampled over ``[-pi/2, pi/2]`` by the critical distances' ``direction="max"``.
+DIRECTIONS = 181
+
+#: Points of the trapezoid rule of the line method per grid cell crossed (at least 64 in all).
+LINE_POINTS_PER_CELL = 8
+
+
+class MaterialFileError(FrettingError, ValueError):
+    """A material file is malformed; the message reads ``file: key: problem``."""
+
+    def __init__(self, path, key, problem):
+        self.path, self.key, self.problem = path, key, problem
+        super().__init__(f"{path}: {key}: {problem}" if key else f"{path}: {problem}")
+
+
+@dataclass(frozen=True)
+class Material:
+    """Elastic and fatigue constants of the specimen's material. Only `E` and `nu` are required.
+
+    Parameters
+    ----------
+    E : float
+        Young's modulus [Pa].
+    nu : float
+        Poisson's ratio, in ``(-1, 0.5]``.
+    sigma_f, b, eps_f, c : float, optional
+        Strain-life constants [7]: fatigue strength coefficient ``sigma_f'`` [Pa] > 0 and exponent
+        ``b`` < 0, fatigue ductility coefficient ``eps_f'`` > 0 and exponent ``c`` < 0 (`swt_life`).
+    sigma_limit, tau_limit : float, optional
+        Fully reversed fatigue limits [Pa] in bending (or push-pull), ``f_-1``, and in torsion,
+        ``t_-1``: they give Findley's ``k`` (unless `findley_k` is given), the MWCM's ``kappa``,
+        ``lambda`` and Crossland's ``alpha``, ``beta``.
+    findley_k : float, optional
+        Findley's normal stress sensitivity ``k`` >= 0 [2].
+    fs_k, sigma_y : float, optional
+        Fatemi-Socie's ``k`` >= 0 and the yield stress ``sigma_y`` [Pa] > 0 that normalises it [3].
+    critical_distance : float, optional
+        ``L`` [m] > 0 of the theory of critical distances [8], commonly
+        ``(1/pi) (Delta K_th / Delta sigma_0)^2``.
+
+    Raises
+    ------
+    ValueError
+        Naming the first constant out of its range.
+    """
+
+    E: float
+    nu: float
+    sigma_f: float | None = None
+    b: float | None = None
+    eps_f: float | None = None
+    c: float | None = None
+    sigma_limit: float | None = None
+    tau_limit: float | None = None
+    findley_k: float | None = None
+    fs_k: float | None = None
+    sigma_y: float | None = None
+    critical_distance: float | None = None
+
+    def __post_init__(self):
+        plane_strain_modulus(self.E, self.nu)  # checks E and nu as a contact's
+        for name in ("sigma_f", "eps_f", "sigma_limit", "tau_limit", "sigma_y", "critical_distance"):
+            self._check(name, positive)
+        for name in ("b", "c"):
+            self._check(name, _negative)
+        for name in ("findley_k", "fs_k"):
+            self._check(name, _non_negative)
+
+    def _check(self, name, validate):
+        value = getattr(self, name)
+        if value is not None:
+            object.__setattr__(self, name, validate(name, value))
+
+    @classmethod
+    def from_file(cls, path: str | os.PathLike) -> Material:
+        """The material of a TOML file whose top-level keys are the parameters' names.
+
+        Raises
+        ------
+        OSError
+            When the file cannot be read.
+        MaterialFileError
+            ``file: key: found ..., expected ...`` for a malformed file, an unknown or missing key,
+            or a value out of range.
+        """
+        path = Path(path)
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+            raise MaterialFileError(path, None, f"found invalid TOML ({error}), expected key = number lines") from None
+        names = [field.name for field in fields(cls)]
+        for key, value in data.items():
+            if key not in names:
+                raise MaterialFileError(path, key, f"unknown key, expected one of: {', '.join(names)}")
+            if isinstance(value, bool) or not isinstance(value, int | float):
+                raise MaterialFileError(path, key, f"found {value!r}, expected a number")
+        for key in ("E", "nu"):
+            if key not in data:
+                raise MaterialFileError(path, key, "missing, expected a number")
+        try:
+            return cls(**data)
+        except ValueError as error:
+            parsed = re.match(r"(\w+) must (?:be )?(.*), found", str(error))
+            key, expected = parsed.groups() if parsed else (None, str(error))
+            raise MaterialFileError(path, key, f"found {data.get(key)!r}, expected {expected}") from None
+
+    @property
+    def G(self) -> float:
+        """Shear modulus ``E / (2 (1 + nu))`` [Pa]."""
+        return self.E / (2 * (1 + self.nu))
+
+    def _required(self, criterion, *names):
+        missing = [name for name in names if getattr(self, name) is None]
+        if missing:
+            raise ValueError(f"material: {criterion} needs {', '.join(missing)}, found None")
+        return [getattr(self, name) for name in names]
+
+    def findley_constant(self) -> float:
+        """Findley's ``k``: `findley_k`, or from the fatigue limits.
+
+        With ``r = f_-1 / t_-1``, the fully reversed push-pull limit gives ``(f_-1/2)
+        (sqrt(1 + k^2) + k)`` and the torsion limit ``t_-1 sqrt(1 + k^2)``; equal, they give
+        ``k = (2 - r) / (2 sqrt(r - 1))``, for ``1 < r < 2``.
+        """
+        if self.findley_k is not None:
+            return self.findley_k
+        f, t = self._required("findley", "sigma_limit", "tau_limit")
+        r = f / t
+        if not 1 < r < 2:
+            raise ValueError(f"material: findley needs 1 < sigma_limit / tau_limit < 2 for k, found {r:.6g}")
+        return (2 - r) / (2 * math.sqrt(r - 1))
+
+    def mwcm_constants(self) -> tuple[float, float]:
+        """``(kappa, lambda)`` [Pa] of the MWCM at the fatigue limit, ``tau_a + kappa rho <= lambda`` [4].
+
+        ``lambda = t_-1``, ``kappa = t_-1 - f_-1 / 2``: the line through torsion (``rho = 0``) and push-pull
+        (``rho = 1``).
+        """
+        f, t = self._required("mwcm", "sigma_limit", "tau_limit")
+        return t - f / 2, t
+
+    def crossland_constants(self) -> tuple[float, float]:
+        """``(alpha, beta)`` of Crossland's limit ``sqrt(J2)_a + alpha sigma_h,max <= beta`` [6].
+
+        ``beta = t_-1`` and ``alpha = 3 t_-1 / f_-1 - sqrt(3)`` (fully reversed torsion and push-pull).
+        """
+        f, t = self._required("crossland", "sigma_limit", "tau_limit")
+        return 3 * t / f - math.sqrt(3), t
+
+
+def _negative(name, value):
+    number = finite(name, value)
+    if number >= 0:
+        raise ValueError(f"{name} must be < 0, found {value!r}")
+    return number
+
+
+def _non_negative(name, value):
+    number = finite(name, value)
+    if number < 0:
+        raise ValueError(f"{name} must be >= 0, found {value!r}")
+    return number
+
+
+class Plane(NamedTuple):
+    """A critical-plane criterion at each point (arrays of the points' shape).
+
+    Attributes
+    ----------
+    parameter : numpy.ndarray
+        The criterion's parameter on its critical plane.
+    phi, theta : numpy.ndarray
+        The critical plane's normal [rad] (module docstring); ``theta = pi/2`` for the in-plane family.
+    sigma_n_max : numpy.ndarray
+        Largest normal stress on that plane over the history [Pa].
+    amplitude : numpy.ndarray
+        The criterion's amplitude on that plane: ``eps_a`` (SWT), ``tau_a`` [Pa] (Findley, MWCM),
+        ``gamma_a`` (Fatemi-Socie).
+    """
+
+    parameter: np.ndarray
+    phi: np.ndarray
+    theta: np.ndarray
+    sigma_n_max: np.ndarray
+    amplitude: np.ndarray
+
+
+class Invariant(NamedTuple):
+    """An invariant criterion at each point: `parameter`, ``sqrt(J2)_a`` (`amplitude`) [Pa], ``sigma_h,max`` [Pa]."""
+
+    parameter: np.ndarray
+    amplitude: np.ndarray
+    sigma_h_max: np.ndarray
+
+
+class _History(NamedTuple):
+    """A stress history flattened to ``(time, point)``: the terms of the plane stresses."""
+
+    mean: np.ndarray  # (sigma_xx + sigma_zz) / 2
+    half: np.ndarray  # (sigma_xx - sigma_zz) / 2
+    tau_xz: np.ndarray
+    sigma_yy: np.ndarray
+    shape: tuple
+
+
+def _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, nu):
+    arrays = {"sigma_xx": sigma_xx, "sigma_zz": sigma_zz, "tau_xz": tau_xz}
+    if sigma_yy is not None:
+        arrays["sigma_yy"] = sigma_yy
+    arrays = {name: np.asarray(value, dtype=float) for name, value in arrays.items()}
+    shape = arrays["sigma_xx"].shape
+    if not shape:
+        raise ValueError("sigma_xx: found a number, expected an array with the time axis first")
+    for name, array in arrays.items():
+        if array.shape != shape:
+            raise ValueError(f"{name}: found shape {array.shape}, expected that of sigma_xx {shape}, time axis first")
+        if not np.all(np.isfinite(array)):
+            raise ValueError(f"{name}: expected finite stresses [Pa], found NaN or inf")
+    xx, zz, xz = (arrays[name].reshape(shape[0], -1) for name in ("sigma_xx", "sigma_zz", "tau_xz"))
+    yy = arrays["sigma_yy"].reshape(shape[0], -1) if sigma_yy is not None else nu * (xx + zz)
+    return _History((xx + zz) / 2, (xx - zz) / 2, xz, yy, shape[1:])
+
+
+def _plane_stresses(history, phi, theta):
+    """Normal stress and shear components on the planes ``(phi, theta)``: arrays ``(time, point, plane)``."""
+    c2, s2 = np.cos(2 * phi), np.sin(2 * phi)
+    mean, half, xz, yy = (term[..., None] for term in history[:4])
+    sigma_n = mean + half * c2 + xz * s2
+    tau = xz * c2 - half * s2
+    if np.all(theta == np.pi / 2):
+        return sigma_n, (tau,)
+    s, c = np.sin(theta), np.cos(theta)
+    return s * s * sigma_n + c * c * yy, (s * tau, s * c * (sigma_n - yy))
+
+
+def _half_range(values):
+    return (values.max(axis=0) - values.min(axis=0)) / 2
+
+
+def _half_longest_chord(components):
+    """Half the longest chord of a path in time (axis 0), of one or more components."""
+    if len(components) == 1:
+        return _half_range(components[0])
+    longest = np.zeros(components[0].shape[1:])
+    for i in range(components[0].shape[0] - 1):
+        squared = sum((part[i + 1 :] - part[i]) ** 2 for part in components)
+        longest = np.maximum(longest, squared.max(axis=0))
+    return np.sqrt(longest) / 2
+
+
+class _Terms(NamedTuple):
+    sigma_n_max: np.ndarray
+    tau_a: np.ndarray
+    eps_a: np.ndarray
+
+
+def _terms(history, material, phi, theta, strain):
+    """`_Terms` on the planes ``(phi, theta)`` at every point: arrays ``(point, plane)``.
+
+    With `strain`, ``eps_a`` and not ``tau_a`` (None); without, the reverse: no criterion reads both.
+    """
+    sigma_n, shear = _plane_stresses(history, phi, theta)
+    if not strain:
+        return _Terms(sigma_n.max(axis=0), _half_longest_chord(shear), None)
+    trace = (2 * history.mean + history.sigma_yy)[..., None]
+    eps_n = ((1 + material.nu) * sigma_n - material.nu * trace) / material.E
+    return _Terms(sigma_n.max(axis=0), None, _half_range(eps_n))
+
+
+@dataclass(frozen=True)
+class _Criterion:
+    """A critical-plane criterion: its parameter and amplitude from `_Terms`, and what its plane maximises."""
+
+    parameter: object
+    amplitude: object
+    strain: bool = False  # reads eps_a, not tau_a
+    plane_by_shear: bool = False  # the plane of largest tau_a (ties: largest sigma_n_max), not of the parameter
+
+    def searched(self, terms, material):
+        return terms.tau_a if self.plane_by_shear else self.parameter(terms, material)
+
+
+def _critical_plane(criterion, history, material, planes):
+    if planes not in ("in-plane", "all"):
+        raise ValueError(f"planes: found {planes!r}, expected 'in-plane' or 'all'")
+    phi = _in_plane_search(criterion, history, material)
+    theta = np.full(phi.shape, np.pi / 2)
+    if planes == "all":
+        step = np.pi / SAMPLES
+        grid_phi, grid_theta = (
+            grid.ravel() for grid in np.meshgrid(-np.pi / 2 + step * np.arange(SAMPLES), step * np.arange(SAMPLES // 2))
+        )
+        tilted_phi, tilted_theta = _best_sample(criterion, history, material, grid_phi, grid_theta)
+        better = _searched_at(criterion, history, material, tilted_phi, tilted_theta) > _searched_at(
+            criterion, history, material, phi, theta
+        )
+        phi, theta = np.where(better, tilted_phi, phi), np.where(better, tilted_theta, theta)
+    terms = _terms_at(history, material, phi, theta, criterion.strain)
+    values = (criterion.parameter(terms, material), phi, theta, terms.sigma_n_max, criterion.amplitude(terms, material))
+    return Plane(*(value.reshape(history.shape) for value in values))
+
+
+def _terms_at(history, material, phi, theta, strain):
+    """`_Terms` on one plane per point: ``phi``, ``theta`` and the terms of shape ``(point,)``."""
+    terms = _terms(history, material, phi[:, None], theta[:, None], strain)
+    return _Terms(*(None if term is None else term[:, 0] for term in terms))
+
+
+def _searched_at(criterion, history, material, phi, theta):
+    return criterion.searched(_terms_at(history, material, phi, theta, criterion.strain), material)
+
+
+def _sampled(criterion, history, material, phis, thetas):
+    """The searched quantity and ``sigma_n,max`` on the planes ``(phis, thetas)``: arrays ``(point, plane)``."""
+    nt, m = history.mean.shape
+    per_block = max(1, BLOCK // (nt * m))
+    searched, normal = [], []
+    for start in range(0, phis.size, per_block):
+        chunk = slice(start, start + per_block)
+        terms = _terms(history, material, phis[chunk], thetas[chunk], criterion.strain)
+        searched.append(criterion.searched(terms, material))
+        normal.append(terms.sigma_n_max)
+    return np.concatenate(searched, axis=1), np.concatenate(normal, axis=1)
+
+
+def _best_sample(criterion, history, material, phis, thetas):
+    """The sampled plane ``(phi, theta)`` of each point of largest searched quantity (ties: largest sigma_n,max)."""
+    searched, normal = _sampled(criterion, history, material, phis, thetas)
+    best = searched.max(axis=1, keepdims=True)
+    tied = searched >= best - TIE_RTOL * np.abs(best)
+    index = np.argmax(np.where(tied, normal, -np.inf), axis=1)
+    return phis[index], thetas[index]
+
+
+def _in_plane_search(criterion, history, material):
+    """The in-plane normal [rad] of each point of largest searched quantity.
+
+    `SAMPLES` normals over ``[-pi/2, pi/2)``, then a golden-section search on each side of the `PEAKS` best
+    sampled peaks, every point at once (scipy's bounded scalar searches take one point per call). The MWCM's
+    ``tau_a`` repeats every ``pi/2`` (``tau(phi + pi/2) = -tau(phi)``): it is searched over ``[-pi/2, 0)``,
+    and of a normal and its conjugate ``phi + pi/2`` the one of larger ``sigma_n,max`` is kept.
+    """
+    step = np.pi / SAMPLES
+    count = SAMPLES // 2 if criterion.plane_by_shear else SAMPLES
+    phis = -np.pi / 2 + step * np.arange(count)
+    theta = np.full(history.mean.shape[1], np.pi / 2)
+    searched, _ = _sampled(criterion, history, material, phis, np.full(count, np.pi / 2))
+    peak = (searched >= np.roll(searched, 1, axis=1)) & (searched >= np.roll(searched, -1, axis=1))
+    ranked = np.argsort(np.where(peak, -searched, np.inf), axis=1)[:, :PEAKS]
+    best, found = phis[ranked[:, 0]], searched[np.arange(searched.shape[0]), ranked[:, 0]]
+
+    def function(angle):
+        return _searched_at(criterion, history, material, angle, theta)
+
+    for index in ranked.T:
+        for low, high in ((phis[index] - step, phis[index]), (phis[index], phis[index] + step)):
+            angle, value = _golden_section(function, low, high)
+            better = value > found
+            best, found = np.where(better, angle, best), np.where(better, value, found)
+    best = (best + np.pi / 2) % np.pi - np.pi / 2
+    if not criterion.plane_by_shear:
+        return best
+    other = (best + np.pi) % np.pi - np.pi / 2
+    normal = [_terms_at(history, material, angle, theta, strain=False).sigma_n_max for angle in (best, other)]
+    return np.where(normal[1] > normal[0], other, best)
+
+
+def _golden_section(function, low, high):
+    """A local maximum of `function` (vectorised) in each bracket ``[low, high]``, to `XTOL`, and its value."""
+    ratio = (math.sqrt(5) - 1) / 2
+    inner, outer = high - ratio * (high - low), low + ratio * (high - low)
+    f_inner, f_outer = function(inner), function(outer)
+    for _ in range(math.ceil(math.log(XTOL / np.max(high - low)) / math.log(ratio))):
+        right = f_outer > f_inner
+        low, high = np.where(right, inner, low), np.where(right, high, outer)
+        trial = np.where(right, low + ratio * (high - low), high - ratio * (high - low))
+        f_trial = function(trial)
+        inner, outer, f_inner, f_outer = (
+            np.where(right, outer, trial),
+            np.where(right, trial, inner),
+            np.where(right, f_outer, f_trial),
+            np.where(right, f_trial, f_inner),
+        )
+    right = f_outer > f_inner
+    return np.where(right, outer, inner), np.where(right, f_outer, f_inner)
+
+
+def _swt(terms, material):
+    return terms.sigma_n_max * terms.eps_a
+
+
+def _findley(terms, material):
+    return terms.tau_a + material.findley_constant() * terms.sigma_n_max
+
+
+def _fatemi_socie(terms, material):
+    k, sigma_y = material._required("fatemi_socie", "fs_k", "sigma_y")
+    return terms.tau_a / material.G / 2 * (1 + k * terms.sigma_n_max / sigma_y)
+
+
+def _mwcm(terms, material):
+    kappa, _ = material.mwcm_constants()
+    sheared = terms.tau_a > 0
+    rho = np.divide(terms.sigma_n_max, terms.tau_a, out=np.zeros_like(terms.tau_a), where=sheared)
+    return np.where(sheared, terms.tau_a + kappa * rho, 0.0)
+
+
+_SWT = _Criterion(_swt, lambda terms, material: terms.eps_a, strain=True)
+_FINDLEY = _Criterion(_findley, lambda terms, material: terms.tau_a)
+_FATEMI_SOCIE = _Criterion(_fatemi_socie, lambda terms, material: terms.tau_a / material.G)
+_MWCM = _Criterion(_mwcm, lambda terms, material: terms.tau_a, plane_by_shear=True)
+
+
+def swt(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
+    """Smith-Watson-Topper parameter ``sigma_n,max eps_a`` [Pa] on its critical plane [1].
+
+    ``eps_a`` is half the range of the elastic normal strain on the plane; the critical plane is the one of
+    largest parameter. Negative where no plane sees tension.
+
+    Parameters
+    ----------
+    sigma_xx, sigma_zz, tau_xz : array_like
+        Stress history [Pa], time axis first, then any shape of points.
+    material : Material
+        `E`, `nu`.
+    sigma_yy : array_like, optional
+        Out-of-plane stress [Pa]; plane strain ``nu (sigma_xx + sigma_zz)`` by default.
+    planes : {"in-plane", "all"}
+        The planes that contain ``y`` (exact search), or all planes (module docstring).
+
+    Returns
+    -------
+    Plane
+    """
+    return _critical_plane(_SWT, _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
+
+
+def findley(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
+    """Findley's parameter ``tau_a + k sigma_n,max`` [Pa] on its critical plane, the one of largest parameter [2].
+
+    ``k`` is `Material.findley_constant`; the fatigue limit is ``t_-1 sqrt(1 + k^2)``. Arguments as `swt`.
+    """
+    return _critical_plane(_FINDLEY, _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
+
+
+def fatemi_socie(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
+    """Fatemi-Socie parameter ``gamma_a / 2 (1 + k sigma_n,max / sigma_y)`` [1] on its critical plane [3].
+
+    ``gamma_a`` is the elastic engineering shear strain amplitude ``tau_a / G``; the critical plane is the one
+    of largest parameter. Needs `Material.fs_k` and `Material.sigma_y`. Arguments as `swt`.
+    """
+    return _critical_plane(_FATEMI_SOCIE, _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
+
+
+def mwcm(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
+    """Modified Woehler curve method: the equivalent shear ``tau_a + kappa rho`` [Pa], ``rho = sigma_n,max / tau_a``.
+
+    The critical plane is the one of largest shear stress amplitude ``tau_a``, of largest ``sigma_n,max``
+    among ties [4, 5]. The fatigue limit is reached where ``tau_a`` reaches the threshold
+    ``lambda - kappa rho``, i.e. the parameter reaches ``lambda`` (`Material.mwcm_constants`). Where no plane
+    is sheared (``tau_a = 0``) the parameter is 0: the method ties damage to cyclic shear. `Plane.amplitude`
+    is ``tau_a``, so ``rho = sigma_n_max / amplitude``. Arguments as `swt`.
+    """
+    return _critical_plane(_MWCM, _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
+
+
+def crossland(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None) -> Invariant:
+    """Crossland's parameter ``sqrt(J2)_a + alpha sigma_h,max`` [Pa], ``alpha`` of `Material.crossland_constants` [6].
+
+    ``sqrt(J2)_a`` is half the longest chord of the deviatoric stress path in the norm ``sqrt(J2)``, which
+    equals the radius of its smallest enclosing hypersphere for proportional and elliptical paths (such as
+    90-degree out-of-phase tension-torsion); ``sigma_h`` is the mean stress ``(sigma_xx + sigma_yy +
+    sigma_zz) / 3``. The fatigue limit is reached where the parameter reaches ``beta``. Arguments as `swt`
+    (no planes).
+    """
+    history = _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu)
+    alpha, _ = material.crossland_constants()
+    sigma_h = (2 * history.mean + history.sigma_yy) / 3
+    xx, zz = history.mean + history.half, history.mean - history.half
+    deviator = [(part - sigma_h) / math.sqrt(2) for part in (xx, zz, history.sigma_yy)] + [history.tau_xz]
+    amplitude = _half_longest_chord(deviator)
+    sigma_h_max = sigma_h.max(axis=0)
+    return Invariant(*(v.reshape(history.shape) for v in (amplitude + alpha * sigma_h_max, amplitude, sigma_h_max)))
+
+
+def swt_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Smith-Watson-Topper parameter [Pa], by the strain-life curve [1, 7].
+
+    Solves ``sigma_f'^2 / E (2 N_f)^(2 b) + sigma_f' eps_f' (2 N_f)^(b + c) = parameter`` for ``log(2 N_f)``
+    (brentq, to rounding); the left side falls from ``2 N_f = 1`` on. Returns ``inf`` where the parameter is
+    <= 0, an array of the parameter's shape (a float for a number).
+
+    Raises
+    ------
+    ValueError
+        When the material lacks the strain-life constants, or a parameter exceeds the curve at
+        ``2 N_f = 1``.
+    """
+    sigma_f, b, eps_f, c = material._required("swt_life", "sigma_f", "b", "eps_f", "c")
+
+    def excess(log_reversals, target):
+        reversals = math.exp(log_reversals)
+        return sigma_f**2 / material.E * reversals ** (2 * b) + sigma_f * eps_f * reversals ** (b + c) - target
+
+    def life(target):
+        if target <= 0:
+            return math.inf
+        if excess(0.0, target) < 0:
+            raise ValueError(f"parameter: found {target:.6g} Pa, expected at most {excess(0.0, 0):.6g} (2 N_f = 1)")
+        high = 1.0
+        while excess(high, target) > 0:
+            high *= 2
+        return math.exp(brentq(excess, 0.0, high, args=(target,), xtol=1e-14, rtol=4 * np.finfo(float).eps)) / 2
+
+    values = np.asarray(parameter, dtype=float)
+    lives = np.array([life(float(value)) for value in values.ravel()]).reshape(values.shape)
+    return float(lives) if lives.ndim == 0 else lives
+
+
+class CriticalDistance(NamedTuple):
+    """A parameter read at a critical distance.
+
+    Attributes
+    ----------
+    value : float
+        The parameter at ``L/2`` (point method) or its mean over ``2 L`` (line method).
+    x_hot : float
+        The surface point the distance starts from [m].
+    angle : float
+        The direction [rad] from the depth axis ``+z`` toward ``+x``.
+    """
+
+    value: float
+    x_hot: float
+    angle: float
+
+
+def point_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance:
+    """The point method of the theory of critical distances: the parameter at ``L/2`` from the hot spot [8, 9].
+
+    Parameters
+    ----------
+    parameter : xarray.DataArray
+        A map on dims ``z`` (depth [m], ascending from 0) and ``x`` [m] (ascending), e.g.
+        ``apply(...).parameter``; read between grid points by linear interpolation.
+    L : float
+        The critical distance [m] (`Material.critical_distance`).
+    direction : {"down", "max"} or float
+        Straight down into the body (``+z``); the direction that maximises the value, sampled on
+        `DIRECTIONS` angles over ``[-pi/2, pi/2]`` (1 degree apart; those that leave the grid are
+        skipped); or an angle [rad] from ``+z`` toward ``+x``.
+    x_hot : float, optional
+        The surface point to start from [m]; by default the largest surface value (``z = 0``).
+
+    Raises
+    ------
+    ValueError
+        When the grid does not reach ``L/2`` along the direction (or along any, for "max").
+    """
+    return _critical_distance(parameter, L, direction, x_hot, np.array([0.5]))
+
+
+def line_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance:
+    """The line method: the mean of the parameter over ``2 L`` from the hot spot [8, 9].
+
+    The trapezoid rule on `LINE_POINTS_PER_CELL` points per grid cell crossed (at least 64) integrates the
+    linear interpolant. Arguments and errors as `point_method`, with ``2 L`` for ``L/2``.
+    """
+    x, z, _ = _grid(parameter)
+    cells = 2 * positive("L", L) / min(np.diff(x).min(initial=np.inf), np.diff(z).min(initial=np.inf))
+    count = max(64, math.ceil(LINE_POINTS_PER_CELL * cells) + 1)
+    return _critical_distance(parameter, L, direction, x_hot, np.linspace(0.0, 2.0, count))
+
+
+def _grid(parameter):
+    if not isinstance(parameter, xr.DataArray) or set(parameter.dims) != {"z", "x"}:
+        raise ValueError(f"parameter: expected a DataArray on dims (z, x), found {type(parameter).__name__}")
+    values = parameter.transpose("z", "x")
+    x, z = values.x.values.astype(float), values.z.values.astype(float)
+    if z.size < 2 or x.size < 2 or np.any(np.diff(z) <= 0) or np.any(np.diff(x) <= 0) or z[0] != 0:
+        raise ValueError("parameter: expected coordinates z and x ascending, 2 or more each, z from 0 (the surface)")
+    return x, z, values.values
+
+
+def _critical_distance(parameter, L, direction, x_hot, fractions):
+    """`CriticalDistance` of the mean over ``r = fractions L`` (one point: that point; else the trapezoid rule)."""
+    x, z, values = _grid(parameter)
+    L = positive("L", L)
+    if x_hot is None:
+        x_hot = x[np.nanargmax(values[0])]
+    x_hot = finite("x_hot", x_hot)
+    if direction == "down":
+        angles = np.array([0.0])
+    elif direction == "max":
+        angles = np.linspace(-np.pi / 2, np.pi / 2, DIRECTIONS)
+    elif isinstance(direction, str):
+        raise ValueError(f"direction: found {direction!r}, expected 'down', 'max' or an angle [rad]")
+    else:
+        angles = np.array([finite("direction", direction)])
+    r = fractions * L
+    px, pz = x_hot + r[None, :] * np.sin(angles)[:, None], r[None, :] * np.cos(angles)[:, None]
+    inside = np.all((px >= x[0]) & (px <= x[-1]) & (pz <= z[-1]), axis=1)
+    if not inside.any():
+        along = "along any direction" if angles.size > 1 else f"at {np.degrees(angles[0]):.6g} deg from +z"
+        raise ValueError(
+            f"parameter: the grid spans x in [{x[0]:.6g}, {x[-1]:.6g}] m and z up to {z[-1]:.6g} m, expected it "
+            f"to reach {r[-1]:.6g} m from x = {x_hot:.6g} m {along}"
+        )
+    interpolate = RegularGridInterpolator((z, x), values)
+    read = interpolate(np.stack([pz[inside], px[inside]], axis=-1))
+    means = read[:, 0] if r.size == 1 else np.trapezoid(read, r, axis=1) / r[-1]
+    best = np.argmax(means)
+    return CriticalDistance(float(means[best]), float(x_hot), float(angles[inside][best]))
+
+
+#: criterion name -> (function, units of its parameter, its long name, units of its amplitude, its long name).
+CRITERIA = {
+    "swt": (swt, "Pa", "Smith-Watson-Topper parameter sigma_n,max eps_a", "1", "normal strain amplitude eps_a"),
+    "findley": (findley, "Pa", "Findley parameter tau_a + k sigma_n,max", "Pa", "shear stress amplitude tau_a"),
+    "fatemi_socie": (
+        fatemi_socie,
+        "1",
+        "Fatemi-Socie parameter gamma_a/2 (1 + k sigma_n,max/sigma_y)",
+        "1",
+        "engineering shear strain amplitude gamma_a",
+    ),
+    "mwcm": (mwcm, "Pa", "MWCM equivalent shear tau_a + kappa rho", "Pa", "shear stress amplitude tau_a"),
+    "crossland": (crossland, "Pa", "Crossland parameter sqrt(J2)_a + alpha sigma_h,max", "Pa", "sqrt(J2) amplitude"),
+}
+
+_COMMON = {
+    "phi": ("rad", "critical plane normal, from +x toward +z"),
+    "theta": ("rad", "critical plane normal, from +y (pi/2: the plane contains y)"),
+    "sigma_n_max": ("Pa", "largest normal stress on the critical plane"),
+    "sigma_h_max": ("Pa", "largest mean stress (sigma_xx + sigma_yy + sigma_zz) / 3"),
+}
+
+
+def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
+    """A criterion at every point of a stress field over its steps, taken as one cycle.
+
+    Parameters
+    ----------
+    field : xarray.Dataset
+        ``sigma_xx``, ``sigma_zz``, ``tau_xz`` [Pa] (and ``sigma_yy``; plane strain when absent) on dims
+        ``step`` and the points' dims, e.g. ``(step, z, x)`` as `fretting.stress.field` returns.
+    criterion : str
+        A key of `CRITERIA`: ``swt``, ``findley``, ``fatemi_socie``, ``mwcm``, ``crossland``.
+    material : Material
+    planes : {"in-plane", "all"}
+        As `swt` (ignored by ``crossland``).
+
+    Returns
+    -------
+    xarray.Dataset
+        On the points' dims and coordinates: ``parameter``, ``amplitude``, and ``phi``, ``theta``,
+        ``sigma_n_max`` (critical-plane criteria) or ``sigma_h_max`` (Crossland), with ``units`` and
+        ``long_name``; attribute ``criterion``.
+    """
+    if criterion not in CRITERIA:
+        raise ValueError(f"criterion: found {criterion!r}, expected one of: {', '.join(CRITERIA)}")
+    function, units, long_name, amplitude_units, amplitude_name = CRITERIA[criterion]
+    names = ["sigma_xx", "sigma_zz", "tau_xz"] + (["sigma_yy"] if "sigma_yy" in field else [])
+    for name in names[:3]:
+        if name not in field or "step" not in field[name].dims:
+            raise ValueError(f"field: expected a variable {name} on dims including 'step', found {list(field)}")
+    dims = ["step"] + [dim for dim in field["sigma_xx"].dims if dim != "step"]
+    stresses = {name: field[name].transpose(*dims).values for name in names}
+    options = {} if criterion == "crossland" else {"planes": planes}
+    result = function(
+        stresses["sigma_xx"], stresses["sigma_zz"], stresses["tau_xz"], material, stresses.get("sigma_yy"), **options
+    )
+    attributes = {"parameter": (units, long_name), "amplitude": (amplitude_units, amplitude_name), **_COMMON}
+    coords = {dim: field[dim] for dim in dims[1:] if dim in field.coords}
+    variables = {
+        name: xr.Variable(dims[1:], value, {"units": attributes[name][0], "long_name": attributes[name][1]})
+        for name, value in result._asdict().items()
+    }
+    return xr.Dataset(variables, coords=coords, attrs={"criterion": criterion})

@@ -1,0 +1,497 @@
+"""Multiaxial fatigue criteria, strain-life and critical distances against references derived by hand.
+
+Notation: a history sampled at ``T`` evenly spaced instants of one period, ``t_j = 2 pi j / T``.
+Where the maximum over time of a sinusoid ``R cos(t - t0)`` falls between samples, the sampled maximum
+is at least ``R cos(pi / T)``: the tolerance `SAMPLED` below.
+"""
+
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from fretting.fatigue import (
+    Material,
+    MaterialFileError,
+    apply,
+    crossland,
+    fatemi_socie,
+    findley,
+    line_method,
+    mwcm,
+    point_method,
+    swt,
+    swt_life,
+)
+from fretting.loading.examples import EXAMPLES
+
+T = 400
+t = 2 * np.pi * np.arange(T) / T
+ZERO = np.zeros(T)
+#: 16 instants: enough where the extremes fall on multiples of pi/2, for the costlier search over all planes.
+COARSE = 2 * np.pi * np.arange(16) / 16
+#: Relative shortfall of the sampled maximum of a sinusoid (module docstring).
+SAMPLED = 1 - math.cos(math.pi / T)
+#: Relative error of a quantity read on a plane located to about 1e-8 rad (`fretting.fatigue.XTOL`) that is
+#: not stationary there (MWCM's sigma_n,max on the plane of largest tau_a): first order, 10 times 1e-8.
+PLANE_FIRST_ORDER = 1e-7
+
+STEEL = Material(
+    E=200e9,
+    nu=0.3,
+    sigma_f=900e6,
+    b=-0.09,
+    eps_f=0.6,
+    c=-0.6,
+    sigma_limit=300e6,
+    tau_limit=200e6,
+    fs_k=0.6,
+    sigma_y=600e6,
+    critical_distance=1e-4,
+)
+CRITICAL_PLANE = (swt, findley, fatemi_socie, mwcm)
+
+
+def uniaxial(sigma_a):
+    """``sigma_xx = sigma_a sin t`` and nothing else (``sigma_yy = 0`` given: not plane strain)."""
+    return sigma_a * np.sin(t), ZERO, ZERO, ZERO
+
+
+def test_swt_uniaxial_is_sigma_a_squared_over_E_on_the_normal_plane():
+    """Uniaxial: ``sigma_n = sigma cos^2 phi``, ``eps_n = sigma (cos^2 phi - nu sin^2 phi) / E``.
+
+    Their product's maximum is at ``phi = 0``: ``sigma_a * sigma_a / E``.
+    """
+    sigma_xx, sigma_zz, tau_xz, sigma_yy = uniaxial(150e6)
+    result = swt(sigma_xx, sigma_zz, tau_xz, STEEL, sigma_yy=sigma_yy)
+    assert result.parameter == pytest.approx(150e6**2 / STEEL.E, rel=1e-13)
+    assert result.phi == pytest.approx(0.0, abs=1e-7)
+    assert result.sigma_n_max == pytest.approx(150e6, rel=1e-13)
+
+
+def test_swt_in_plane_strain_uses_the_constrained_strain():
+    """Plane strain adds ``sigma_yy = nu sigma``: ``eps_n = (1 + nu) sigma (cos^2 phi - nu) / E``.
+
+    With ``|cos^2 phi - nu| <= 1 - nu`` the maximum is at ``phi = 0``: ``(1 - nu^2) sigma_a^2 / E``.
+    """
+    sigma_xx, sigma_zz, tau_xz, _ = uniaxial(150e6)
+    result = swt(sigma_xx, sigma_zz, tau_xz, STEEL)
+    assert result.parameter == pytest.approx((1 - STEEL.nu**2) * 150e6**2 / STEEL.E, rel=1e-13)
+    assert result.amplitude == pytest.approx((1 - STEEL.nu**2) * 150e6 / STEEL.E, rel=1e-13)
+
+
+def test_findley_uniaxial():
+    """Uniaxial: ``tau_a = (sigma_a / 2) |sin 2 phi|``, ``sigma_n,max = (sigma_a / 2) (1 + cos 2 phi)``.
+
+    ``F = (sigma_a / 2) (|sin 2 phi| + k + k cos 2 phi)``; ``sin u + k cos u`` peaks at ``sqrt(1 + k^2)``
+    where ``tan u = 1 / k``: ``F = (sigma_a / 2) (sqrt(1 + k^2) + k)`` at ``|phi| = atan(1 / k) / 2``.
+    """
+    k = STEEL.findley_constant()
+    result = findley(*uniaxial(150e6)[:3], STEEL, sigma_yy=ZERO)
+    assert result.parameter == pytest.approx(150e6 / 2 * (math.sqrt(1 + k * k) + k), rel=1e-13)
+    assert abs(result.phi) == pytest.approx(math.atan(1 / k) / 2, abs=1e-7)
+
+
+def test_findley_k_from_the_fatigue_limits_makes_both_limits_critical():
+    """At the push-pull limit ``f`` and at the torsion limit ``t`` Findley's parameter is the same.
+
+    Torsion ``tau_xz = t sin t``: ``tau_a = t |cos 2 phi|``, ``sigma_n,max = t |sin 2 phi|``, so
+    ``F = t sqrt(1 + k^2)``.
+    """
+    k = STEEL.findley_constant()
+    push_pull = findley(*uniaxial(STEEL.sigma_limit)[:3], STEEL, sigma_yy=ZERO).parameter
+    torsion = findley(ZERO, ZERO, STEEL.tau_limit * np.sin(t), STEEL).parameter
+    assert torsion == pytest.approx(STEEL.tau_limit * math.sqrt(1 + k * k), rel=1e-13)
+    assert push_pull == pytest.approx(torsion, rel=1e-13)
+
+
+def test_pure_shear():
+    """``tau_xz = tau_a sin t`` (``sigma_yy = 0``): on ``phi``, ``sigma_n = tau sin 2 phi``, ``tau cos 2 phi``.
+
+    SWT: ``eps_n = (1 + nu) sigma_n / E`` (zero trace), so ``(1 + nu) tau_a^2 / E`` at ``|phi| = pi/4``.
+    MWCM: largest ``tau_a`` on ``phi = 0``, where ``sigma_n = 0``: ``rho = 0``, parameter ``tau_a``.
+    Fatemi-Socie: ``(tau_a / 2 G) cos u (1 + m sin u)``, ``u = 2 phi``, ``m = k tau_a / sigma_y``; its
+    derivative vanishes where ``2 m sin^2 u + sin u - m = 0``.
+    Crossland: ``sqrt(J2) = |tau|``, ``sigma_h = 0``: ``tau_a``.
+    """
+    tau_a = 120e6
+    stress = (ZERO, ZERO, tau_a * np.sin(t), ZERO)
+    kwargs = {"sigma_yy": stress[3]}
+    result = swt(*stress[:3], STEEL, **kwargs)
+    assert result.parameter == pytest.approx((1 + STEEL.nu) * tau_a**2 / STEEL.E, rel=1e-13)
+    assert abs(result.phi) == pytest.approx(math.pi / 4, abs=1e-7)
+    result = mwcm(*stress[:3], STEEL, **kwargs)
+    assert result.amplitude == pytest.approx(tau_a, rel=1e-13)
+    assert result.parameter == pytest.approx(tau_a, rel=PLANE_FIRST_ORDER)
+    assert min(abs(result.phi), abs(abs(result.phi) - math.pi / 2)) == pytest.approx(0, abs=1e-7)
+    m = STEEL.fs_k * tau_a / STEEL.sigma_y
+    sin_u = (math.sqrt(1 + 8 * m * m) - 1) / (4 * m)
+    expected = tau_a / (2 * STEEL.G) * math.sqrt(1 - sin_u**2) * (1 + m * sin_u)
+    assert fatemi_socie(*stress[:3], STEEL, **kwargs).parameter == pytest.approx(expected, rel=1e-13)
+    assert crossland(*stress[:3], STEEL, **kwargs).parameter == pytest.approx(tau_a, rel=1e-13)
+
+
+def test_mwcm_and_crossland_reach_their_thresholds_at_both_fatigue_limits():
+    """Push-pull at ``f``: MWCM ``tau_a = f/2``, ``rho = 1``, parameter ``f/2 + kappa = lambda``; Crossland
+    ``f/sqrt(3) + alpha f/3 = beta``. Torsion at ``t``: MWCM ``t = lambda``; Crossland ``t = beta``."""
+    f, tau = STEEL.sigma_limit, STEEL.tau_limit
+    _, lam = STEEL.mwcm_constants()
+    _, beta = STEEL.crossland_constants()
+    push_pull, torsion = uniaxial(f), (ZERO, ZERO, tau * np.sin(t), ZERO)
+    assert mwcm(*push_pull[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(lam, rel=PLANE_FIRST_ORDER)
+    assert mwcm(*torsion[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(lam, rel=PLANE_FIRST_ORDER)
+    assert crossland(*push_pull[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(beta, rel=1e-13)
+    assert crossland(*torsion[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(beta, rel=1e-13)
+
+
+def tension_torsion(sigma_a, tau_a, delay):
+    """``sigma_xx = sigma_a sin t``, ``tau_xz = tau_a sin(t - delay)``, ``sigma_yy = 0``."""
+    return sigma_a * np.sin(t), ZERO, tau_a * np.sin(t - delay), ZERO
+
+
+def plane_amplitudes(sigma_a, tau_a, delay, phi):
+    """Amplitudes of ``sigma_n`` and ``tau`` on ``phi`` under `tension_torsion`, as phasors.
+
+    ``sigma_n = sigma_a cos^2(phi) sin t + tau_a sin(2 phi) sin(t - delay)`` and
+    ``tau = tau_a cos(2 phi) sin(t - delay) - (sigma_a / 2) sin(2 phi) sin t``: a sum
+    ``A sin t + B sin(t - d)`` has amplitude ``|A + B exp(-i d)|``; both are fully reversed.
+    """
+    turn = np.exp(-1j * delay)
+    sigma_n = np.abs(sigma_a * np.cos(phi) ** 2 + tau_a * np.sin(2 * phi) * turn)
+    tau = np.abs(tau_a * np.cos(2 * phi) * turn - sigma_a / 2 * np.sin(2 * phi))
+    return sigma_n, tau
+
+
+@pytest.mark.parametrize("delay", [0.0, math.pi / 2], ids=["proportional", "out-of-phase"])
+def test_findley_and_mwcm_under_tension_torsion(delay):
+    """Reference: the phasor amplitudes of `plane_amplitudes` over 2,000,001 planes (1.6e-6 rad apart)."""
+    sigma_a, tau_a = 200e6, 70e6
+    phi = np.linspace(-math.pi / 2, math.pi / 2, 2_000_001)
+    sigma_n, tau = plane_amplitudes(sigma_a, tau_a, delay, phi)
+    k = STEEL.findley_constant()
+    reference = np.max(tau + k * sigma_n)
+    result = findley(*tension_torsion(sigma_a, tau_a, delay)[:3], STEEL, sigma_yy=ZERO)
+    assert result.parameter == pytest.approx(reference, rel=SAMPLED + 1e-11)
+    assert result.parameter <= reference * (1 + 1e-11)
+    kappa, _ = STEEL.mwcm_constants()
+    plane = np.argmax(tau)
+    expected = tau[plane] + kappa * sigma_n[plane] / tau[plane]
+    assert mwcm(*tension_torsion(sigma_a, tau_a, delay)[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(
+        expected, rel=SAMPLED + PLANE_FIRST_ORDER
+    )
+
+
+@pytest.mark.parametrize(
+    ("delay", "sqrt_j2_a"),
+    [(0.0, math.sqrt(200e6**2 / 3 + 70e6**2)), (math.pi / 2, max(200e6 / math.sqrt(3), 70e6))],
+    ids=["proportional", "out-of-phase"],
+)
+def test_crossland_under_tension_torsion(delay, sqrt_j2_a):
+    """``J2 = sigma^2 / 3 + tau^2`` (deviator ``(2, -1, -1) sigma / 3`` plus the shear).
+
+    In phase: ``sqrt(J2) = sqrt(sigma_a^2 / 3 + tau_a^2) |sin t|``. Out of phase the deviatoric path is an
+    ellipse of semi-axes ``sigma_a / sqrt(3)`` and ``tau_a``, whose longest chord is its major axis. Both
+    have ``sigma_h,max = sigma_a / 3``; the instants of the extremes (multiples of pi/2) are sampled.
+    """
+    alpha, _ = STEEL.crossland_constants()
+    result = crossland(*tension_torsion(200e6, 70e6, delay)[:3], STEEL, sigma_yy=ZERO)
+    assert result.amplitude == pytest.approx(sqrt_j2_a, rel=1e-13)
+    assert result.parameter == pytest.approx(sqrt_j2_a + alpha * 200e6 / 3, rel=1e-13)
+
+
+def random_history(seed, points=(), steps=T):
+    """A non-proportional plane-strain history: three harmonics with random amplitudes, phases, means."""
+    rng = np.random.default_rng(seed)
+    components = []
+    for _ in range(3):
+        time = 2 * np.pi * np.arange(steps).reshape(steps, *(1 for _ in points)) / steps
+        terms = [rng.normal(0, 100e6, points) * np.sin(n * time + rng.uniform(0, 7)) for n in (1, 2, 3)]
+        components.append(rng.normal(0, 50e6, points) + sum(terms))
+    return components
+
+
+def rotate(sigma_xx, sigma_zz, tau_xz, beta):
+    """The stress components on axes turned by ``beta`` about ``y`` (``R sigma R^T``, ``R`` a rotation by beta)."""
+    c, s = math.cos(beta), math.sin(beta)
+    return (
+        c * c * sigma_xx + s * s * sigma_zz - 2 * s * c * tau_xz,
+        s * s * sigma_xx + c * c * sigma_zz + 2 * s * c * tau_xz,
+        s * c * (sigma_xx - sigma_zz) + (c * c - s * s) * tau_xz,
+    )
+
+
+@pytest.mark.parametrize("criterion", CRITICAL_PLANE)
+def test_rotation_of_axes_shifts_the_plane_and_keeps_the_parameter(criterion):
+    """Turning the stress by ``beta`` turns the critical plane by ``beta`` (mod pi); the parameter stays."""
+    stress = [component[:, 0] for component in random_history(7, (1,))]
+    beta = 0.7
+    before = criterion(*stress, STEEL)
+    after = criterion(*rotate(*stress, beta), STEEL, sigma_yy=STEEL.nu * (stress[0] + stress[1]))
+    assert after.parameter == pytest.approx(before.parameter, rel=1e-7)
+    shift = (after.phi - before.phi - beta + math.pi / 2) % math.pi - math.pi / 2
+    assert shift == pytest.approx(0, abs=1e-6)
+
+
+def test_crossland_is_invariant_under_a_rotation_of_axes():
+    stress = random_history(8, (1,))
+    before = crossland(*stress, STEEL)
+    after = crossland(*rotate(*stress, 1.1), STEEL, sigma_yy=STEEL.nu * (stress[0] + stress[1]))
+    assert after.parameter == pytest.approx(before.parameter, rel=1e-12)
+
+
+def test_planes_out_of_the_x_z_family_govern_under_equibiaxial_stress():
+    """``sigma_xx = sigma_zz = s sin t``, plane strain ``sigma_yy = 2 nu s sin t``: no x-z plane is sheared.
+
+    A plane tilted ``theta`` from ``y``: ``sigma_n = s (sin^2 theta + 2 nu cos^2 theta) sin t`` and shear
+    ``(1 - 2 nu) s sin theta cos theta sin t``, so Findley's parameter is
+    ``s (k (1 + 2 nu) / 2 + ((1 - 2 nu) / 2) (sin 2 theta - k cos 2 theta))``, largest
+    ``s (k (1 + 2 nu) + (1 - 2 nu) sqrt(1 + k^2)) / 2``. The tilted planes are sampled 1 degree apart:
+    ``2 theta`` within 1 degree of the optimum costs at most a fraction ``1 - cos(1 deg)`` of that term.
+    """
+    s, nu, k = 100e6, STEEL.nu, STEEL.findley_constant()
+    stress = (s * np.sin(COARSE), s * np.sin(COARSE), 0 * COARSE)
+    in_plane = findley(*stress, STEEL)
+    assert in_plane.parameter == pytest.approx(k * s, rel=1e-13)
+    every = findley(*stress, STEEL, planes="all")
+    best = s * (k * (1 + 2 * nu) + (1 - 2 * nu) * math.sqrt(1 + k * k)) / 2
+    assert every.parameter <= best * (1 + 1e-13)
+    assert every.parameter >= best - s * (1 - 2 * nu) / 2 * math.sqrt(1 + k * k) * (1 - math.cos(math.radians(1)))
+    assert every.parameter > in_plane.parameter
+    assert math.degrees(every.theta) == pytest.approx(45 + math.degrees(math.atan(k)) / 2, abs=0.5)
+
+
+@pytest.mark.parametrize("criterion", CRITICAL_PLANE)
+def test_the_x_z_planes_govern_a_plane_strain_surface_in_tension(criterion):
+    """The free surface beside a contact: ``sigma_xx`` alone in the x-z plane, ``sigma_yy = nu sigma_xx``.
+
+    Out of the family the shear between ``x`` and ``y`` is ``(1 - nu)`` times that between ``x`` and ``z``
+    and the normal stresses no larger, so the search over all planes finds the in-plane result.
+    """
+    stress = (80e6 + 150e6 * np.sin(COARSE), 0 * COARSE, 0 * COARSE)
+    in_plane, every = criterion(*stress, STEEL), criterion(*stress, STEEL, planes="all")
+    assert every.theta == math.pi / 2
+    assert every.parameter == in_plane.parameter
+
+
+def test_points_are_independent_and_keep_their_shape():
+    stress = random_history(3, (2, 3))
+    whole = findley(*stress, STEEL)
+    assert whole.parameter.shape == whole.phi.shape == (2, 3)
+    alone = findley(*(component[:, 1, 2] for component in stress), STEEL)
+    assert whole.parameter[1, 2] == pytest.approx(alone.parameter, rel=1e-12)
+
+
+def test_swt_life_round_trip():
+    """``SWT(N) = sigma_f'^2 / E (2N)^(2b) + sigma_f' eps_f' (2N)^(b + c)`` written out here, then inverted."""
+    lives = np.array([1e1, 3e3, 1e5, 2e7, 1e10])
+    m = STEEL
+    reversals = 2 * lives
+    parameter = m.sigma_f**2 / m.E * reversals ** (2 * m.b) + m.sigma_f * m.eps_f * reversals ** (m.b + m.c)
+    assert swt_life(parameter, m) == pytest.approx(lives, rel=1e-10)
+    assert swt_life(parameter[2], m) == pytest.approx(lives[2], rel=1e-10)
+    assert swt_life(0.0, m) == math.inf
+    with pytest.raises(ValueError, match="parameter: found .* expected at most"):
+        swt_life(2 * (m.sigma_f**2 / m.E + m.sigma_f * m.eps_f), m)
+
+
+def linear_map(psi0, z_max=1e-3):
+    """``1 + (x - 2e-4) sin psi0 + z cos psi0``, exact under linear interpolation: along the direction
+    ``psi`` from ``x = 2e-4`` it is ``1 + r cos(psi - psi0)``."""
+    x, z = np.linspace(-1e-3, 1e-3, 81), np.linspace(0, z_max, 41)
+    values = 1 + (x[None, :] - 2e-4) * math.sin(psi0) + z[:, None] * math.cos(psi0)
+    return xr.DataArray(values, coords={"z": z, "x": x}, dims=("z", "x"))
+
+
+def test_critical_distances_on_an_exponential_gradient():
+    """``A exp(-z / d) (1 - (x / w)^2)``: the hot spot is ``x = 0`` (a node); down from it the point method
+    gives ``A exp(-L / (2 d))``, the line method ``A (d / (2 L)) (1 - exp(-2 L / d))``. Linear interpolation
+    between nodes ``h`` apart errs by at most ``h^2 / 8`` times the second derivative, ``A / d^2``."""
+    A, d, L = 300e6, 2e-4, 1e-4
+    z, x = np.linspace(0, 1e-3, 2001), np.linspace(-1e-3, 1e-3, 201)
+    values = A * np.exp(-z[:, None] / d) * (1 - (x[None, :] / 2e-3) ** 2)
+    field = xr.DataArray(values, coords={"z": z, "x": x}, dims=("z", "x"))
+    bound = (z[1] - z[0]) ** 2 / 8 * A / d**2
+    point = point_method(field, L)
+    assert (point.x_hot, point.angle) == (0.0, 0.0)
+    assert point.value == pytest.approx(A * math.exp(-L / (2 * d)), abs=bound)
+    line = line_method(field, L)
+    assert line.value == pytest.approx(A * d / (2 * L) * (1 - math.exp(-2 * L / d)), abs=bound)
+    assert abs(line.value - A * math.exp(-L / (2 * d))) > 10 * bound
+
+
+def test_critical_distance_directions():
+    L = 4e-4
+    field = linear_map(math.radians(30))
+    assert point_method(field, L, x_hot=2e-4).value == pytest.approx(1 + L / 2 * math.cos(math.radians(30)))
+    best = point_method(field, L, direction="max", x_hot=2e-4)
+    assert (best.value, math.degrees(best.angle)) == pytest.approx((1 + L / 2, 30))
+    line = line_method(field, L, direction="max", x_hot=2e-4)
+    assert (line.value, math.degrees(line.angle)) == pytest.approx((1 + L, 30))
+    chosen = point_method(field, L, direction=math.radians(-20), x_hot=2e-4)
+    assert chosen.value == pytest.approx(1 + L / 2 * math.cos(math.radians(50)))
+
+
+def test_critical_distance_needs_a_grid_that_reaches_it():
+    field = linear_map(0.0, z_max=1e-4)
+    assert point_method(field, 2e-4).value == pytest.approx(1 + 1e-4)
+    with pytest.raises(ValueError, match="parameter: the grid spans .* expected it to reach 0.0004 m"):
+        line_method(field, 2e-4)
+    with pytest.raises(ValueError, match="expected it to reach 0.0004 m from x = 0 m along any direction"):
+        line_method(linear_map(0.0, z_max=1e-4).sel(x=slice(0, 1e-4)), 2e-4, direction="max", x_hot=0.0)
+    with pytest.raises(ValueError, match="direction: found 'up'"):
+        point_method(field, 2e-4, direction="up")
+    with pytest.raises(ValueError, match="L must be > 0"):
+        point_method(field, -1.0)
+    with pytest.raises(ValueError, match="parameter: expected coordinates"):
+        point_method(field.isel(z=slice(1, None)), 1e-5)
+
+
+def test_apply_maps_a_criterion_over_a_field():
+    """``sigma_xx = A(z, x) sin t`` with ``sigma_yy = 0``: the SWT map is ``A^2 / E``."""
+    z, x = np.linspace(0, 1e-3, 4), np.linspace(-1e-3, 1e-3, 5)
+    amplitude = 100e6 * np.exp(-z[:, None] / 5e-4) * (1 + x[None, :] / 2e-3)
+    nothing = ("step", "z", "x"), np.zeros((T, z.size, x.size))
+    dataset = xr.Dataset(
+        {
+            "sigma_xx": (("step", "z", "x"), amplitude * np.sin(t)[:, None, None]),
+            "sigma_zz": nothing,
+            "tau_xz": nothing,
+            "sigma_yy": nothing,
+        },
+        coords={"z": z, "x": x},
+    )
+    maps = apply(dataset, "swt", STEEL)
+    assert maps.parameter.dims == ("z", "x") and maps.parameter.attrs["units"] == "Pa"
+    np.testing.assert_allclose(maps.parameter.values, amplitude**2 / STEEL.E, rtol=1e-13)
+    np.testing.assert_allclose(maps.z, z)
+    invariant = apply(dataset, "crossland", STEEL)
+    assert set(invariant) == {"parameter", "amplitude", "sigma_h_max"}
+    alpha, _ = STEEL.crossland_constants()
+    np.testing.assert_allclose(invariant.parameter, amplitude / math.sqrt(3) + alpha * amplitude / 3, rtol=1e-13)
+    with pytest.raises(ValueError, match="criterion: found 'dang_van', expected one of: swt, findley"):
+        apply(dataset, "dang_van", STEEL)
+    with pytest.raises(ValueError, match="field: expected a variable tau_xz"):
+        apply(dataset.drop_vars("tau_xz"), "swt", STEEL)
+
+
+def test_material_checks_its_constants():
+    with pytest.raises(ValueError, match="E must be > 0"):
+        Material(E=-1.0, nu=0.3)
+    with pytest.raises(ValueError, match=r"nu must be in \(-1, 0.5\]"):
+        Material(E=1e9, nu=0.7)
+    with pytest.raises(ValueError, match="b must be < 0, found 0.1"):
+        Material(E=1e9, nu=0.3, b=0.1)
+    with pytest.raises(ValueError, match="material: findley needs sigma_limit, tau_limit, found None"):
+        findley(*uniaxial(1e6)[:3], Material(E=1e9, nu=0.3))
+    with pytest.raises(ValueError, match="findley needs 1 < sigma_limit / tau_limit < 2 for k, found 3"):
+        Material(E=1e9, nu=0.3, sigma_limit=3e8, tau_limit=1e8).findley_constant()
+    with pytest.raises(ValueError, match="material: fatemi_socie needs fs_k, sigma_y"):
+        fatemi_socie(*uniaxial(1e6)[:3], Material(E=1e9, nu=0.3))
+
+
+def test_bad_histories_are_refused():
+    with pytest.raises(ValueError, match=r"sigma_zz: found shape \(3,\), expected that of sigma_xx \(400,\)"):
+        swt(np.sin(t), np.zeros(3), ZERO, STEEL)
+    with pytest.raises(ValueError, match="tau_xz: expected finite stresses"):
+        swt(np.sin(t), ZERO, np.full(T, np.nan), STEEL)
+    with pytest.raises(ValueError, match="sigma_xx: found a number, expected an array with the time axis first"):
+        swt(1.0, 0.0, 0.0, STEEL)
+    with pytest.raises(ValueError, match="planes: found 'some', expected 'in-plane' or 'all'"):
+        swt(np.sin(t), ZERO, ZERO, STEEL, planes="some")
+
+
+def test_material_file(tmp_path):
+    shipped = Material.from_file(EXAMPLES / "materials" / "steel.toml")
+    assert shipped.E > 0 and shipped.critical_distance > 0
+    path = tmp_path / "material.toml"
+    for text, message in [
+        ("E = 2e11\nnu = 0.3\nsigma_u = 1e9\n", "material.toml: sigma_u: unknown key, expected one of: E, nu"),
+        ("E = 2e11\nnu = '0.3'\n", "material.toml: nu: found '0.3', expected a number"),
+        ("nu = 0.3\n", "material.toml: E: missing, expected a number"),
+        ("E = 2e11\nnu = 0.3\nb = 0.1\n", "material.toml: b: found 0.1, expected < 0"),
+        ("E = 2e11\nnu = 0.3\nb = \n", "material.toml: found invalid TOML"),
+    ]:
+        path.write_text(text)
+        with pytest.raises(MaterialFileError, match=message):
+            Material.from_file(path)
+
+
+def dense_search(stress, planes=9000):
+    """``sigma_n,max``, ``tau_a``, ``eps_a`` [Pa, Pa, 1] on ``planes`` in-plane normals, at one point."""
+    xx, zz, xz = stress
+    phi = np.pi * np.arange(planes)[:, None] / planes
+    c, s = np.cos(phi), np.sin(phi)
+    sigma_n = xx * c * c + zz * s * s + 2 * xz * s * c
+    tau = (zz - xx) * s * c + xz * (c * c - s * s)
+    eps_n = ((1 + STEEL.nu) * sigma_n - STEEL.nu * (1 + STEEL.nu) * (xx + zz)) / STEEL.E
+    return sigma_n.max(axis=1), np.ptp(tau, axis=1) / 2, np.ptp(eps_n, axis=1) / 2
+
+
+def test_the_search_finds_the_dense_maximum_of_non_proportional_histories():
+    """200 points of random three-harmonic histories (32 instants), whose parameters can have twin peaks: with
+    this seed, at some point the best sample lies next to the lower one (refining the best sampled peak
+    alone falls short by 1.4e-5 there). The dense search, 0.02 degrees apart, falls short of the maximum by
+    ``O(spacing^2)`` relative, about 1e-7 here: the search must never find less than it by more."""
+    stress = random_history(19, (200,), steps=32)
+    k, G = STEEL.findley_constant(), STEEL.G
+    formulas = {
+        swt: lambda n, tau_a, eps_a: n * eps_a,
+        findley: lambda n, tau_a, eps_a: tau_a + k * n,
+        fatemi_socie: lambda n, tau_a, eps_a: tau_a / G / 2 * (1 + STEEL.fs_k * n / STEEL.sigma_y),
+    }
+    dense = [dense_search([component[:, point] for component in stress]) for point in range(200)]
+    for criterion, formula in formulas.items():
+        reference = np.array([formula(*terms).max() for terms in dense])
+        found = criterion(*stress, STEEL).parameter
+        assert np.all(found >= reference * (1 - 1e-7)), criterion.__name__
+        assert np.all(found <= reference * (1 + 1e-6)), criterion.__name__
+
+
+def test_mwcm_keeps_the_conjugate_plane_of_larger_normal_stress():
+    """``sigma_xx = S + a sin t``, ``tau_xz = b sin t``, ``S < 0``: ``tau(phi)`` swings by
+    ``(a/2) sin 2 phi - b cos 2 phi``, largest ``tau_a = sqrt(a^2/4 + b^2)`` on ``2 phi = atan2(-a/2, b)``
+    and on its conjugate ``phi + pi/2``. Their ``sigma_n`` have the same amplitude (the two add up to
+    ``sigma_xx``) and means ``S cos^2 phi``, ``S sin^2 phi``: the compressive mean picks the plane of
+    smaller ``cos^2 phi``."""
+    S, a, b = -100e6, 200e6, 60e6
+    stress = (S + a * np.sin(t), ZERO, b * np.sin(t))
+    phi = math.atan2(-a / 2, b) / 2
+    phi = phi + math.pi / 2 if math.cos(phi) ** 2 > 0.5 else phi
+    amplitude = abs(a * math.cos(phi) ** 2 + b * math.sin(2 * phi))
+    tau_a, sigma_n_max = math.hypot(a / 2, b), S * math.cos(phi) ** 2 + amplitude
+    kappa, _ = STEEL.mwcm_constants()
+    result = mwcm(*stress, STEEL)
+    assert result.phi == pytest.approx(phi, abs=1e-7)
+    assert result.parameter == pytest.approx(tau_a + kappa * sigma_n_max / tau_a, rel=PLANE_FIRST_ORDER)
+
+
+def sphere_findley(xx, zz, xz):
+    """Findley's parameter by brute force over normals 2 degrees apart over the whole sphere, in 3-D:
+    traction ``s n``, ``sigma_n = n . s n``, shear vector ``s n - sigma_n n``, ``tau_a`` half the longest
+    chord of its path (plane strain ``sigma_yy``)."""
+    stress = np.zeros((xx.size, 3, 3))
+    stress[:, 0, 0], stress[:, 1, 1], stress[:, 2, 2] = xx, STEEL.nu * (xx + zz), zz
+    stress[:, 0, 2] = stress[:, 2, 0] = xz
+    phi, theta = np.meshgrid(np.radians(np.arange(0, 360, 2)), np.radians(np.arange(0, 181, 2)))
+    n = np.stack([np.sin(theta) * np.cos(phi), np.cos(theta), np.sin(theta) * np.sin(phi)], axis=-1).reshape(-1, 3)
+    traction = np.einsum("tij,pj->tpi", stress, n)
+    sigma_n = np.einsum("tpi,pi->tp", traction, n)
+    shear = traction - sigma_n[..., None] * n
+    chords = np.linalg.norm(shear[:, None] - shear[None, :], axis=-1)
+    return np.max(chords.max(axis=(0, 1)) / 2 + STEEL.findley_constant() * sigma_n.max(axis=0))
+
+
+@pytest.mark.parametrize("mirror", [1, -1], ids=["history", "mirrored x"])
+def test_the_search_over_all_planes_covers_the_whole_sphere(mirror):
+    """The normals of `sphere_findley`, folded by ``n ~ -n`` and ``y -> -y``, are among the samples of
+    ``planes="all"``, so it finds at least as much. The history is nearly equi-biaxial, so that tilted
+    planes govern (the x-z family alone finds less); mirrored (``x -> -x``), its best normal turns to
+    ``-phi``: a search missing either half of ``phi`` fails one of the two."""
+    biaxial = 150e6 * np.sin(2 * np.pi * np.arange(16) / 16)
+    xx, zz, xz = random_history(5, steps=16)
+    xx, zz, xz = biaxial + 0.05 * xx, biaxial + 0.05 * zz, 0.05 * mirror * xz
+    reference = sphere_findley(xx, zz, xz)
+    found = findley(xx, zz, xz, STEEL, planes="all").parameter
+    assert reference * (1 - 1e-12) <= found <= reference * (1 + 1e-3)
+    assert findley(xx, zz, xz, STEEL).parameter < reference * 0.9
