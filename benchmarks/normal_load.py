@@ -6,11 +6,12 @@ per segment) is run on 64 to 512 cells (the default) at the default ``load_part`
 default cells with coarser parts of the increments. For each the script prints the CPU
 time (best of `--repeats`), the total energy, its relative error and the largest error of the
 stick-zone ends at the vertices (in the half-width of each vertex's contact), both against a run
-on `--reference` cells with parts a quarter of the default's. Beside them, the same walk of Q and
+on `--reference` cells with parts a quarter of the default's; the row of half the reference's
+cells at its parts bounds the reference's own error. Beside them, the same walk of Q and
 sigma at the constant P of the contact, on the constant-P default (`fretting.choose_model`) and
 on `Varying()`: their energies agree where the two discretisations do.
 
-    python benchmarks/normal_load.py [--repeats 1] [--reference 1024]
+    python benchmarks/normal_load.py [--repeats 1] [--reference 2048]
 """
 
 import argparse
@@ -46,12 +47,13 @@ def ends(result, history):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=1)
-    parser.add_argument("--reference", type=int, default=2 * DEFAULT_CELLS)
+    parser.add_argument("--reference", type=int, default=4 * DEFAULT_CELLS)
     args = parser.parse_args(argv)
     history = walk()
     specs = [Varying(cells) for cells in CELLS]
     specs += [Varying(load_part=part) for part in PARTS if part != DEFAULT_LOAD_PART]
     finest = Varying(args.reference, load_part=DEFAULT_LOAD_PART / 4)
+    specs.append(Varying(args.reference // 2, load_part=finest.load_part))
     runs = [cpu(lambda m=spec: fr.simulate(CONTACT, history, model=m), args.repeats) for spec in (*specs, finest)]
     reference = runs[-1][1]
     energy = float(reference.total_dissipation)

@@ -283,3 +283,50 @@ def test_surface_stress_of_a_varying_P_is_the_engine_tally():
     np.testing.assert_allclose(
         result.sigma_xx_peak.values[0], stress[cycle].max(axis=0), rtol=1e-6, atol=1e-6 * formed.p0
     )
+
+
+def test_nucleation_of_a_varying_P_uses_each_step_or_refuses():
+    """Ruiz from the recorded steps (pressure of each step) equals the engine's tally; what would assume the
+    contact formed (w and slip amplitude without their tally, loop work) is refused."""
+    from fretting.analysis import nucleation
+
+    formed = contact(fr.Hertz(0.05))
+    result = fr.simulate(formed, cycles(formed, 1.07, 0.3, count=2, steps=16, sigma_amplitude=30e6))
+    tallied = nucleation.ruiz(result)
+    recorded = nucleation.ruiz(result, bulk=0.0)  # the same bulk stresses, from the recorded steps
+    np.testing.assert_allclose(recorded.F2.values, tallied.F2.values, rtol=1e-5)
+    assert np.all(np.isfinite(nucleation.per_cycle(result).sigma_xx_max.values))
+    with pytest.raises(ValueError, match="varies P"):
+        nucleation.dissipation_density(result.drop_vars("w"))
+    with pytest.raises(ValueError, match="varies P"):
+        nucleation.slip_amplitude(result.drop_vars("slip_amplitude"))
+    with pytest.raises(ValueError, match="loop_work assumes"):
+        nucleation.loop_work(result)
+
+
+@pytest.mark.xfail(
+    strict=True, reason="issue 22 test 6: the default's energy error here is at its 1e-4 target, set by the 512 cells"
+)
+def test_default_converges_on_a_random_history():
+    """A random (P, Q, sigma) walk: the default's energy within 1e-4 (relative) and its stick ends at the vertices
+    within 1e-3 a of a run on twice the cells with parts a quarter as large (benchmarks/normal_load.py: the table)."""
+    from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART
+
+    formed = contact(fr.Hertz(0.05))
+    rng = np.random.default_rng(3)
+    P = np.concatenate([[1.0], rng.uniform(0.7, 1.3, 4)]) * formed.P
+    Q = np.concatenate([[0.0], rng.uniform(-0.4, 0.4, 4)]) * F * formed.P
+    sigma = np.concatenate([[0.0], rng.uniform(-0.4, 0.4, 4)]) * F * formed.p0
+    history = History.piecewise_linear(Q, sigma, 16, P=P)
+    default = fr.simulate(formed, history)
+    finer = fr.simulate(formed, history, model=Varying(2 * DEFAULT_CELLS, load_part=DEFAULT_LOAD_PART / 4))
+    energy = float(finer.total_dissipation)
+    assert abs(float(default.total_dissipation) - energy) < 1e-4 * energy
+    rows = history.vertex_step[1:]
+    for name in ("stick_start", "stick_end"):
+        np.testing.assert_allclose(
+            default[name].values[rows] / default.a.values[rows, None],
+            finer[name].values[rows] / finer.a.values[rows, None],
+            rtol=0,
+            atol=1e-3,
+        )

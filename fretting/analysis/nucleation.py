@@ -93,6 +93,12 @@ def _require_cycles(result: xr.Dataset) -> None:
         raise ValueError("the result has no load cycles: its history counts none")
 
 
+def _refuse_varying_P(result: xr.Dataset, what: str) -> None:
+    """Refuse `what` for a result of a varying ``P`` (it has ``p_step``): it would assume the contact formed."""
+    if "p_step" in result:
+        raise ValueError(f"{what} assumes the contact formed at the constant P; this result varies P (it has p_step)")
+
+
 def _last_step(result: xr.Dataset) -> int:
     """Last step of the run (recorded or not)."""
     if "steps" in result.attrs:
@@ -150,12 +156,14 @@ def dissipation_density(result: xr.Dataset) -> xr.DataArray:
     -------
     xarray.DataArray
         ``w``, dims (cycle_number, x): the engine's tally over every step when the result has
-        it; otherwise from the recorded steps, NaN for cycles not recorded whole.
+        it; otherwise from the recorded steps, NaN for cycles not recorded whole (ValueError for a
+        result of a varying ``P``: the pressure changes within each increment).
     """
     _require_cycles(result)
     if "w" in result:
         w = result.w.astype(np.float64)  # the engine keeps float32 rows; sums over many cycles need more
     else:
+        _refuse_varying_P(result, "w from the recorded steps (the result has no tally w)")
         values = np.full((result.sizes["cycle_number"], result.sizes["x"]), np.nan)
         fp = result.attrs["f"] * result.p.values
         slip = result.slip.values
@@ -178,12 +186,14 @@ def slip_amplitude(result: xr.Dataset) -> xr.DataArray:
     -------
     xarray.DataArray
         ``slip_amplitude``, dims (cycle_number, x): the engine's tally when the result has it,
-        otherwise from the recorded steps (NaN for cycles not recorded whole).
+        otherwise from the recorded steps (NaN for cycles not recorded whole; ValueError for a
+        result of a varying ``P``, whose recorded slip out of contact is that of the free surfaces).
     """
     _require_cycles(result)
     if "slip_amplitude" in result:
         delta = result.slip_amplitude.astype(np.float64)
     else:
+        _refuse_varying_P(result, "the slip amplitude from the recorded steps (the result has no tally slip_amplitude)")
         values = np.full((result.sizes["cycle_number"], result.sizes["x"]), np.nan)
         slip = result.slip.values
         for k, rows in enumerate(complete_cycles(result)):
@@ -525,6 +535,11 @@ def loop_work(result: xr.Dataset) -> xr.Dataset:
     transient cycle (e.g. the first one from the virgin state) the stored elastic energy
     changes and the two differ by that change.
 
+    Not for a result of a varying ``P`` (ValueError): ``delta_Q`` weights the slip by the flat punch
+    of the current width, so when ``a`` varies it is not the displacement conjugate to ``Q`` (that
+    differs from it by ``Q`` times the compliance of the flat punch, ``(2 / (pi E_star)) ln(2L / a)``
+    for a continuous one), and ``W`` would not be the work of the loads.
+
     Returns
     -------
     xarray.Dataset
@@ -532,6 +547,7 @@ def loop_work(result: xr.Dataset) -> xr.Dataset:
         - 1`` and ``loop_closed`` (the loads end where they started); NaN for cycles not recorded whole.
     """
     _require_cycles(result)
+    _refuse_varying_P(result, "loop_work")
     n = result.sizes["cycle_number"]
     work, closed = np.full(n, np.nan), np.zeros(n, dtype=bool)
     Q, sigma = result.Q.values, result.sigma.values
