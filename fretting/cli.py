@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import xarray as xr
 from tqdm import tqdm
 
 from fretting import __version__
@@ -19,6 +20,7 @@ from fretting.engine.choice import MAX_DEFAULT_MESH
 from fretting.engine.recorder import RECORD_ALL_STEPS, RECORDED_ENDS
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
+from fretting.fatigue import CRITERIA, Material, MaterialFileError, apply, line_method, point_method
 from fretting.loading.examples import examples, resolve_history
 from fretting.loading.history_file import read_history_source
 from fretting.models import Grid, Mesh
@@ -41,6 +43,9 @@ FIGURE_DPI = 100
 #: half-widths a (two half-widths hold the peak shear under the contact and the edge gradients).
 STRESS_NX, STRESS_NZ, STRESS_DEPTH, STRESS_SPAN = 201, 101, 2.0, 2.0
 
+#: Criterion of `fretting stress --material` without --criterion: SWT needs only E and nu.
+DEFAULT_CRITERION = "swt"
+
 #: Seconds a run lasts before its progress bar appears: short runs show none.
 PROGRESS_DELAY = 2.0
 
@@ -56,7 +61,7 @@ def main(argv=None):
         return _fail(args, error, f"{args.file}: {error}", EXIT_GROSS_SLIP)
     except OSError as error:
         return _fail(args, error, f"{error.filename or args.file}: {error.strerror or error}", EXIT_INPUT)
-    except (HistoryError, ResultError, MissingDependencyError) as error:
+    except (HistoryError, ResultError, MaterialFileError, MissingDependencyError) as error:
         return _fail(args, error, str(error), EXIT_INPUT)
     except FrettingError as error:
         return _fail(args, error, f"{args.file}: {error}", EXIT_FAILURE)
@@ -183,11 +188,24 @@ def _stress_parser(commands, common):
     )
     stress.add_argument("--nu", type=float, help="Poisson's ratio (default: the nu of the result's history file)")
     stress.add_argument(
-        "--figure",
-        choices=tuple(COMPONENTS),
-        help="also draw this component at the last step as <OUT stem>_<component>.png",
+        "--material",
+        metavar="FILE",
+        help="material file (TOML, keys of fretting.fatigue.Material): map fatigue criteria over the steps, "
+        "taken as one cycle, and read them at the critical distance when it gives critical_distance",
     )
-    stress.set_defaults(command=_stress)
+    stress.add_argument(
+        "--criterion",
+        nargs="+",
+        choices=tuple(CRITERIA),
+        help=f"criteria mapped with --material (default: {DEFAULT_CRITERION})",
+    )
+    stress.add_argument(
+        "--figure",
+        choices=(*COMPONENTS, *CRITERIA),
+        help="also draw this component at the last step, or this criterion's map (with --material), "
+        "as <OUT stem>_<name>.png",
+    )
+    stress.set_defaults(command=_stress, usage_error=stress.error)
 
 
 def _at_least(minimum, kind):
@@ -309,6 +327,8 @@ def _plot(args):
 
 
 def _stress(args):
+    criteria = _stress_criteria(args)
+    material = Material.from_file(args.material) if criteria else None
     result = load(args.file)
     a, centre = result.attrs["a"], result.attrs["centre"]
     x = centre + a * np.linspace(-args.span, args.span, args.nx)
@@ -319,9 +339,12 @@ def _stress(args):
         stresses = field(result, x, z, step=args.step or _last_cycle(result), body=body, nu=args.nu)
     except ValueError as error:
         raise ResultError(f"{args.file}: {error}") from None
+    written = xr.merge([stresses, *(_criterion_map(stresses, name, material, args.material) for name in criteria)])
     output = Path(args.output or Path(args.file).with_name(f"{Path(args.file).stem}_stress.h5"))
-    save(stresses, output)
+    save(written, output)
     print(f"{output}: {stresses.sizes['step']} steps, {args.nz} x {args.nx} points, body {body} ({args.body})")
+    for name in criteria:
+        print(_critical_distances(name, written[name]))
     if args.figure:
         import matplotlib  # as in _plot: only when a figure is asked for
 
@@ -331,10 +354,63 @@ def _stress(args):
         from fretting import plots
 
         figure = Figure(figsize=(6.4, 4.4), layout="constrained")
-        plots.stress_map(stresses[args.figure], result, ax=figure.subplots())
+        plots.stress_map(written[args.figure], result, step=int(written.step[-1]), ax=figure.subplots())
         path = output.with_name(f"{output.stem}_{args.figure}.png")
         figure.savefig(path, dpi=FIGURE_DPI)
         print(path)
+
+
+def _stress_criteria(args):
+    """The criteria `fretting stress` maps: --criterion (default `DEFAULT_CRITERION`) and a --figure of one."""
+    if args.material is None:
+        if args.criterion or args.figure in CRITERIA:
+            option = "--criterion" if args.criterion else f"--figure {args.figure}"
+            args.usage_error(f"{option}: a criterion needs --material FILE (the material's constants)")
+        return []
+    criteria = list(dict.fromkeys(args.criterion or [DEFAULT_CRITERION]))
+    return criteria + ([args.figure] if args.figure in CRITERIA and args.figure not in criteria else [])
+
+
+def _criterion_map(stresses, name, material, path):
+    """`fretting.fatigue.apply` over the field's steps, its variables renamed ``<name>`` (the parameter)
+    and ``<name>_<variable>``, the parameter's attributes holding its critical distances."""
+    try:
+        maps = apply(stresses, name, material)
+    except ValueError as error:  # a constant the criterion needs is missing from the file
+        raise MaterialFileError(path, None, str(error).removeprefix("material: ")) from None
+    maps = maps.rename({variable: name if variable == "parameter" else f"{name}_{variable}" for variable in maps})
+    maps[name].attrs.update(_distances(maps[name], material, path))
+    return maps
+
+
+def _distances(parameter, material, path):
+    """The surface hot spot, and the point and line methods below it (`fretting.fatigue`) when the material
+    gives ``L``, as attributes [the parameter's units, m]."""
+    surface = parameter.isel(z=0)
+    hot = int(np.nanargmax(surface.values))
+    x_hot = float(surface.x[hot])
+    attributes = {"hot_spot": float(surface[hot]), "x_hot": x_hot}
+    L = material.critical_distance
+    if L is None:
+        return attributes
+    try:
+        point, line = point_method(parameter, L, x_hot=x_hot), line_method(parameter, L, x_hot=x_hot)
+    except ValueError:
+        reach = f"expected 2 L = {2 * L:.6g} m within the grid's depth {float(parameter.z[-1]):.6g} m (raise --depth)"
+        raise MaterialFileError(path, "critical_distance", f"found {L!r} m, {reach}") from None
+    return attributes | {"critical_distance": L, "point_method": point.value, "line_method": line.value}
+
+
+def _critical_distances(name, parameter):
+    """One line: a criterion's hot spot and its values at the critical distance."""
+    attrs, units = parameter.attrs, parameter.attrs["units"]
+    line = f"{name}: hot spot {attrs['hot_spot']:.6g} {units} at x = {attrs['x_hot']:.6g} m"
+    if "critical_distance" not in attrs:
+        return f"{line}; no critical distance (the material gives none)"
+    return (
+        f"{line}; point method (L/2 = {attrs['critical_distance'] / 2:.6g} m below it) "
+        f"{attrs['point_method']:.6g} {units}; line method (mean over 2 L) {attrs['line_method']:.6g} {units}"
+    )
 
 
 def _last_cycle(result):

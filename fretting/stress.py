@@ -46,7 +46,7 @@ import xarray as xr
 from scipy import special
 
 from fretting._validate import finite, finite_array
-from fretting.analysis.nucleation import _body, _bulk
+from fretting.analysis.nucleation import body_bulk, body_role
 from fretting.engine.choice import recorded_spec
 from fretting.physics.closed_forms import masing_increment, masing_origin
 from fretting.physics.contact import POISSON_RANGE
@@ -218,7 +218,7 @@ def field(result, x, z, step=None, body=None, nu=None):
     x, z = finite_array("x", x), finite_array("z", z)
     if np.any(z < 0):
         raise ValueError(f"z must be depths >= 0 into the body [m], found {z.min()!r}")
-    body, role = _body(result, body)
+    body, role = body_role(result, body)
     nu = _poisson(result, nu)
     attrs = result.attrs
     if attrs["profile"].startswith("FlatPunch"):
@@ -238,7 +238,7 @@ def field(result, x, z, step=None, body=None, nu=None):
         p_field = pressure(t[at], depth[at], influence)  # (3, points)
         unit = traction(t[at], depth[at], influence)  # (3, points, basis)
         stress[:, :, at] = p_field[:, None, :] + sign * (unit @ loads.T).transpose(0, 2, 1)
-    stress[0] += _bulk(result, body, None)[rows, None]
+    stress[0] += body_bulk(result, body)[rows, None]
     stress = stress.reshape(3, rows.size, z.size, x.size)
     values = dict(zip(("sigma_xx", "sigma_zz", "tau_xz"), stress, strict=True))
     values["sigma_yy"] = nu * (values["sigma_xx"] + values["sigma_zz"])

@@ -2,7 +2,8 @@
 
 Run from the repository root:  python scripts/make_validation.py [--only closed-forms trajectories ...]
 
-Writes docs/validation/{closed-forms,trajectories,performance,galerkin-constants}.md and docs/examples.md, with their
+Writes docs/validation/{closed-forms,trajectories,performance,galerkin-constants}.md, docs/examples.md and
+docs/guide/size-effect.md, with their
 figures in docs/validation/figures/ (100 dpi). Every figure and table is computed here, by the
 engine against closed forms or against the converged references of benchmarks/trajectories.py
 (cached in benchmarks/.cache), and each page is stamped with the version, the UTC date and this
@@ -30,6 +31,7 @@ from fretting.physics import closed_forms as cf  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
 import galerkin_constants  # noqa: E402
+import size_effect  # noqa: E402
 import stepping  # noqa: E402
 import trajectories  # noqa: E402
 
@@ -530,12 +532,25 @@ def galerkin_constants_page():
     )
 
 
+# -- The size effect ---------------------------------------------------------------------------------
+
+
+def size_effect_page():
+    write_page(
+        DOCS / "guide" / "size-effect.md",
+        "A fretting-fatigue map: the size effect",
+        "It ran the study of scripts/size_effect.py.",
+        size_effect.body(markdown_table, save_figure),
+    )
+
+
 PAGE_BUILDERS = {
     "closed-forms": closed_forms_page,
     "trajectories": trajectories_page,
     "performance": performance_page,
     "examples": examples_page,
     "galerkin-constants": galerkin_constants_page,
+    "size-effect": size_effect_page,
 }
 
 

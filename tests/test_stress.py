@@ -15,14 +15,19 @@ import pytest
 from scipy import integrate
 
 import fretting as fr
-from fretting import cli, stress
+from fretting import cli, fatigue, stress
 from fretting.analysis import nucleation
+from fretting.fatigue import Material
+from fretting.loading.examples import EXAMPLES
 from fretting.physics import closed_forms as cf
 from fretting.results.io import save
 
 matplotlib.use("Agg")
 
 NU = 0.3
+
+#: The material file shipped with the package.
+STEEL = EXAMPLES / "materials" / "steel.toml"
 
 #: Points (x / half-width, z / half-width) inside and outside the loaded interval, near its edge and deep.
 POINTS = [(0.3, 0.2), (-0.7, 0.5), (0.95, 0.02), (1.5, 0.3), (-2.0, 1.0), (0.1, 2.0), (0.0, 0.78)]
@@ -283,6 +288,84 @@ def test_command_writes_the_field(contact, tmp_path, capsys):
     assert "step 99 is not recorded" in capsys.readouterr().err
     assert cli.main([*arguments[:-4], "-o", str(output)]) == 2  # no nu: the result has no history file
     assert "nu is needed" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def cycled(contact, tmp_path_factory):
+    """A result file of a cycle of Q and sigma in phase (steps 4 to 12 the cycle), and its path."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.piecewise_linear(
+        [0.0, 0.4 * fP, -0.4 * fP, 0.4 * fP], [0.0, 0.3 * fp0, -0.3 * fp0, 0.3 * fp0], 4
+    )
+    result = fr.simulate(contact, history, nodes=32)
+    path = tmp_path_factory.mktemp("cycled") / "run.h5"
+    save(result, path)
+    return result, path
+
+
+def test_command_maps_criteria_and_reads_them_at_the_critical_distance(contact, cycled, tmp_path, capsys):
+    import xarray as xr
+
+    result, path = cycled
+    material = Material.from_file(STEEL)
+    L = material.critical_distance
+    output = tmp_path / "field.h5"
+    depth = 2 * L / contact.a  # five depths: L/2 apart, the second at the point method's L/2
+    options = ["--nx", "21", "--nz", "5", "--depth", repr(depth), "--nu", "0.3", "--step", *map(str, range(4, 13))]
+    arguments = ["stress", str(path), *options, "-o", str(output), "--material", str(STEEL)]
+    assert cli.main([*arguments, "--criterion", "swt", "findley", "--figure", "crossland"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert [line.split(":")[0] for line in lines[1:4]] == ["swt", "findley", "crossland"]
+    assert lines[4] == str(tmp_path / "field_crossland.png")
+    with xr.open_dataset(output, engine="h5netcdf") as written:
+        written = written.load()
+    swt = written.swt
+    assert (swt.dims, swt.attrs["units"], written.swt_phi.attrs["units"]) == (("z", "x"), "Pa", "rad")
+    assert written.crossland_sigma_h_max.attrs["units"] == "Pa"
+    np.testing.assert_allclose(written.z[1], L / 2, rtol=1e-12)
+    x_hot = float(written.x[int(np.argmax(swt.values[0]))])
+    # the point method's value is SWT computed directly from the field at (x_hot, L/2): another path
+    point = stress.field(result, [x_hot], [float(written.z[1])], step=list(range(4, 13)), nu=NU)
+    direct = fatigue.swt(point.sigma_xx.values, point.sigma_zz.values, point.tau_xz.values, material)
+    assert swt.attrs["x_hot"] == x_hot
+    np.testing.assert_allclose(swt.attrs["point_method"], direct.parameter[0, 0], rtol=1e-9)
+    line = fatigue.line_method(swt, L)
+    np.testing.assert_allclose(swt.attrs["line_method"], line.value, rtol=1e-12)
+    assert f"point method (L/2 = {L / 2:.6g} m below it) {swt.attrs['point_method']:.6g} Pa" in lines[1]
+    assert swt.attrs["hot_spot"] > swt.attrs["point_method"] > 0  # the parameter falls away from the hot spot
+
+
+@pytest.mark.parametrize(
+    ("material", "criterion", "message"),
+    [
+        ("E = 210e9\nnu = 0.3\nb = 0.1\n", "swt", "material.toml: b: found 0.1, expected < 0"),
+        ("E = 210e9\nnu = 0.3\n", "mwcm", "material.toml: mwcm needs sigma_limit, tau_limit, found None"),
+        ("E = 210e9\nnu = 0.3\ncritical_distance = 1e-2\n", "swt", "material.toml: critical_distance: found 0.01 m"),
+        ("E = 210e9\nnu = 0.3\nsigma_y = 'high'\n", "swt", "material.toml: sigma_y: found 'high', expected a number"),
+    ],
+)
+def test_command_refuses_a_bad_material_in_one_line(cycled, tmp_path, capsys, material, criterion, message):
+    (tmp_path / "material.toml").write_text(material)
+    arguments = ["stress", str(cycled[1]), "--nx", "5", "--nz", "3", "--nu", "0.3", "-o", str(tmp_path / "f.h5")]
+    assert cli.main([*arguments, "--material", str(tmp_path / "material.toml"), "--criterion", criterion]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith(f"fretting: error: {tmp_path / message}") and error.count("\n") == 1
+    assert not (tmp_path / "f.h5").exists()
+
+
+def test_command_without_a_critical_distance_prints_the_hot_spot(cycled, tmp_path, capsys):
+    (tmp_path / "material.toml").write_text("E = 210e9\nnu = 0.3\n")
+    arguments = ["stress", str(cycled[1]), "--nx", "5", "--nz", "3", "--nu", "0.3", "-o", str(tmp_path / "f.h5")]
+    assert cli.main([*arguments, "--material", str(tmp_path / "material.toml")]) == 0
+    assert capsys.readouterr().out.splitlines()[1].endswith("; no critical distance (the material gives none)")
+
+
+def test_command_asks_a_material_for_criteria(cycled, capsys):
+    for option in (["--criterion", "swt"], ["--figure", "swt"]):
+        with pytest.raises(SystemExit) as exit:
+            cli.main(["stress", str(cycled[1]), *option])
+        assert exit.value.code == 2
+        assert "a criterion needs --material FILE" in capsys.readouterr().err
 
 
 def test_stress_map_marks_the_contact_and_the_stick_zone(contact):

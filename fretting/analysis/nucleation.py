@@ -51,6 +51,8 @@ from fretting.results.variables import CYCLE_PEAKS
 
 __all__ = [
     "accumulated_dissipation_density",
+    "body_bulk",
+    "body_role",
     "complete_cycles",
     "cycles_to_nucleation",
     "dissipation_density",
@@ -300,16 +302,26 @@ def specimen(result: xr.Dataset) -> int:
     return int(result.attrs.get("specimen", SPECIMEN))
 
 
-def _body(result: xr.Dataset, body: int | None) -> tuple[int, str]:
-    """`body`, the specimen when None, checked; and what it is, ``"specimen"`` or ``"pad"``."""
+def body_role(result: xr.Dataset, body: int | None) -> tuple[int, str]:
+    """`body` [1 or 2], the specimen (`specimen`) when None, checked; and what it is, ``"specimen"`` or ``"pad"``.
+
+    Raises
+    ------
+    ValueError
+        When `body` is neither 1 nor 2.
+    """
     body = specimen(result) if body is None else body
     if isinstance(body, bool) or body not in (1, 2):
         raise ValueError(f"body must be 1 (traction q) or 2 (traction -q), found {body!r}")
     return body, "specimen" if body == specimen(result) else "pad"
 
 
-def _bulk(result: xr.Dataset, body: int, bulk: ArrayLike | None) -> np.ndarray:
-    """Bulk direct stress [Pa] of `body` at each recorded step, from body 1's `bulk` (`bulk_stress`)."""
+def body_bulk(result: xr.Dataset, body: int, bulk: ArrayLike | None = None) -> np.ndarray:
+    """Bulk direct stress [Pa] of `body` at each recorded step, shape (step,), from body 1's `bulk` [Pa].
+
+    `fretting.physics.surface.bulk_stress` with the result's ``sigma`` and specimen: None, the specimen
+    carries the bulk stress and the pad none.
+    """
     sigma = result.sigma.values
     bulk1 = None if bulk is None else np.broadcast_to(np.asarray(bulk, dtype=float), sigma.shape)
     return np.broadcast_to(bulk_stress(sigma, body, bulk1, specimen(result)), sigma.shape)
@@ -353,8 +365,8 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
         ``sigma_xx``, dims (step, x), at the nodes; attributes ``body`` and ``role``
         (``"specimen"`` or ``"pad"``).
     """
-    body, role = _body(result, body)
-    bulk = _bulk(result, body, bulk)[:, None]
+    body, role = body_role(result, body)
+    bulk = body_bulk(result, body, bulk)[:, None]
     if "p_step" in result:  # a varying P: the equal cells of fretting.models.normal, the pressure of each step
         stress = CellSurfaceStress(result.sizes["x"])(result.q.values, result.p_step.values, bulk, body)
     else:
@@ -432,7 +444,7 @@ def ruiz(result: xr.Dataset, body: int | None = None, bulk: ArrayLike | None = N
         ``x_F2`` [m]; NaN where the cycle's peaks are not known.
     """
     _require_cycles(result)
-    body, role = _body(result, body)
+    body, role = body_role(result, body)
     delta, peaks, x = slip_amplitude(result).values, _cycle_peaks(result, body, bulk), result.x.values
     F1, x_F1 = _largest(peaks["q_peak"] * delta, x)
     F2, x_F2 = _largest(peaks["sigma_xx_q_peak"] * delta, x)
@@ -586,7 +598,7 @@ def per_cycle(result: xr.Dataset, body: int | None = None, bulk: ArrayLike | Non
     over every step from the engine's tally ``sigma_xx_peak`` for the specimen with its bulk
     stress, else over the recorded steps of the cycles recorded whole, as `ruiz`).
     """
-    body, role = _body(result, body)
+    body, role = body_role(result, body)
     ruiz_ = ruiz(result, body, bulk)
     delta = _peak(
         slip_amplitude(result),
