@@ -517,7 +517,8 @@ def test_periodic_state_does_not_drift_over_1e5_cycles(hertz):
     cycles = 100_000
     history = fr.History.sinusoidal(0.5 * fP, 0.5 * fp0, 90.0, cycles=cycles)
     tenth = int(np.flatnonzero(history.cycle == 10)[-1])
-    result = fr.simulate(hertz, history, record=[tenth, len(history) - 1])
+    with pytest.warns(fr.engine.choice.MeshSampleWarning, match="stopped growing"):  # 3.2e6 turning points
+        result = fr.simulate(hertz, history, record=[tenth, len(history) - 1])
     assert result.cycle_dissipation.size == cycles
     early, late = result.slip.values
     np.testing.assert_allclose(late, early, rtol=0, atol=1e-12 * np.abs(early).max())
@@ -556,13 +557,13 @@ def test_tiny_increments_at_reversals(hertz):
     psi = np.array([0, 0.6, 0.6 - 1e-9, 0.6, 0.6 - tiny, -0.5, -0.5 + tiny, 0.4])
     sigma = psi / 2
     history = fr.History.piecewise_linear(psi * fP, sigma * fp0, [8, 1, 1, 1, 8, 1, 8])
-    reference = fr.simulate(hertz, plain, record=plain.vertex_step)
+    reference = fr.simulate(hertz, plain)  # every step recorded, as below: both meshes locate every step's ends
     result = fr.simulate(hertz, history)
     vertices = history.vertex_step[[0, 1, 5, 7]]
-    scale = np.abs(reference.slip.values).max()
-    np.testing.assert_allclose(result.slip.values[vertices], reference.slip.values, rtol=0, atol=1e-9 * scale)
-    total = fr.simulate(hertz, plain).dissipation.sum()
-    np.testing.assert_allclose(result.dissipation.sum(), total, rtol=1e-9)
+    expected = reference.slip.values[plain.vertex_step]
+    scale = np.abs(expected).max()
+    np.testing.assert_allclose(result.slip.values[vertices], expected, rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(result.dissipation.sum(), reference.dissipation.sum(), rtol=1e-9)
     assert_friction_conditions(result, hertz)
 
 

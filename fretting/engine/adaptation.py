@@ -31,13 +31,22 @@ from fretting.engine.follow import follow
 from fretting.engine.state import State
 from fretting.engine.threads import one_blas_thread
 from fretting.errors import GrossSlipError, SolverError
-from fretting.models.galerkin import DEFAULT_RTOL, Mesh, element_targets, initial_theta, refine
+from fretting.models.galerkin import (
+    BOUNDARY_SPAN,
+    DEFAULT_RTOL,
+    ENERGY_SPAN,
+    Mesh,
+    element_targets,
+    initial_theta,
+    refine,
+)
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
     from fretting.physics.contact import Contact
 
 __all__ = [
+    "END_TURN",
     "MAX_TURN",
     "REFINEMENTS",
     "SAMPLE_TURNS",
@@ -55,10 +64,15 @@ REFINEMENTS = 60
 #: Turn [rad] of the load path's direction after which a curved stretch between turning points is
 #: cut, the direction taken in the plane of ``Q / (pi a)`` and ``sigma / 4`` [Pa], the mean and the
 #: slope of the fully stuck traction ``sqrt(1 - t^2) q_st = Q / (pi a) + sigma t / 4`` of eqs (9)
-#: and (20). The steps between two cuts then stick where the increment from one cut to the next
-#: sticks, within the elements that locate their ends; with a quarter turn the stick ends of
+#: and (20). A quarter of a 90-degree out-of-phase cycle is then run as two increments, which
+#: resolves the energy per cycle (results/speed_vs_error.md).
+MAX_TURN = np.pi / 4
+
+#: The turn between cuts of the pass that locates the stick ends (`adapted_model`'s second
+#: stage): the steps between two cuts then stick where the increment from one cut to the next
+#: sticks, within the elements that locate their ends; with `MAX_TURN` the stick ends of
 #: elliptical paths fell outside them (benchmarks/trajectories.py, the ``ellipse_*`` histories).
-MAX_TURN = np.pi / 16
+END_TURN = np.pi / 16
 
 
 class MeshTooLarge(Exception):
@@ -66,12 +80,18 @@ class MeshTooLarge(Exception):
 
     Attributes: ``nodes`` it would need at least, ``step`` of the turning points where that
     became certain, ``model`` the `GalerkinModel` of the last mesh within the bound (that of the
-    pass under way).
+    pass under way), ``ends`` True where it is the second stage of `adapted_model` that passes
+    the bound: ``model`` then resolves the energy to rtol, and the stick ends to about
+    ``ENERGY_SPAN rtol a`` only.
     """
 
-    def __init__(self, nodes, step, model):
-        super().__init__(f"the adapted mesh would need {nodes} nodes or more (at step {step} of the turning points)")
-        self.nodes, self.step, self.model = nodes, step, model
+    def __init__(self, nodes, step, model, ends=False):
+        if ends:
+            message = f"the mesh that locates the stick ends of the recorded steps would need {nodes} nodes"
+        else:
+            message = f"the adapted mesh would need {nodes} nodes or more (at step {step} of the turning points)"
+        super().__init__(message)
+        self.nodes, self.step, self.model, self.ends = nodes, step, model, ends
 
 
 def adapted_mesh(
@@ -100,9 +120,17 @@ def adapted_mesh(
         return None
 
 
-def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
+def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=None):
     """The `GalerkinModel` (built once, for the run to use) whose mesh ``theta`` [rad] resolves the
     stick and slip zones of `history` to `rtol`.
+
+    Two stages. The energy: passes over the turning points (`MAX_TURN`) refine every element
+    that `fretting.models.galerkin.element_targets` finds too coarse, with elements of
+    ``ENERGY_SPAN rtol a`` in the slip zones, until none is. The ends (`_located`): one pass on
+    that mesh over the turning points cut finer (`END_TURN`) refines, in one go, the elements
+    that hold the stick ends of the steps in `recorded` (step numbers; None: every step), or that
+    those ends sweep, to ``BOUNDARY_SPAN rtol a``; the zones are already located, so no pass on
+    the finer mesh is needed.
 
     A history of more than `SAMPLE_TURNS` turning points is adapted to a sample of them: the
     first `SAMPLE_TURNS`, then twice as many from the mesh found, and so on, until a doubling
@@ -110,18 +138,19 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
     dataset's ``model_sample``). Each sample's passes start from the last sample's mesh, so
     none is thrown away.
 
-    Raises `MeshTooLarge` as soon as a refinement is certain to give more than `max_nodes` nodes:
-    the targets only shrink within a pass, so the mesh they ask for only grows (`_bisected_size`).
+    Raises `MeshTooLarge` as soon as a refinement is certain to give more than `max_nodes` nodes
+    (the targets only shrink within a pass, so the mesh they ask for only grows:
+    `_bisected_size`), with the model of the energy stage where it is the ends that pass the bound.
     """
     sliding = np.flatnonzero(np.abs(history.Q) >= contact.f * contact.P)
     if sliding.size:  # the run will stop there: adapt to the steps before
         history = history[: max(sliding[0], 1)]
     turning = history.turning_points(MAX_TURN, (np.pi * contact.a, 4.0))
     mirrored = contact.profile.SYMMETRIC and not (history.Q.any() and history.sigma.any())
-    adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored)
-    if len(turning) <= SAMPLE_TURNS:
-        return adapt(turning, initial_theta())
-    size, model = SAMPLE_TURNS, adapt(turning[:SAMPLE_TURNS], initial_theta())
+    energy = np.full((len(turning), 2), ENERGY_SPAN)
+    adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored, energy)
+    size = min(SAMPLE_TURNS, len(turning))
+    model = adapt(turning[:size], initial_theta())
     while size < len(turning):
         size = min(2 * size, len(turning))
         grown = adapt(turning[:size], model.theta)
@@ -131,9 +160,37 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None):
                 f"stopped growing from the first {size // 2}"
             )
             grown.spec = replace(grown.spec, sample=sample)
-            return grown
+            return _located(grown, adapt, history[: turning_end(history, contact, size) + 1], recorded)
         model = grown
-    return model
+    return _located(model, adapt, history, recorded)
+
+
+def turning_end(history, contact, size):
+    """The step of `history` that is its `size`-th turning point (`MAX_TURN`)."""
+    return int(history.turning_steps(MAX_TURN, (np.pi * contact.a, 4.0))[size - 1])
+
+
+def _located(model, adapt, history, recorded):
+    """`model`'s mesh refined so that the stick ends of the steps `recorded` of `history` are located
+    (`adapted_model`, second stage); `model` itself where nothing needs refining."""
+    units = (np.pi * model.contact.a, 4.0)
+    steps = history.turning_steps(END_TURN, units)
+    spans = _spans(steps, recorded)
+    targets = np.full(model.theta.size - 1, np.inf)
+
+    def observe(step, ds):
+        found = element_targets(model.theta, ds, adapt.rtol, model.breakpoints, *spans[step], levels=None)
+        np.minimum(targets, found, out=targets)
+
+    follow(model, history.turning_points(END_TURN, units), State.virgin(model), observe=observe, tally=False)
+    theta = adapt.refined(model.theta, targets)
+    if np.array_equal(theta, model.theta):
+        return model
+    if adapt.max_nodes is not None and theta.size > adapt.max_nodes:
+        raise MeshTooLarge(theta.size, len(steps) - 1, model, ends=True)
+    located = Mesh(adapt.rtol, theta).build(model.contact, previous=model)
+    located.spec = replace(located.spec, sample=model.spec.sample)
+    return located
 
 
 #: Turning points of a history beyond which the mesh is adapted to a sample of them (`adapted_model`):
@@ -145,19 +202,21 @@ SAMPLE_TURNS = 256
 class _Adaptation:
     """The passes of `adapted_model` over the turning points of (a part of) one history."""
 
-    def __init__(self, contact, history, rtol, max_nodes, mirrored):
+    def __init__(self, contact, history, rtol, max_nodes, mirrored, spans):
         self.contact, self.history, self.rtol = contact, history, rtol
-        self.max_nodes, self.mirrored = max_nodes, mirrored
+        self.max_nodes, self.mirrored, self.spans = max_nodes, mirrored, spans
 
     def __call__(self, turning, theta):
         """The model whose mesh, refined from `theta` [rad], resolves the increments of `turning`."""
-        rtol, max_nodes, directions, model = self.rtol, self.max_nodes, {}, None
+        rtol, max_nodes, spans, directions, model = self.rtol, self.max_nodes, self.spans, {}, None
         for _ in range(REFINEMENTS):
             model = Mesh(rtol, theta).build(self.contact, previous=model)
             targets, known, directions = np.full(theta.size - 1, np.inf), directions, {}
 
             def observe(step, ds, model=model, targets=targets, found=directions):
-                np.minimum(targets, element_targets(model.theta, ds, rtol, model.breakpoints), out=targets)
+                np.minimum(
+                    targets, element_targets(model.theta, ds, rtol, model.breakpoints, *spans[step]), out=targets
+                )
                 found[step] = np.sign(ds).astype(np.int8), model.x
                 if max_nodes is not None and (size := _bisected_size(model.theta, targets)) > max_nodes:
                     raise MeshTooLarge(size, step, model)
@@ -171,16 +230,21 @@ class _Adaptation:
                 history = self.history
                 step = int(np.flatnonzero((history.Q == error.Q) & (history.sigma == error.sigma))[0])
                 raise GrossSlipError(step, error.Q, error.sigma, error.limit) from None
-            refined = refine(theta, np.minimum(targets, targets[::-1]) if self.mirrored else targets)
-            if self.mirrored:  # Q alone or sigma alone: the zones are even or odd in x, and so is the mesh, exactly
-                lower = refined[refined <= np.pi / 2]
-                refined = np.concatenate([lower, np.pi - lower[::-1][int(lower[-1] == np.pi / 2) :]])
+            refined = self.refined(theta, targets)
             if np.array_equal(refined, theta):
                 return model
             if max_nodes is not None and refined.size > max_nodes:
                 raise MeshTooLarge(refined.size, len(turning) - 1, model)
             theta = refined
         raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
+
+    def refined(self, theta, targets):
+        """`refine` of `theta` [rad] to `targets`, kept symmetric under Q alone or sigma alone."""
+        refined = refine(theta, np.minimum(targets, targets[::-1]) if self.mirrored else targets)
+        if self.mirrored:  # the zones are even or odd in x, and so is the mesh, exactly
+            lower = refined[refined <= np.pi / 2]
+            refined = np.concatenate([lower, np.pi - lower[::-1][int(lower[-1] == np.pi / 2) :]])
+        return refined
 
 
 def refined_for(contact, state, history):
@@ -233,6 +297,23 @@ def remapped(state, theta, finer):
     tally = replace(state.tally, **{name: onto(getattr(state.tally, name)) for name in fields})
     model = replace(state.model, theta=finer)
     return replace(state, slip=onto(state.slip), episode_start=onto(state.episode_start), tally=tally, model=model)
+
+
+def _spans(steps, recorded):
+    """The spans (``swept``, ``end`` of `element_targets`) of each increment between the turning
+    points at the history's `steps`, shape (len(steps), 2): `BOUNDARY_SPAN` where a step strictly
+    inside the increment (``swept``), or its last step (``end``), is in `recorded` (None: all are),
+    else `ENERGY_SPAN`. Row 0, the starting state, is never solved."""
+    if recorded is None:
+        return np.full((steps.size, 2), BOUNDARY_SPAN)
+    recorded = np.asarray(recorded, dtype=np.int64)
+    marks = np.zeros(int(steps[-1]) + 2, dtype=np.int64)
+    marks[recorded[recorded <= steps[-1]] + 1] = 1  # a run stopped by gross slip records no later step
+    counted = np.cumsum(marks)  # counted[s + 1]: recorded steps up to s
+    first = np.concatenate([[0], steps[:-1] + 1])  # one past the turning point before
+    inside = counted[steps] - counted[first]  # steps first .. steps - 1
+    last = counted[steps + 1] - counted[steps]
+    return np.where(np.stack([inside, last], axis=1) > 0, BOUNDARY_SPAN, ENERGY_SPAN)
 
 
 def _bisected_size(theta, targets):

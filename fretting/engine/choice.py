@@ -30,7 +30,7 @@ from fretting.errors import HistoryError
 from fretting.models.base import ModelSpec
 from fretting.models.collocation import DEFAULT_NODES, Grid
 from fretting.models.exact import Exact
-from fretting.models.galerkin import DEFAULT_RTOL, Mesh
+from fretting.models.galerkin import DEFAULT_RTOL, ENERGY_SPAN, Mesh
 from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART, Varying
 
 if TYPE_CHECKING:
@@ -65,10 +65,10 @@ RECORDED_BEFORE = {
 }
 
 #: Nodes at which the default's mesh adaptation stops: an increment costs ``N^2`` to ``N^3``, and
-#: the elements that locate every step's stick ends (`fretting.models.galerkin.BOUNDARY_SPAN`) take
-#: the meshes of general Q/sigma histories to a few thousand nodes (benchmarks/trajectories.py);
-#: past the bound the last mesh within it runs.
-MAX_DEFAULT_MESH = 8 * DEFAULT_NODES
+#: the elements that locate every recorded step's stick ends (`fretting.models.galerkin.BOUNDARY_SPAN`)
+#: take the meshes of general Q/sigma histories to a few thousand nodes (benchmarks/trajectories.py);
+#: past the bound the mesh adapted to the energy runs, or the last mesh within the bound.
+MAX_DEFAULT_MESH = 4 * DEFAULT_NODES
 
 
 class ModelFallbackWarning(UserWarning):
@@ -102,7 +102,7 @@ def choose_model(contact: Contact, history: History) -> ModelSpec:
     return _default_model(contact, history).spec
 
 
-def _default_model(contact, history):
+def _default_model(contact, history, recorded=None):
     """The built model of `choose_model` (a mesh's stiffness is assembled once, by its adaptation)."""
     if varies_P(contact, history):
         return Varying().resolved_for(contact, history).build(contact)
@@ -110,10 +110,19 @@ def _default_model(contact, history):
     if exact.holds_for(contact, history) is None:
         return exact.resolved_for(contact, history).build(contact)
     try:
-        return _said(adapted_model(contact, history, DEFAULT_RTOL, max_nodes=MAX_DEFAULT_MESH))
+        return _said(adapted_model(contact, history, DEFAULT_RTOL, MAX_DEFAULT_MESH, recorded))
     except MeshTooLarge as error:
         model, reason = error.model, f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
-    reason += f": runs the last mesh within it, {model.theta.size} nodes, coarser than rtol = {DEFAULT_RTOL:g} asks"
+        if error.ends:
+            span = ENERGY_SPAN * DEFAULT_RTOL
+            reason += (
+                f": runs the mesh adapted to the energy, {model.theta.size} nodes, whose stick ends between "
+                f"turning points err by up to about {span:g} a"
+            )
+        else:
+            reason += (
+                f": runs the last mesh within it, {model.theta.size} nodes, coarser than rtol = {DEFAULT_RTOL:g} asks"
+            )
     warnings.warn(f"the default model falls back: {reason}", ModelFallbackWarning, stacklevel=3)
     model.spec = replace(model.spec, fallback=reason)
     return model
@@ -142,18 +151,19 @@ def could_be_default(spec):
     )
 
 
-def built_model(spec, contact, history):
-    """The model of `spec` for `history`, its nodes fixed and built; None: the default's.
+def built_model(spec, contact, history, recorded=None):
+    """The model of `spec` for `history`, its nodes fixed and built; None: the default's. A mesh
+    adapted to the history locates the stick ends of the steps `recorded` (None: all).
 
     Raises HistoryError where the model cannot run the history (`ModelSpec.holds_for`).
     """
     if spec is None:
-        return _default_model(contact, history)
+        return _default_model(contact, history, recorded)
     check(spec, contact, history)
     if spec.resolved:
         return spec.build(contact)
     if isinstance(spec, Mesh):
-        return _said(adapted_model(contact, history, spec.rtol))
+        return _said(adapted_model(contact, history, spec.rtol, recorded=recorded))
     return spec.resolved_for(contact, history).build(contact)
 
 

@@ -260,7 +260,7 @@ def run_file(
         stepper = Stepper(source.contact, model if state is None else None, state)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ModelFallbackWarning)
-            stepper.resolve(history)
+            stepper.resolve(history, record)
         for warning in caught:  # a fallback becomes a note of the run; any other warning goes on
             if issubclass(warning.category, ModelFallbackWarning):
                 notes.append(str(warning.message))

@@ -58,7 +58,9 @@ def simulate(
     record : array_like of int or "all", optional
         Steps whose fields and loads are stored, increasing (`recorded_steps`); the dataset's
         `step` coordinate holds their numbers. Energy and slip range per cycle and the final
-        state always cover every step.
+        state always cover every step. A mesh adapted to the history locates the stick ends of
+        the recorded steps; the increments with none recorded are resolved for their energy
+        (`fretting.engine.adaptation.adapted_model`).
 
     Returns
     -------
@@ -88,6 +90,7 @@ def simulate(
         with one_blas_thread():
             asked, state = continued(contact, state, history)
     stepper = Stepper(contact, asked, state)
-    stepper.resolve(history)
-    recorder = Recorder(stepper.model, history, recorded_steps(record, len(history)))
+    recorded = recorded_steps(record, len(history))
+    stepper.resolve(history, recorded)
+    recorder = Recorder(stepper.model, history, recorded)
     return recorder.dataset(stepper.run(history, recorder))

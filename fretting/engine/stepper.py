@@ -141,13 +141,14 @@ class Stepper:
         self._fresh = False
         return self._state
 
-    def resolve(self, history: History) -> None:
+    def resolve(self, history: History, recorded: np.ndarray | None = None) -> None:
         """Fix the model for `history` without stepping: choose the default, or adapt the spec's
-        nodes to it (`fretting.engine.choice.built_model`); with a model built already, check that it
-        can run `history`."""
+        nodes to it (`fretting.engine.choice.built_model`; an adapted mesh locates the stick ends of
+        the steps `recorded`, None: every step); with a model built already, check that it can run
+        `history`."""
         if self._model is None:
             with one_blas_thread():
-                self._built(choice.built_model(self._spec, self.contact, history))
+                self._built(choice.built_model(self._spec, self.contact, history, recorded))
         else:
             choice.check(self._spec, self.contact, history)
 

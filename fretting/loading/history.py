@@ -109,8 +109,8 @@ class History:
         """Number of the last load cycle; 0 for a history without cycles."""
         return int(_cycles(self).max())
 
-    def turning_points(self, max_turn=None, units=(1.0, 1.0)):
-        """The path through its turning points only: the first and last steps, the vertices, the
+    def turning_steps(self, max_turn=None, units=(1.0, 1.0)):
+        """Steps of the path's turning points, ascending: the first and last steps, the vertices, the
         steps where Q or sigma reverses or stops, and, given `max_turn`, the steps where a curved
         stretch bends.
 
@@ -120,7 +120,7 @@ class History:
         proportional path depends on. A curved (non-proportional) stretch is cut where its
         direction in the plane of ``(Q / units[0], sigma / units[1])`` has turned by another
         `max_turn` [rad] from its first direction, so that each piece is nearly straight; a
-        straight stretch is not cut. Vertices, cycles and loads are kept; steps are renumbered.
+        straight stretch is not cut.
 
         Parameters
         ----------
@@ -140,7 +140,12 @@ class History:
         if max_turn is not None and np.ptp(self.Q) and np.ptp(self.sigma):  # a path along one axis never bends
             max_turn, units = positive("max_turn", max_turn), [positive("units", unit) for unit in units]
             kept[_bends(self.Q, self.sigma, kept, max_turn, units)] = True
-        steps = np.flatnonzero(kept)
+        return np.flatnonzero(kept)
+
+    def turning_points(self, max_turn=None, units=(1.0, 1.0)):
+        """The path through its turning points only (`turning_steps`): vertices, cycles and loads
+        are kept; steps are renumbered."""
+        steps = self.turning_steps(max_turn, units)
         cycle = None if self.cycle is None else self.cycle[steps]
         P = None if self.P is None else self.P[steps]
         return History(self.Q[steps], self.sigma[steps], np.searchsorted(steps, self.vertex_step), cycle, P)

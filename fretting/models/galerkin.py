@@ -44,10 +44,11 @@ turned by `fretting.engine.adaptation.MAX_TURN`), reduces the targets of every i
 ``np.minimum``, refines, and runs again until `refine` returns the same mesh, starting from
 `initial_theta` (pass `GalerkinModel.breakpoints` on: the profile's, where the pressure has a
 singular derivative). ``rtol`` is the relative accuracy asked of the energy dissipated in each
-increment; the elements that hold the stick/slip boundaries of any step are at most
-``BOUNDARY_SPAN rtol a`` in x, which bounds the error of the located ends. An increment from one
-turning point (or cut) to the next slips where the boundaries of the steps between have swept,
-so its slip zones get elements of that size too. Accuracy on closed forms: benchmarks/galerkin_convergence.py;
+increment, with elements of at most ``ENERGY_SPAN rtol a`` in x in its slip zones; its second
+stage bisects the elements that hold the recorded steps' stick ends to ``BOUNDARY_SPAN rtol a``,
+which bounds the error of the located ends. An increment from one turning point (or cut) to the
+next slips where the boundaries of the steps between have swept, so its slip zones get elements
+of that size too. Accuracy on closed forms: benchmarks/galerkin_convergence.py;
 at every step of general histories: benchmarks/trajectories.py.
 """
 
@@ -147,6 +148,11 @@ BOUNDARY_ERROR = 40.0
 #: before can leave its end up to about one element off, so the element itself is held to the
 #: accuracy asked of the ends, ``1e-3 a`` at the default rtol (benchmarks/trajectories.py).
 BOUNDARY_SPAN = 10.0
+#: The span, in units of ``rtol a``, of those elements in the mesh adapted to the energy (the
+#: first stage of `fretting.engine.adaptation.adapted_model`), and where no step between two
+#: turning points is recorded: the energy of the histories of benchmarks/trajectories.py is then
+#: within 1e-4, their located ends within about ``ENERGY_SPAN rtol a``.
+ENERGY_SPAN = 50.0
 #: Elements at a pressure breakpoint span this fraction of ``BOUNDARY_SPAN rtol a``: with a
 #: larger span the traction's ``d ln d`` there errs most at the node nearest the end of a rounded
 #: flat (tests/test_galerkin.py::test_rounded_flat).
@@ -834,7 +840,9 @@ def initial_theta(M=None):
     return theta
 
 
-def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
+def element_targets(
+    theta, ds, rtol=DEFAULT_RTOL, breakpoints=(), swept=BOUNDARY_SPAN, end=BOUNDARY_SPAN, levels=LEVELS_PER_PASS
+):
     """Largest element sizes [rad] that resolve the stick and slip zones of an increment.
 
     The nodes' status (stuck: ``ds == 0``, slipping forward, slipping backward) splits
@@ -842,20 +850,21 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
     Asked for:
 
     - inside a zone of width ``w``: ``zone_fraction(rtol) w`` (`ZONE_ELEMENTS` elements or more),
-      and inside a slip zone at most ``BOUNDARY_SPAN rtol a`` in x: the boundaries of the steps
-      between two turning points sweep it;
+      and inside a slip zone at most ``swept rtol a`` in x: the boundaries of the steps between
+      two turning points sweep it;
     - the element holding a boundary: ``boundary_fraction(rtol) w`` of the narrower zone beside
       it (or of its distance to the nearest of `breakpoints`, where the pressure has a singular
       derivative), since the energy error a boundary leaves falls like ``(size / w)^(5/2)``, and at most
-      ``BOUNDARY_SPAN rtol a`` in x, the accuracy asked of the located ends;
+      ``end rtol a`` in x, the accuracy asked of the located ends;
     - around a boundary, ``BOUNDARY_GRADING`` times the distance from it;
     - at each of `breakpoints`, ``BREAKPOINT_SPAN BOUNDARY_SPAN rtol a`` in x, graded the same way, whatever
       the increment: the traction inherits the pressure's singular derivative there;
     - a zone seen at fewer than `MIN_ZONE_NODES` nodes (its width is a guess), or neighbours
       slipping in opposite directions (a stick zone hides between them): half the element.
 
-    No element is asked to shrink by more than ``2^LEVELS_PER_PASS`` in one pass, so that the
-    zones are located again on the finer mesh, nor below `MIN_SIZE`.
+    No element is asked to shrink by more than ``2^levels`` in one pass (None: no limit, where the
+    zones are located already), so that the zones are located again on the finer mesh, nor below
+    `MIN_SIZE`.
 
     Parameters
     ----------
@@ -872,6 +881,12 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
         the ends of a rounded flat, those a `Gap` is given), so that a stick zone ending near one
         is located to a fraction of its distance from it.
 
+    swept, end : float
+        Largest span, in units of ``rtol a`` in x, of the elements of the slip zones (swept by the
+        boundaries of the steps inside the increment) and of those holding the increment's own
+        boundaries: `BOUNDARY_SPAN` where those steps' stick ends are recorded, `ENERGY_SPAN`
+        where only the energy is.
+
     Returns
     -------
     ndarray, shape (M,)
@@ -881,7 +896,8 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
     if ds.shape[-1] != theta.size or ds.ndim not in (1, 2):
         raise ValueError(f"ds must have {theta.size} values a row, one per node of theta; found shape {ds.shape}")
     if ds.ndim == 2:
-        return np.minimum.reduce([element_targets(theta, row, rtol, breakpoints) for row in ds], initial=np.inf)
+        rows = [element_targets(theta, row, rtol, breakpoints, swept, end, levels) for row in ds]
+        return np.minimum.reduce(rows, initial=np.inf)
     d = ds[::-1]  # theta order
     h = np.diff(theta)
     targets = np.full(h.size, np.inf)
@@ -890,7 +906,7 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
     status = np.sign(d)
     inside = np.flatnonzero(status[1:] != status[:-1])  # element k holds a boundary
     if inside.size == 0:
-        return np.maximum(targets, np.maximum(h / 2**LEVELS_PER_PASS, MIN_SIZE))
+        return np.maximum(targets, MIN_SIZE if levels is None else np.maximum(h / 2**levels, MIN_SIZE))
     ends = np.concatenate([[0.0], [_boundary_position(theta, d, k) for k in inside], [np.pi]])
     nodes = np.diff(np.concatenate([[0], inside + 1, [d.size]]))
     width = np.diff(ends)
@@ -902,20 +918,20 @@ def element_targets(theta, ds, rtol=DEFAULT_RTOL, breakpoints=()):
         else:
             size = width[zone] * zone_fraction(rtol)
         if zone_status[zone]:  # swept by the boundaries of the steps between: locate them too
-            size = np.minimum(size, _span((theta[:-1] + theta[1:])[overlapping] / 2, rtol))
+            size = np.minimum(size, _span((theta[:-1] + theta[1:])[overlapping] / 2, rtol, swept))
         targets[overlapping] = np.minimum(targets[overlapping], size)
     for zone, (k, position) in enumerate(zip(inside, ends[1:-1], strict=True)):  # between zone and zone + 1
         scale = min(width[zone], width[zone + 1], *(abs(position - b) or np.inf for b in breakpoints))
-        size = min(boundary_fraction(rtol) * scale, _span(position, rtol))
+        size = min(boundary_fraction(rtol) * scale, _span(position, rtol, end))
         targets = np.minimum(targets, _graded_toward(theta, position, size))
         if status[k] * status[k + 1] < 0:
             targets[k] = min(targets[k], h[k] / 2)
-    return np.maximum(targets, np.maximum(h / 2**LEVELS_PER_PASS, MIN_SIZE))
+    return np.maximum(targets, MIN_SIZE if levels is None else np.maximum(h / 2**levels, MIN_SIZE))
 
 
-def _span(position, rtol):
-    """Size [rad] of an element at `position` [rad] that spans ``BOUNDARY_SPAN rtol a`` in x."""
-    return BOUNDARY_SPAN * rtol / np.maximum(np.sin(position), BOUNDARY_SPAN * rtol / np.pi)
+def _span(position, rtol, span=BOUNDARY_SPAN):
+    """Size [rad] of an element at `position` [rad] that spans ``span rtol a`` in x."""
+    return span * rtol / np.maximum(np.sin(position), span * rtol / np.pi)
 
 
 def _graded_toward(theta, position, size):

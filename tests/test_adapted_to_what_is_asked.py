@@ -1,0 +1,126 @@
+"""The mesh adapted to what a run asks of it: the stick ends of the recorded steps only (issue 18),
+and a long history's turning points through a sample of them (issue 21), recorded and said."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+import fretting as fr
+from fretting.engine import adaptation, choice
+from fretting.engine.choice import MeshSampleWarning
+
+SAMPLE = 8
+
+
+@pytest.fixture
+def small_sample(monkeypatch):
+    monkeypatch.setattr(adaptation, "SAMPLE_TURNS", SAMPLE)
+
+
+@pytest.fixture
+def contact():
+    return fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+
+
+def in_phase_cycles(contact, cycles, amplitudes=None):
+    """Q and sigma in phase between +-amplitude (fractions of f P and f p0), one vertex a reversal."""
+    amplitudes = np.full(cycles, 0.5) if amplitudes is None else amplitudes
+    levels = np.r_[0.0, np.ravel(np.c_[amplitudes, -amplitudes])]
+    return fr.History.piecewise_linear(levels * contact.f * contact.P, levels * 0.5 * contact.f * contact.p0, 4)
+
+
+def turning(contact, history):
+    return history.turning_points(adaptation.MAX_TURN, (np.pi * contact.a, 4.0))
+
+
+def whole(contact, history, theta):
+    """The model the energy passes (`adapted_model`'s first stage) over all of `history`'s turning
+    points reach from the mesh `theta`."""
+    points = turning(contact, history)
+    spans = np.full((len(points), 2), fr.models.galerkin.ENERGY_SPAN)
+    run = adaptation._Adaptation(contact, history, fr.models.galerkin.DEFAULT_RTOL, None, False, spans)
+    return run(points, theta)
+
+
+def test_repeating_cycles_adapt_to_a_sample_that_needs_nothing_more(contact, small_sample):
+    history = in_phase_cycles(contact, 12)
+    assert len(turning(contact, history)) > 2 * SAMPLE
+    model = adaptation.adapted_model(contact, history, recorded=[])  # the energy's mesh alone
+    assert model.spec.sample is not None and f"first {2 * SAMPLE} of" in model.spec.sample
+    # the passes over every turning point of the history refine nothing of the sampled mesh
+    assert np.array_equal(whole(contact, history, model.theta).theta, model.theta)
+
+
+def test_growing_zones_adapt_to_the_whole_history(contact, small_sample):
+    amplitudes = np.linspace(0.1, 0.7, 6)  # each cycle's slip zones reach beyond the last's
+    history = in_phase_cycles(contact, amplitudes.size, amplitudes)
+    model = adaptation.adapted_model(contact, history, recorded=[])
+    assert model.spec.sample is None  # every doubling grew the mesh, up to the whole history
+
+
+def test_short_histories_adapt_as_before(contact, monkeypatch):
+    history = in_phase_cycles(contact, 3)
+    default = adaptation.adapted_model(contact, history)
+    monkeypatch.setattr(adaptation, "SAMPLE_TURNS", 10**6)
+    assert np.array_equal(adaptation.adapted_model(contact, history).theta, default.theta)
+    assert default.spec.sample is None
+
+
+def test_the_sample_is_recorded_and_said(contact, small_sample):
+    history = in_phase_cycles(contact, 12)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = fr.simulate(contact, history)
+    said = [w for w in caught if issubclass(w.category, MeshSampleWarning)]
+    assert len(said) == 1 and "turning points" in str(said[0].message)
+    assert result.attrs["model_sample"] in str(said[0].message)
+    assert "model_fallback" not in result.attrs
+    again = fr.models.galerkin.Mesh.from_record(result.attrs, result.theta.values[::-1].copy())
+    assert again.sample == result.attrs["model_sample"]
+
+
+def walk(contact):
+    """Straight segments of Q and sigma, none proportional to the one before."""
+    vertices = np.array([(0, 0), (0.5, 0.6), (-0.3, 0.9), (0.4, -0.8), (-0.6, -0.2)])
+    return fr.History.piecewise_linear(
+        vertices[:, 0] * contact.f * contact.P, vertices[:, 1] * contact.f * contact.p0, 8
+    )
+
+
+def ends(result):
+    return np.stack([result.stick_start.values, result.stick_end.values])
+
+
+def test_steps_not_recorded_are_resolved_for_their_energy_alone(contact):
+    """Recording the vertices only, the steps between need no located ends: a coarser mesh, the
+    same energy to rtol, the vertices' stick ends as located as with every step recorded."""
+    history = walk(contact)
+    every = fr.simulate(contact, history)
+    vertices = fr.simulate(contact, history, record=history.vertex_step)
+    assert vertices.sizes["x"] < 0.7 * every.sizes["x"]
+    np.testing.assert_allclose(vertices.total_dissipation, every.total_dissipation, rtol=1e-4)
+    located = ends(every)[:, history.vertex_step]
+    np.testing.assert_allclose(ends(vertices), located, rtol=0, atol=1e-3 * contact.a, equal_nan=True)
+
+
+def test_a_step_recorded_inside_a_stretch_refines_that_stretch(contact):
+    history = walk(contact)
+    middle = (history.vertex_step[2] + history.vertex_step[3]) // 2
+    vertices = adaptation.adapted_model(contact, history, recorded=history.vertex_step)
+    with_middle = adaptation.adapted_model(contact, history, recorded=np.sort(np.r_[history.vertex_step, middle]))
+    every = adaptation.adapted_model(contact, history)
+    assert vertices.theta.size < with_middle.theta.size < every.theta.size
+
+
+def test_ends_past_the_bound_run_the_energy_mesh_and_say_so(contact, monkeypatch):
+    """Where the mesh that locates the recorded steps' stick ends would pass the default's bound,
+    the mesh adapted to the energy runs: recorded and said, with the accuracy its ends reach."""
+    history = walk(contact)
+    energy_only = adaptation.adapted_model(contact, history, recorded=[])
+    monkeypatch.setattr(choice, "MAX_DEFAULT_MESH", energy_only.theta.size + 50)
+    with pytest.warns(fr.ModelFallbackWarning, match="locates the stick ends") as said:
+        result = fr.simulate(contact, history)
+    assert result.sizes["x"] <= choice.MAX_DEFAULT_MESH < adaptation.adapted_model(contact, history).theta.size
+    assert result.attrs["model_fallback"] in str(said[0].message)
+    assert "err by up to about 0.005 a" in result.attrs["model_fallback"]
