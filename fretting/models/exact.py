@@ -144,9 +144,7 @@ def nodes_theta(contact, history, N):
     theta = np.concatenate([edge[::-1], grid, np.pi - edge])
     if history is None:
         return theta
-    fP = contact.f * contact.P
-    loads = np.abs(history.Q)
-    largest = loads[loads < fP].max(initial=0.0)
+    largest = history.largest_Q_below(contact.f * contact.P)
     c = contact.profile.half_width(contact.P - largest / contact.f, contact.E_star)[0] / contact.a
     if np.count_nonzero(np.abs(np.cos(theta)) < c) < STICK_NODES:
         theta = np.union1d(theta, np.arccos(c * np.cos(chebyshev_angles(STICK_NODES))))
