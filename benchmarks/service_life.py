@@ -12,15 +12,20 @@ in a fresh process, on one BLAS thread:
   of the steps alone and the error of skipping them;
 - random Q alone, the default (the exact model): energy per cycle against the Masing walk of
   the Mindlin-Deresiewicz closed form over every cycle (`masing_energy`);
-- peak memory of each at 10 times fewer cycles, to show that it does not grow with the cycles
-  (histories past 625 cycles record the same 8192 steps).
+- peak memory of each at 10 times fewer cycles, to show that it grows with the cycles only by the
+  history's loads (histories past 625 cycles record the same 8192 steps);
+- 10^6 cycles: Q alone run with ``--million``, else (and in phase) the CPU time extrapolated.
+
+The table ends each row with the issue's target and whether it is met ("?" where the row does not
+give that figure).
 
 CPU time is the child's user + system time and peak memory its maximum resident set
 (`resource.getrusage` of a wrapper process that runs only that child). Cycles beyond those run
 are extrapolated linearly in the cycles, and printed as such.
 
-Run:  python benchmarks/service_life.py [--short]   (--short: 10^3 cycles in phase and 10^4 of Q
-alone, two minutes; default 10^4 and 10^5, about 15 minutes)
+Run:  python benchmarks/service_life.py [--short] [--Q-alone] [--million]   (--short: 10^3 cycles in
+phase and 10^4 of Q alone, two minutes; default 10^4 and 10^5, about 15 minutes; --Q-alone: the
+rows of Q alone only; --million: 10^6 cycles of Q alone as well, a quarter of an hour more)
 """
 
 import argparse
@@ -30,6 +35,7 @@ import subprocess
 import sys
 import tempfile
 import tomllib
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -101,46 +107,98 @@ def worst(energy, reference):
     return float(np.max(np.abs(energy / reference - 1)))
 
 
-def report(label, cycles, seconds, peak, error, against):
-    """One line of the table."""
-    print(f"{label:<34} {cycles:>9,} cycles  {seconds:8.1f} s CPU  {peak / 1e6:6.0f} MB  ", end="")
-    print(f"energy error {error:.1e} ({against})")
+#: The issue's targets, by row: CPU time [s], peak memory [bytes], energy error, at 10^4 cycles in
+#: phase and 10^6 cycles of each.
+TARGETS = {
+    ("in phase", 10**4): (30.0, None, 1e-4),
+    ("in phase", 10**6): (30 * 60.0, 1e9, None),
+    ("Q alone", 10**6): (120.0, 1e9, 1e-9),
+}
 
 
-def main(short=False):
+@dataclass
+class Row:
+    """One row of the table: a run measured (or extrapolated from one, `measured` False)."""
+
+    history: str
+    model: str
+    cycles: int
+    seconds: float
+    peak: float | None
+    error: float | None
+    against: str = ""
+    measured: bool = True
+
+    def line(self):
+        target = TARGETS.get((self.history, self.cycles))
+        peak = "not run" if self.peak is None else f"{self.peak / 1e6:.0f} MB"
+        error = "" if self.error is None else f"{self.error:.1e}"
+        seconds = f"{self.seconds:.1f} s" if self.measured else f"{self.seconds:.0f} s (extrapolated)"
+        met = "" if target is None else _met(target, self)
+        return f"| {self.history} | {self.model} | {self.cycles:,} | {seconds} | {peak} | {error} | {met} |"
+
+
+def _met(target, row):
+    """The target of `row` and whether it is met (a part not run or not extrapolated: unknown)."""
+    limits = [(row.seconds, target[0], f"{target[0]:.0f} s")]
+    limits += [(row.peak, target[1], "1 GB")] if target[1] is not None else []
+    limits += [(row.error, target[2], f"{target[2]:.0e}")] if target[2] is not None else []
+    words = [
+        f"{text} {'?' if value is None else ('met' if value <= limit else 'MISSED')}" for value, limit, text in limits
+    ]
+    return ", ".join(words)
+
+
+def table(rows):
+    """The rows as a Markdown table with the issue's targets, and what each energy error is against."""
+    print("| history (random amplitudes) | model | cycles | CPU | peak memory | energy error | target |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | --- |")
+    for row in rows:
+        print(row.line())
+    for row in rows:
+        if row.against:
+            print(f"- {row.history}, {row.model}, {row.cycles:,} cycles: energy error against {row.against}")
+
+
+def in_phase_rows(folder, cycles):
+    """Random in-phase Q and sigma: the default and the fixed grid, each against --every-step."""
+    rows, prefix = [], min(PREFIX, cycles)
+    for options in ((), ("--nodes", str(GRID))):
+        output, seconds, peak = run(folder, cycles, True, *options)
+        reference = run(folder, prefix, True, *options, "--every-step")[0]
+        error = worst(fr.load(output).cycle_dissipation.values[:prefix], fr.load(reference).cycle_dissipation.values)
+        against = f"--every-step on the first {prefix} cycles ({_nodes(reference)})"
+        rows.append(Row("in phase", _nodes(output), cycles, seconds, peak, error, against))
+        fewer = run(folder, cycles // 10, True, *options)
+        rows.append(Row("in phase", _nodes(fewer[0]), cycles // 10, fewer[1], fewer[2], None))
+    rows.append(_extrapolated(rows[0], 10**6))
+    return rows
+
+
+def Q_alone_rows(folder, cycles, million):
+    """Random Q alone (the exact model) against the Masing closed form, every cycle; and 10^6 cycles
+    run if `million`, else extrapolated."""
+    rows = []
+    for count in (cycles, cycles // 10, *((10**6,) if million and cycles != 10**6 else ())):
+        output, seconds, peak = run(folder, count, False)
+        error = worst(fr.load(output).cycle_dissipation.values, masing_energy(output.with_suffix(".toml")))
+        rows.append(Row("Q alone", _nodes(output), count, seconds, peak, error, "Masing closed form"))
+    if rows[-1].cycles != 10**6:
+        rows.append(_extrapolated(rows[0], 10**6))
+    return rows
+
+
+def _extrapolated(row, cycles):
+    """`row` at `cycles`, its CPU time linear in the cycles; memory and error not known."""
+    return Row(row.history, row.model, cycles, row.seconds / row.cycles * cycles, None, None, measured=False)
+
+
+def main(short=False, Q_only=False, million=False):
     in_phase, Q_alone = (10**3, 10**4) if short else (10**4, 10**5)
     with tempfile.TemporaryDirectory() as directory:
         folder = Path(directory)
-        output, seconds, peak = run(folder, in_phase, True)
-        result = fr.load(output)
-        prefix = min(PREFIX, in_phase)
-        reference = fr.load(run(folder, prefix, True, "--every-step")[0])
-        error = worst(result.cycle_dissipation.values[:prefix], reference.cycle_dissipation.values)
-        model = f"{result.attrs['model']}, {result.attrs['nodes']} nodes"
-        against = (
-            f"--every-step on the first {prefix} cycles: {reference.attrs['model']}, {reference.attrs['nodes']} nodes"
-        )
-        report(f"in-phase Q and sigma ({model})", in_phase, seconds, peak, error, against)
-        print(f"  -> 10^4 cycles: {seconds / in_phase * 1e4:.0f} s (target 30 s, energy within 1e-4)")
-        print(f"  -> 10^6 cycles: {seconds / in_phase * 1e6 / 60:.0f} min, extrapolated (target 30 min, 1 GB)")
-        fewer = run(folder, in_phase // 10, True)
-        print(f"  peak memory at {in_phase // 10:,} cycles: {fewer[2] / 1e6:.0f} MB ({_nodes(fewer[0])})")
-
-        output, seconds, peak = run(folder, in_phase, True, "--nodes", str(GRID))
-        reference = run(folder, prefix, True, "--nodes", str(GRID), "--every-step")[0]
-        error = worst(fr.load(output).cycle_dissipation.values[:prefix], fr.load(reference).cycle_dissipation.values)
-        against = f"--every-step on the first {prefix} cycles, same grid"
-        report(f"in-phase Q and sigma (--nodes {GRID})", in_phase, seconds, peak, error, against)
-        fewer = run(folder, in_phase // 10, True, "--nodes", str(GRID))
-        print(f"  peak memory at {in_phase // 10:,} cycles: {fewer[2] / 1e6:.0f} MB")
-
-        output, seconds, peak = run(folder, Q_alone, False)
-        result = fr.load(output)
-        error = worst(result.cycle_dissipation.values, masing_energy(output.with_suffix(".toml")))
-        report(f"Q alone ({result.attrs['model']})", Q_alone, seconds, peak, error, "Masing closed form, every cycle")
-        print(f"  -> 10^6 cycles: {seconds / Q_alone * 1e6 / 60:.1f} min, extrapolated (target 2 min, 1 GB, 1e-9)")
-        fewer = run(folder, Q_alone // 10, False)
-        print(f"  peak memory at {Q_alone // 10:,} cycles: {fewer[2] / 1e6:.0f} MB ({_nodes(fewer[0])})")
+        rows = [] if Q_only else in_phase_rows(folder, in_phase)
+        table(rows + Q_alone_rows(folder, Q_alone, million))
 
 
 def _nodes(output):
@@ -152,4 +210,7 @@ def _nodes(output):
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--short", action="store_true", help="10 times fewer cycles: a quick check")
-    main(parser.parse_args().short)
+    parser.add_argument("--Q-alone", action="store_true", dest="Q_only", help="the rows of Q alone only")
+    parser.add_argument("--million", action="store_true", help="also run 10^6 cycles of Q alone (minutes)")
+    arguments = parser.parse_args()
+    main(arguments.short, arguments.Q_only, arguments.million)

@@ -143,13 +143,28 @@ def mean_slip(contact, Q):
 
 @pytest.mark.parametrize(
     ("psi", "rel"),
-    [(0.001, 1e-10), (0.01, 1e-12), (0.2, 1e-12), (0.3, 1e-12), (0.6, 1e-12), (0.9, 1e-12), (0.95, 1e-12)],
+    [(0.001, 1e-12), (0.01, 1e-12), (0.2, 1e-12), (0.3, 1e-12), (0.6, 1e-12), (0.9, 1e-12), (0.95, 1e-12)],
 )
 def test_compliance_is_the_mean_slip_of_cattaneo_mindlin(hertz, psi, rel):
-    """At 0.001 the quadrature, of a slip formula that cancels there, is good to 1e-10 only."""
+    """Also at 0.001, where the slip zones are 5e-4 a thin (`cf.hertz_slip_shape` does not cancel)."""
     Q = psi * hertz.f * hertz.P
     assert cf.cattaneo_mindlin_compliance(hertz, Q) == pytest.approx(mean_slip(hertz, Q), rel=rel)
     assert cf.cattaneo_mindlin_compliance(hertz, -Q) == -cf.cattaneo_mindlin_compliance(hertz, Q)
+
+
+@pytest.mark.parametrize("X", [1 + 1e-14, 1 + 1e-9, 1 + 1e-4, 1.1, 1.118, 1.119, 2.0, 1e3])
+def test_hertz_slip_shape_is_its_integral_without_cancellation(X):
+    """``X sqrt(X^2 - b^2) - b^2 arccosh(X / b) = 2 b^2 int_0^z t^2 / sqrt(1 + t^2) dt`` with
+    ``z = sqrt(X^2 - b^2) / b`` (its derivative in ``X`` is ``2 sqrt(X^2 - b^2)``, eq 19), by
+    adaptive quadrature, to 1e-13 of itself from ``X - b = 1e-14 b``, where the closed form's two
+    terms are 1e13 times their difference, to ``1e3 b``, on both sides of the series' threshold
+    (``z = 1/2`` at ``X = 1.118 b``); zero at ``X = b`` and ``X^2`` for ``b = 0``."""
+    b = 3e-4
+    z = math.sqrt((X - 1) * (X + 1))
+    integral = 2 * b**2 * integrate.quad(lambda t: t**2 / math.sqrt(1 + t**2), 0, z, epsabs=0, epsrel=1e-13)[0]
+    assert cf.hertz_slip_shape(np.array([X * b, -X * b]), b) == pytest.approx(integral, rel=1e-13)
+    assert cf.hertz_slip_shape(b, b) == 0
+    assert cf.hertz_slip_shape(X * b, 0.0) == (X * b) ** 2
 
 
 @pytest.mark.parametrize("psi", [0.02, 0.05, 0.3, 0.5, 0.8, 0.9])

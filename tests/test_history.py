@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import fretting as fr
+from fretting.loading import history as history_module
 from fretting.loading.history import RAMP_STEPS
 
 History = fr.History
@@ -127,6 +128,10 @@ def test_cycles_may_pause_but_not_go_back():
         History([0, 1, 2], [0] * 3, [0], cycle=[0, 2, 1])
     with pytest.raises(fr.HistoryError, match="cycle"):
         History([0, 1, 2], [0] * 3, [0], cycle=[0, -1, 1])
+    with pytest.raises(fr.HistoryError, match="at most 2147483647"):
+        History([0, 1, 2], [0] * 3, [0], cycle=[0, 1, 2**31])
+    with pytest.raises(fr.HistoryError, match="cycle"):
+        History([0, 1, 2], [0] * 3, [0], cycle=[0, 1.0, 1.0])
 
 
 def test_engine_counts_energy_per_cycle(hertz):
@@ -135,6 +140,7 @@ def test_engine_counts_energy_per_cycle(hertz):
     history = History.sinusoidal(0.5 * fP, cycles=3, steps_per_cycle=32)
     result = fr.simulate(hertz, history, nodes=64)
     np.testing.assert_array_equal(result.cycle.values, history.cycle)
+    assert result.cycle.dtype == np.int64  # the result's, whatever the History holds them in
     energy = result.cycle_dissipation.values
     assert energy.shape == (3,)
     assert energy[1] == pytest.approx(energy[2], rel=1e-9)
@@ -161,3 +167,41 @@ def test_segments_hold_equal_vertices_exactly():
     dwell = slice(history.vertex_step[1], history.vertex_step[2] + 1)
     assert np.all(history.Q[dwell] == Q[1]) and np.all(history.sigma[history.vertex_step[1] :][:9] == 0.7)
     np.testing.assert_array_equal(history.Q[history.vertex_step], Q)
+
+
+@pytest.mark.parametrize("steps", [[3, 1, 7, 3, 7], 5])
+def test_segments_are_the_straight_line_of_each(steps):
+    """``v_i + (v_(i+1) - v_i) (k / n)`` on each segment, bit for bit, computed segment by segment
+    here, with one step count for all segments (the output filled row by row) or several."""
+    Q = np.array([0.0, 1.5, -2.25, 3.125, 0.1, 7.3])
+    history = History.piecewise_linear(Q, Q / 3, steps)
+    counts = np.broadcast_to(steps, (Q.size - 1,))
+    expected = [Q[:1]]
+    for i, n in enumerate(counts):
+        line = Q[i] + (Q[i + 1] - Q[i]) * (np.arange(1, n + 1) / n)
+        line[-1] = Q[i + 1]
+        expected.append(line)
+    np.testing.assert_array_equal(history.Q, np.concatenate(expected))
+    np.testing.assert_array_equal(history.vertex_step, np.concatenate([[0], np.cumsum(counts)]))
+
+
+def test_a_load_that_never_changes_takes_no_memory_per_step():
+    """10^5 random cycles of Q alone: sigma is one zero broadcast to every step (stride 0), the
+    cycle numbers take 4 bytes a step, and they are those of the segments, two to a cycle."""
+    history = History.random_amplitude(10**5, 4e4, steps_per_segment=3)
+    assert history.sigma.strides == (0,) and history.sigma.shape == history.Q.shape and not history.sigma.any()
+    assert history.Q.strides == (8,) and history.cycle.dtype == np.int32
+    np.testing.assert_array_equal(history.cycle, np.concatenate([[0], np.repeat(np.arange(1, 10**5 + 1), 6)]))
+
+
+def test_passes_over_a_history_by_blocks(monkeypatch):
+    """Blocks of 4 steps: the largest |Q| below a bound and the check of the cycle numbers see
+    every step, also across the blocks' ends."""
+    monkeypatch.setattr(history_module, "BLOCK_STEPS", 4)
+    Q = np.array([0.0, 3.0, -9.0, 2.0, -5.0, 12.0, -7.5, 4.0, 10.0, 1.0])
+    history = History(Q, np.zeros(Q.size), [0])
+    assert history.largest_Q_below(8.0) == 7.5 and history.largest_Q_below(100.0) == 12.0
+    assert history.largest_Q_below(1.0) == 0.0
+    History(Q, np.zeros(Q.size), [0], cycle=[0, 1, 1, 1, 0, 0, 2, 2, 3, 3])
+    with pytest.raises(fr.HistoryError, match="cycle"):
+        History(Q, np.zeros(Q.size), [0], cycle=[0, 1, 1, 2, 0, 1, 2, 2, 3, 3])  # back to 1 in the second block

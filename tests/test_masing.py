@@ -30,16 +30,32 @@ def nested(contact, steps=4):
     return fr.History.piecewise_linear(np.array(NESTED) * contact.f * contact.P, None, steps)
 
 
-@pytest.mark.parametrize("psi", [0.1, 0.3, 0.999999])
+@pytest.mark.parametrize("psi", [1e-4, 0.1, 0.3, 0.999999])
 def test_gap_of_hertz_is_cattaneo_mindlin(hertz, psi):
-    """``s = f g_c`` is eq (19) integrated (closed_forms.cattaneo_mindlin_slip), to 1e-12 of its
-    largest value (the closed form's two terms cancel near ``c``, and at small ``psi`` everywhere)."""
+    """``s = f g_c`` is eq (19) integrated (closed_forms.cattaneo_mindlin_slip), to 1e-12 of itself
+    at every point, also just outside ``c`` and in the thin slip zones of small ``psi``."""
     Q = psi * hertz.f * hertz.P
     c = cf.stick_half_width(hertz, Q)
     x = np.linspace(c, hertz.a, 300)
     reference = cf.cattaneo_mindlin_slip(hertz, Q, x)
     slip = hertz.f * masing.gap(hertz.profile, hertz.E_star, c, x)
-    np.testing.assert_allclose(slip, reference, rtol=0, atol=1e-12 * reference.max())
+    np.testing.assert_allclose(slip, reference, rtol=1e-12, atol=0)
+
+
+@pytest.mark.parametrize("ratio", [1e-6, 1e-4, 1e-2, 0.5, 0.9, 0.999, 1 - 1e-6])
+def test_hertz_closed_forms_are_the_quadrature(hertz, ratio):
+    """On Hertz the exact model's branches are closed forms (`masing._hertz_slip_zones`); the
+    quadrature of any other symmetric profile (`masing._quadrature_slip_zones`) gives them, from a
+    stick zone of 1e-6 a to a slip zone of 1e-6 a: the slip at every point to 1e-12 of itself, the
+    energy and delta_Q to ``1e-12 + 1e-15 / (1 - (c/a)^2)`` (the quadrature's pressure
+    ``p0 sqrt(1 - (X/a)^2)`` near the edge is known to ``eps / (1 - (X/a)^2)``)."""
+    c = ratio * hertz.a
+    x = np.linspace(c, hertz.a, 301) * np.where(np.arange(301) % 2, 1, -1)
+    closed, quadrature = masing._hertz_slip_zones(hertz, c, x), masing._quadrature_slip_zones(hertz, c, x)
+    np.testing.assert_allclose(closed[0], quadrature[0], rtol=1e-12, atol=0)
+    rtol = 1e-12 + 1e-15 / (1 - ratio**2)
+    assert closed[1] == pytest.approx(quadrature[1], rel=rtol)
+    assert closed[2] == pytest.approx(quadrature[2], rel=rtol)
 
 
 @pytest.mark.parametrize("psi", [0.5, 0.99, 0.999999])
@@ -68,9 +84,9 @@ def test_gap_of_the_rounded_flat_solves_eq_1(psi):
 def test_cycle_energy_and_delta_Q_of_hertz(hertz, psi):
     """Steady cycles of ``Q = +-Q*``: the energy per cycle is Masing's closed form and ``delta_Q``
     at the first peak Cattaneo-Mindlin's, from 1e-6 fP (the cubic law, no noise floor) to
-    0.95 fP, to ``1e-12 + 1e-15 / psi``: in a slip zone ``1 - (x/a)^2 <= psi`` wide, the
-    pressure ``p0 sqrt(1 - (x/a)^2)`` at a point ``x`` is known to ``eps / (1 - (x/a)^2)``
-    (measured: 3.5e-10 at 1e-6)."""
+    0.95 fP, to ``1e-12 + 1e-15 / psi``: a branch is solved for its corrective load
+    ``P_c = P - |Q - Q_k| / (k f)``, known to ``eps P``, so its ``psi = 1 - P_c / P`` is known to
+    ``eps / psi``."""
     Q_star = psi * hertz.f * hertz.P
     rtol = 1e-12 + 1e-15 / psi
     result = exact(hertz, fr.History.sinusoidal(Q_star, cycles=3, steps_per_cycle=16))

@@ -116,7 +116,7 @@ class Recorder:
         model, history, steps = self.model, self.history, self.steps
         data = self.fields | _zone_ends(model.contact, self.zones)
         if history.cycle is not None:
-            data["cycle"] = history.cycle[steps]
+            data["cycle"] = history.cycle[steps].astype(np.int64)  # the History holds it in 32 bits
             data |= _cycle_rows(self.cycles, model.x.size, SKIPPED_PEAKS if self.skipping else ())
         tally = state.tally
         return (

@@ -17,6 +17,13 @@ __all__ = ["History", "RAMP_STEPS"]
 #: default 64 steps per cycle, the steps a sinusoid takes to rise from its mean to its peak.
 RAMP_STEPS = 16
 
+#: Steps that a pass over a whole history (`History.largest_Q_below`, the check of its cycle
+#: numbers) takes at a time: its temporary arrays stay small however long the history.
+BLOCK_STEPS = 2**20
+
+#: Largest cycle number of a history: its cycle numbers are held as int32.
+CYCLE_LIMIT = np.iinfo(np.int32).max
+
 
 @dataclass(frozen=True, eq=False)
 class History:
@@ -30,10 +37,11 @@ class History:
         Differential bulk tension [Pa].
     vertex_step : ndarray of int, shape (n_vertices,)
         Step at which each vertex of the path is reached.
-    cycle : ndarray of int, shape (n_steps,), optional
+    cycle : ndarray of int32, shape (n_steps,), optional
         Load cycle (1, 2, ...) that the increment ending at each step belongs to; 0 for
         steps outside any cycle (the starting state, ramps). Each cycle is one run of steps:
-        the non-zero numbers never decrease. None for histories without cycles.
+        the non-zero numbers never decrease. None for histories without cycles. Held in 32 bits
+        (at most `CYCLE_LIMIT`): 4 bytes a step of a long history.
     P : ndarray, shape (n_steps,), optional
         Normal load per unit length [N/m], positive; step 0 is the load at which the contact is
         formed (the contact's ``P``). None: the contact's constant ``P``.
@@ -55,8 +63,13 @@ class History:
             raise HistoryError("vertex_step must be non-decreasing steps of the history")
         arrays = {"Q": Q, "sigma": sigma, "vertex_step": vertex_step}
         if self.cycle is not None:
-            cycle = np.asarray(self.cycle, dtype=np.int64)
-            if cycle.shape != Q.shape or np.any(cycle < 0) or _decreases(cycle[cycle > 0]):
+            cycle = np.asarray(self.cycle)
+            if cycle.shape != Q.shape or not np.issubdtype(cycle.dtype, np.integer) or np.any(cycle < 0):
+                raise HistoryError("cycle must give a cycle number >= 0 for every step, non-zero ones non-decreasing")
+            if cycle.size and cycle.max() > CYCLE_LIMIT:
+                raise HistoryError(f"cycle numbers must be at most {CYCLE_LIMIT}, found {cycle.max()}")
+            cycle = cycle.astype(np.int32, copy=False)
+            if _positives_decrease(cycle):
                 raise HistoryError("cycle must give a cycle number >= 0 for every step, non-zero ones non-decreasing")
             arrays["cycle"] = cycle
         if self.P is not None:
@@ -108,6 +121,17 @@ class History:
     def cycle_count(self):
         """Number of the last load cycle; 0 for a history without cycles."""
         return int(_cycles(self).max())
+
+    def largest_Q_below(self, bound):
+        """Largest ``|Q|`` [N/m] of the steps where it is below `bound` [N/m]; 0 if there is none.
+
+        Taken `BLOCK_STEPS` steps at a time, with no temporary array of the whole history.
+        """
+        largest = 0.0
+        for start in range(0, len(self), BLOCK_STEPS):
+            loads = np.abs(self.Q[start : start + BLOCK_STEPS])
+            largest = max(largest, float(loads.max(where=loads < bound, initial=0.0)))
+        return largest
 
     def turning_steps(self, max_turn=None, units=(1.0, 1.0)):
         """Steps of the path's turning points, ascending: the first and last steps, the vertices, the
@@ -242,15 +266,12 @@ class History:
         steps = np.broadcast_to(np.asarray(steps_per_segment), (Q.size - 1,))
         if steps.size and (not np.issubdtype(steps.dtype, np.integer) or np.any(steps < 1)):
             raise HistoryError(f"steps_per_segment must be integers >= 1, found {steps_per_segment!r}")
-        fractions = [np.arange(1, n + 1) / n for n in steps]
         if P is not None:
             P = _loads("P", P)
             if P.shape != Q.shape:
                 raise HistoryError(f"Q and P need one value per vertex, found {Q.size} and {P.size}")
-            P = _segments(P, fractions)
-        return cls(
-            _segments(Q, fractions), _segments(sigma, fractions), np.concatenate([[0], np.cumsum(steps)]), None, P
-        )
+            P = _segments(P, steps)
+        return cls(_segments(Q, steps), _segments(sigma, steps), np.concatenate([[0], np.cumsum(steps)]), None, P)
 
     @classmethod
     def sinusoidal(
@@ -320,9 +341,7 @@ class History:
             theta += np.radians(_number("P_phase_deg", P_phase_deg)) - phase
             P = _wave(theta, _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean))
         del theta  # arrays of a long history are large (51 MB each for 10^5 cycles of 64 steps)
-        cycle = np.arange(n) + (steps - 1)
-        cycle //= steps  # 0, then each cycle's number over its steps
-        waves = cls(Q, sigma, np.arange(0, n, steps), cycle, P)
+        waves = cls(Q, sigma, np.arange(0, n, steps), _cycle_numbers(n, steps), P)
         return _reached_from(start, waves, _count("ramp_steps", ramp_steps))
 
     @classmethod
@@ -381,8 +400,19 @@ class History:
             steps,
             P,
         )
-        cycle = np.concatenate([[0], np.repeat(np.arange(1, count + 1), 2 * steps)])
-        return cls(path.Q, path.sigma, path.vertex_step, cycle, path.P)
+        return cls(path.Q, path.sigma, path.vertex_step, _cycle_numbers(len(path), 2 * steps), path.P)
+
+
+def _cycle_numbers(n, steps):
+    """Cycle numbers of `n` steps: 0 for step 0, then each cycle's number over its `steps` steps.
+
+    Formed in place in 32 bits where ``n + steps`` fits (the History's own type), so a long
+    history holds no 64-bit copy.
+    """
+    cycle = np.arange(n, dtype=np.int32 if n + steps <= CYCLE_LIMIT else np.int64)
+    cycle += steps - 1
+    cycle //= steps
+    return cycle
 
 
 def _reached_from(start, history, ramp_steps):
@@ -398,9 +428,17 @@ def _reached_from(start, history, ramp_steps):
     return History.concatenate([ramp, history])
 
 
-def _decreases(values):
-    """Whether any of `values` is less than the one before (without a temporary array of differences)."""
-    return bool(np.any(values[1:] < values[:-1]))
+def _positives_decrease(cycle):
+    """Whether any positive number of `cycle` is less than the positive one before it, checked
+    `BLOCK_STEPS` steps at a time (a long history's cycle numbers are not copied whole)."""
+    last = 0
+    for start in range(0, cycle.size, BLOCK_STEPS):
+        block = cycle[start : start + BLOCK_STEPS]
+        positive = np.concatenate([[last], block[block > 0]])
+        if np.any(positive[1:] < positive[:-1]):
+            return True
+        last = positive[-1]
+    return False
 
 
 def _bends(Q, sigma, kept, max_turn, units):
@@ -433,14 +471,33 @@ def _wave(theta, amplitude, mean):
     return values
 
 
-def _segments(vertices, fractions):
-    """Values along straight segments; each segment ends exactly on its vertex, and a segment
-    between equal vertices holds that value exactly (an increment of one unit in the last place
-    is a load change, which the exact model of Q alone slips under)."""
-    pieces = [vertices[i] + (vertices[i + 1] - vertices[i]) * u for i, u in enumerate(fractions)]
-    for i, piece in enumerate(pieces):
-        piece[-1] = vertices[i + 1]
-    return np.concatenate([vertices[:1], *pieces])
+def _segments(vertices, steps):
+    """Values along straight segments between `vertices`, ``steps[i]`` equal increments on segment ``i``.
+
+    Each segment ends exactly on its vertex, and a segment between equal vertices holds that value
+    exactly (an increment of one unit in the last place is a load change, which the exact model
+    of Q alone slips under). The values of segment ``i`` are ``v_i + (v_(i+1) - v_i) (k / n)``,
+    ``k = 1 .. n``, formed for all segments of one ``n`` at once in the output, so a history of
+    millions of segments needs no array per segment; where all vertices are equal the values are
+    one number broadcast to every step (`numpy.broadcast_to`, read-only), which takes no memory
+    per step.
+    """
+    count = int(np.sum(steps)) + 1
+    if np.all(vertices == vertices[0]):
+        return np.broadcast_to(vertices[0], (count,))
+    values = np.empty(count)
+    values[0] = vertices[0]
+    ends = np.cumsum(steps)
+    for n in np.unique(steps):
+        segment = np.flatnonzero(steps == n)
+        uniform = segment.size == steps.size  # the output itself, one row per segment
+        block = values[1:].reshape(-1, n) if uniform else np.empty((segment.size, n))
+        np.multiply((vertices[segment + 1] - vertices[segment])[:, None], np.arange(1, n + 1) / n, out=block)
+        block += vertices[segment, None]
+        block[:, -1] = vertices[segment + 1]
+        if not uniform:
+            values[(ends[segment] - n)[:, None] + np.arange(1, n + 1)] = block
+    return values
 
 
 def _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean):

@@ -22,6 +22,11 @@ punch), and the gap at ``X`` is zero once the contact reaches it:
 (Hertz: ``g_0 = X^2 / (2R)``). The slope ``P' = dP/dc'`` (`Profile.load_slope`), rather than
 differences of ``P``, keeps the relative precision in the thinnest slip zones: those of a tiny
 reversal dissipate Masing's energy (tests/test_masing.py::test_tiny_reversal_slips_by_the_cubic_law).
+
+On Hertz a branch is a closed form instead (`_hertz_slip_zones`): the slip is Cattaneo-Mindlin's
+in a form without cancellation (`fretting.physics.closed_forms.hertz_slip_shape`), the energy and
+``delta_Q`` are Mindlin's, so a new branch costs a few operations per node rather than the
+quadratures, which serve every other symmetric profile.
 """
 
 from __future__ import annotations
@@ -34,7 +39,14 @@ import numpy as np
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.solver import chebyshev_angles
-from fretting.physics.closed_forms import masing_increment, masing_origin
+from fretting.physics.closed_forms import (
+    cattaneo_mindlin_compliance,
+    cattaneo_mindlin_dissipation,
+    hertz_slip_shape,
+    masing_increment,
+    masing_origin,
+)
+from fretting.physics.profiles import Hertz
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
@@ -132,9 +144,7 @@ def nodes_theta(contact, history, N):
     theta = np.concatenate([edge[::-1], grid, np.pi - edge])
     if history is None:
         return theta
-    fP = contact.f * contact.P
-    loads = np.abs(history.Q)
-    largest = loads[loads < fP].max(initial=0.0)
+    largest = history.largest_Q_below(contact.f * contact.P)
     c = contact.profile.half_width(contact.P - largest / contact.f, contact.E_star)[0] / contact.a
     if np.count_nonzero(np.abs(np.cos(theta)) < c) < STICK_NODES:
         theta = np.union1d(theta, np.arccos(c * np.cos(chebyshev_angles(STICK_NODES))))
@@ -268,16 +278,41 @@ class ExactModel(Model):
         q = f * (self._p - p_c)  # closed_forms.ciavarella_jaeger's, without the Contact (and its p0) it builds
         if c >= a:  # nothing slips
             return _Branch(a, q, slip, 0.0, 0.0)
-        slip[~inside] = f * gap(profile, E_star, c, self.x[~inside])
-        # X = c + (a - c) sin(phi/2)^2: smooth integrands at both ends (g_c ~ (X - c)^(3/2), p ~ sqrt(a - X))
-        phi = np.pi * (_U + 1) / 2
-        X = c + (a - c) * np.sin(phi / 2) ** 2
-        dX = (np.pi / 2) * _WEIGHTS * (a - c) * np.sin(phi) / 2
-        g = gap(profile, E_star, c, X)
-        root = np.sqrt((a - c) * np.cos(phi / 2) ** 2 * (a + X))  # sqrt(a^2 - X^2)
-        energy = 2 * np.dot(contact.pressure(X) * g, dX)
-        delta_Q = (2 / np.pi) * f * np.dot(g / root, dX)
-        return _Branch(c, q, slip, float(energy), float(delta_Q))
+        outside = _hertz_slip_zones if isinstance(profile, Hertz) else _quadrature_slip_zones
+        slip[~inside], energy, delta_Q = outside(contact, c, self.x[~inside])
+        return _Branch(c, q, slip, energy, delta_Q)
+
+
+def _hertz_slip_zones(contact, c, x):
+    """Slip ``f g_c`` [m] at the points `x` [m] of the slip zones, energy ``int p g_c dx`` [J/m per
+    unit f^2] and ``delta_Q`` [m] of the corrective contact of half-width `c` [m] of a Hertz contact,
+    in closed form.
+
+    ``g_c = hertz_slip_shape(x, c) / (2R)`` is Cattaneo-Mindlin's slip at the load ``Q = f P psi``
+    with ``psi = 1 - (c/a)^2`` (the Ciavarella-Jaeger load ``f (P - P_c)``), and the energy and
+    ``delta_Q`` are `cattaneo_mindlin_dissipation` (over ``f^2``) and `cattaneo_mindlin_compliance`
+    of it. ``psi`` is formed as ``(a - c)(a + c) / a^2``, exact where ``c`` is close to ``a``.
+    """
+    a, f = contact.a, contact.f
+    slip = f * hertz_slip_shape(x, c) / (2 * contact.profile.R)
+    Q = f * contact.P * ((a - c) * (a + c) / a**2)
+    return slip, cattaneo_mindlin_dissipation(contact, Q) / f**2, cattaneo_mindlin_compliance(contact, Q)
+
+
+def _quadrature_slip_zones(contact, c, x):
+    """What `_hertz_slip_zones` gives, for any symmetric profile: the slip from `gap`, the energy and
+    ``delta_Q`` by Gauss-Legendre quadrature along the slip zone ``c < X < a``."""
+    a, f, E_star = contact.a, contact.f, contact.E_star
+    slip = f * gap(contact.profile, E_star, c, x)
+    # X = c + (a - c) sin(phi/2)^2: smooth integrands at both ends (g_c ~ (X - c)^(3/2), p ~ sqrt(a - X))
+    phi = np.pi * (_U + 1) / 2
+    X = c + (a - c) * np.sin(phi / 2) ** 2
+    dX = (np.pi / 2) * _WEIGHTS * (a - c) * np.sin(phi) / 2
+    g = gap(contact.profile, E_star, c, X)
+    root = np.sqrt((a - c) * np.cos(phi / 2) ** 2 * (a + X))  # sqrt(a^2 - X^2)
+    energy = 2 * np.dot(contact.pressure(X) * g, dX)
+    delta_Q = (2 / np.pi) * f * np.dot(g / root, dX)
+    return slip, float(energy), float(delta_Q)
 
 
 def _to_breakpoint(profile, c):
