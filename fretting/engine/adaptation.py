@@ -145,7 +145,8 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
     sliding = np.flatnonzero(np.abs(history.Q) >= contact.f * contact.P)
     if sliding.size:  # the run will stop there: adapt to the steps before
         history = history[: max(sliding[0], 1)]
-    turning = history.turning_points(MAX_TURN, (np.pi * contact.a, 4.0))
+    steps = history.turning_steps(MAX_TURN, _units(contact))
+    turning = history.turning_points(MAX_TURN, _units(contact))
     mirrored = contact.profile.SYMMETRIC and not (history.Q.any() and history.sigma.any())
     energy = np.full((len(turning), 2), ENERGY_SPAN)
     adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored, energy)
@@ -160,20 +161,20 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
                 f"stopped growing from the first {size // 2}"
             )
             grown.spec = replace(grown.spec, sample=sample)
-            return _located(grown, adapt, history[: turning_end(history, contact, size) + 1], recorded)
+            return _located(grown, adapt, history[: steps[size - 1] + 1], recorded)
         model = grown
     return _located(model, adapt, history, recorded)
 
 
-def turning_end(history, contact, size):
-    """The step of `history` that is its `size`-th turning point (`MAX_TURN`)."""
-    return int(history.turning_steps(MAX_TURN, (np.pi * contact.a, 4.0))[size - 1])
+def _units(contact):
+    """Units [N/m, Pa] of Q and sigma in which the load path's turns are measured (`MAX_TURN`)."""
+    return np.pi * contact.a, 4.0
 
 
 def _located(model, adapt, history, recorded):
     """`model`'s mesh refined so that the stick ends of the steps `recorded` of `history` are located
     (`adapted_model`, second stage); `model` itself where nothing needs refining."""
-    units = (np.pi * model.contact.a, 4.0)
+    units = _units(model.contact)
     steps = history.turning_steps(END_TURN, units)
     spans = _spans(steps, recorded)
     targets = np.full(model.theta.size - 1, np.inf)
@@ -264,7 +265,7 @@ def refined_for(contact, state, history):
     state : State
     """
     spec = state.model
-    turning = history.turning_points(MAX_TURN, (np.pi * contact.a, 4.0))
+    turning = history.turning_points(MAX_TURN, _units(contact))
     model, refined = spec.build(contact), False
     for _ in range(REFINEMENTS):
         targets = np.full(model.theta.size - 1, np.inf)
