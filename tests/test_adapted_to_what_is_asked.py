@@ -124,3 +124,15 @@ def test_ends_past_the_bound_run_the_energy_mesh_and_say_so(contact, monkeypatch
     assert result.sizes["x"] <= choice.MAX_DEFAULT_MESH < adaptation.adapted_model(contact, history).theta.size
     assert result.attrs["model_fallback"] in str(said[0].message)
     assert "err by up to about 0.005 a" in result.attrs["model_fallback"]
+
+
+def test_a_sampled_mesh_that_falls_back_says_both(contact, small_sample, monkeypatch):
+    """Past the bound, the energy's mesh of a sample runs: the fallback and the sample are both said."""
+    history = in_phase_cycles(contact, 12)
+    energy_only = adaptation.adapted_model(contact, history, recorded=[])
+    monkeypatch.setattr(choice, "MAX_DEFAULT_MESH", energy_only.theta.size + 50)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = fr.simulate(contact, history)
+    said = " | ".join(str(w.message) for w in caught if issubclass(w.category, fr.ModelFallbackWarning))
+    assert result.attrs["model_fallback"] in said and result.attrs["model_sample"] in said

@@ -125,7 +125,7 @@ def _default_model(contact, history, recorded=None):
             )
     warnings.warn(f"the default model falls back: {reason}", ModelFallbackWarning, stacklevel=3)
     model.spec = replace(model.spec, fallback=reason)
-    return model
+    return _said(model)
 
 
 def varies_P(contact, history):
