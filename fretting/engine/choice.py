@@ -7,11 +7,14 @@ The default for a contact and a history (`choose_model`):
 1. the exact model of ``Q`` alone (`Exact`) where it holds: no ``sigma`` in the history and a
    symmetric profile (`Exact.holds_for`); where the answer is known in closed form it is not
    solved for;
-2. else method 4 on the Galerkin mesh adapted to the history (`Mesh()`, `DEFAULT_RTOL`);
-3. where that mesh would need more than `MAX_DEFAULT_MESH` nodes, the mesh of the last pass
-   of the adaptation within the bound, with the reason recorded in the spec (`Mesh.fallback`,
-   the dataset's ``model_fallback``) and a `ModelFallbackWarning`; the adaptation stops as soon
-   as the bound is certain;
+2. else method 4 on the Galerkin mesh adapted to the history (`Mesh()`, `DEFAULT_RTOL`): to
+   the energy, then to the stick ends of the recorded steps
+   (`fretting.engine.adaptation.adapted_model`);
+3. where that mesh would need more than `MAX_DEFAULT_MESH` nodes, the mesh adapted to the energy
+   (when it is the ends that pass the bound) or the last mesh of the adaptation within the
+   bound, with the reason recorded in the spec (`Mesh.fallback`, the dataset's
+   ``model_fallback``) and a `ModelFallbackWarning`; the adaptation stops as soon as the bound
+   is certain;
 4. a long history's mesh is adapted to a sample of its turning points
    (`fretting.engine.adaptation.SAMPLE_TURNS`), said by a `MeshSampleWarning` and recorded
    (`Mesh.sample`, the dataset's ``model_sample``).
