@@ -38,8 +38,7 @@ def whole(contact, history, theta):
     """The model the energy passes (`adapted_model`'s first stage) over all of `history`'s turning
     points reach from the mesh `theta`."""
     points = turning(contact, history)
-    spans = np.full((len(points), 2), fr.models.galerkin.ENERGY_SPAN)
-    run = adaptation._Adaptation(contact, history, fr.models.galerkin.DEFAULT_RTOL, None, False, spans)
+    run = adaptation._Adaptation(contact, history, fr.models.galerkin.DEFAULT_RTOL, None, False)
     return run(points, theta)
 
 

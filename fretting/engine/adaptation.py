@@ -148,8 +148,7 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
     steps = history.turning_steps(MAX_TURN, _units(contact))
     turning = history.turning_points(MAX_TURN, _units(contact))
     mirrored = contact.profile.SYMMETRIC and not (history.Q.any() and history.sigma.any())
-    energy = np.full((len(turning), 2), ENERGY_SPAN)
-    adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored, energy)
+    adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored)
     size = min(SAMPLE_TURNS, len(turning))
     model = adapt(turning[:size], initial_theta())
     while size < len(turning):
@@ -201,22 +200,25 @@ SAMPLE_TURNS = 256
 
 
 class _Adaptation:
-    """The passes of `adapted_model` over the turning points of (a part of) one history."""
+    """The energy passes of `adapted_model` (its first stage, elements of ``ENERGY_SPAN rtol a``) over
+    the turning points of (a part of) one history."""
 
-    def __init__(self, contact, history, rtol, max_nodes, mirrored, spans):
+    def __init__(self, contact, history, rtol, max_nodes, mirrored):
         self.contact, self.history, self.rtol = contact, history, rtol
-        self.max_nodes, self.mirrored, self.spans = max_nodes, mirrored, spans
+        self.max_nodes, self.mirrored = max_nodes, mirrored
 
     def __call__(self, turning, theta):
         """The model whose mesh, refined from `theta` [rad], resolves the increments of `turning`."""
-        rtol, max_nodes, spans, directions, model = self.rtol, self.max_nodes, self.spans, {}, None
+        rtol, max_nodes, directions, model = self.rtol, self.max_nodes, {}, None
         for _ in range(REFINEMENTS):
             model = Mesh(rtol, theta).build(self.contact, previous=model)
             targets, known, directions = np.full(theta.size - 1, np.inf), directions, {}
 
             def observe(step, ds, model=model, targets=targets, found=directions):
                 np.minimum(
-                    targets, element_targets(model.theta, ds, rtol, model.breakpoints, *spans[step]), out=targets
+                    targets,
+                    element_targets(model.theta, ds, rtol, model.breakpoints, ENERGY_SPAN, ENERGY_SPAN),
+                    out=targets,
                 )
                 found[step] = np.sign(ds).astype(np.int8), model.x
                 if max_nodes is not None and (size := _bisected_size(model.theta, targets)) > max_nodes:
