@@ -218,6 +218,7 @@ def test_long_runs_record_their_ends_and_every_cycle_and_resume(workdir, capsys,
     text = CONTACT + SHEAR.replace("count = 3", "count = 40")
     write(workdir / "long.toml", text)
     assert run("run", "long.toml", "-o", "every.h5", "--nodes", NODES, "--every-step") == 0
+    assert "are skipped" not in capsys.readouterr().err
     every = load(workdir / "every.h5")
     contact, history = read_history(workdir / "long.toml")
     direct = fr.simulate(contact, history, nodes=int(NODES))
@@ -228,6 +229,7 @@ def test_long_runs_record_their_ends_and_every_cycle_and_resume(workdir, capsys,
     # by default the unrecorded steps inside straight stretches are skipped: the same energy, w,
     # slip range and q_peak, to rounding (float32 rows: bit for bit here); no sigma_xx peaks
     assert run("run", "long.toml", "-o", "whole.h5", "--nodes", NODES) == 0
+    assert "fretting: note: the unrecorded steps inside straight stretches are skipped" in capsys.readouterr().err
     whole = load(workdir / "whole.h5")
     assert "not tallied" in whole.attrs["cycle_peaks"] and "sigma_xx_peak" not in whole
     for name in ("w", "slip_amplitude", "q_peak"):

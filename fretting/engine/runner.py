@@ -257,6 +257,11 @@ def run_file(
         record = recorded_steps(record, len(history))
         skipping = not every_step and record.size < len(history)  # a recorded step is solved
         start, state, notes = _started(checkpoint, source, model, resume, skipping)
+        if skipping:
+            notes.append(
+                "the unrecorded steps inside straight stretches are skipped: sigma_xx_peak and sigma_xx_q_peak "
+                "are not tallied (--every-step solves every step)"
+            )
         stepper = Stepper(source.contact, model if state is None else None, state)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ModelFallbackWarning)
