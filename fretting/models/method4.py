@@ -15,7 +15,7 @@ from functools import cached_property
 import numpy as np
 
 from fretting.models.base import Model, Outcome
-from fretting.models.solver import solve_increment
+from fretting.models.solver import Stiffness, solve_increment
 
 __all__ = ["Method4Model", "stick_zones"]
 
@@ -36,9 +36,9 @@ class Method4Model(Model):
         """``int f p |ds| dx`` [J/m] of the slip increment `ds` [m]."""
 
     @cached_property
-    def G_abs(self):
-        """``|G|`` elementwise, for the solver's rounding allowance, formed once per model."""
-        return np.abs(self.G)
+    def stiffness(self):
+        """``G`` with what the solver derives from it, formed once per model."""
+        return Stiffness(self.G)
 
     def at_rest(self, state):
         ds = np.zeros(state.slip.size)
@@ -47,7 +47,7 @@ class Method4Model(Model):
     def increment(self, state, Q, sigma, guess=None):
         if guess is None:  # the directions of the increment before
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
-        solved = solve_increment(self.G, self.g_stuck(Q, sigma), self.limit, state.slip, guess, self.G_abs)
+        solved = solve_increment(self.stiffness, self.g_stuck(Q, sigma), self.limit, state.slip, guess)
         return Outcome(solved.g, solved.ds, solved.slip, self.dissipation(solved.ds))
 
     def stick_zones(self, outcome, state):

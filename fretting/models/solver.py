@@ -29,26 +29,44 @@ The releases of one increment grow the slip zones a few nodes at a time, one sol
 another, so the Cholesky factor of the slipping nodes' block of ``G`` is kept through an
 increment and bordered by the nodes released (`_Factor`); a working set that loses nodes is
 factored anew. Each increment starts a new factor, so what it computes depends on its loads
-and starting state alone, and a repeating state repeats bit for bit. The stuck nodes' traction
-``G held`` is multiplied anew at every solve, not updated by the rows of the nodes that join or
-leave the stuck ones: an update's rounding would depend on the working sets before, and a
-periodic state would no longer repeat bit for bit (tests/test_hard_cases.py,
+and starting state alone, and a repeating state repeats bit for bit. The products with ``G``
+take only the rows a step needs (the slipping nodes' for a solve, the stuck nodes' for the
+releases). The stuck nodes' traction ``G held`` is multiplied anew at every solve, not updated
+by the rows of the nodes that join or leave the stuck ones: an update's rounding would depend on
+the working sets before, and a periodic state would no longer repeat bit for bit (tests/test_hard_cases.py,
 `test_periodic_state_does_not_drift_over_1e5_cycles`).
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy import linalg
 
 from fretting.errors import GrossSlipError, SolverError
 
-__all__ = ["ChebyshevGrid", "Increment", "chebyshev_angles", "solve_increment"]
+__all__ = ["ChebyshevGrid", "Increment", "Stiffness", "chebyshev_angles", "solve_increment"]
 
 #: Rounding allowance on the friction limit, relative to the largest term of the traction: the
 #: Cholesky solves leave nodes at the limit over it by rounding of that term (measured on the
 #: hard states of tests/test_hard_cases.py); 1e-11 keeps a wide margin over that rounding.
 ROUNDING = 1e-11
+
+
+#: Runs of consecutive nodes past which a product with some rows or columns of a matrix gathers
+#: them instead of multiplying each run as a view (`_runs`): stick and slip zones make a few runs;
+#: many short ones cost a product each.
+MAX_RUNS = 16
+
+#: A kept `Stiffness` solves the slipping block through the stuck nodes where they are fewer than
+#: this fraction of the slipping ones: ``|K|^3 / 3`` and a few ``N^2`` products against the
+#: ``|S|^3 / 3`` of a Cholesky factor of the slipping block.
+COMPLEMENT = 0.25
+
+#: Rounds of iterative refinement of a solve through the stuck nodes, against ``G_SS`` itself: the
+#: inverse ``B`` carries rounding of the size of its condition number, and one round brings the
+#: residual to that of a Cholesky factor of ``G_SS`` (tests/test_solver.py).
+REFINEMENT_ROUNDS = 1
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,6 +94,67 @@ def chebyshev_angles(N):
     return (2 * np.arange(1, N + 1) - 1) * np.pi / (2 * N)
 
 
+class Stiffness:
+    """The slip-to-traction matrix ``G`` [Pa/m] and what the solver derives from it once.
+
+    ``G`` is symmetric positive semi-definite with the rigid shift as its null space
+    (``G 1 = 0``), so ``A = G + c 1 1^T`` is positive definite (``c N``, the mean of ``diag G``, lies
+    inside its spectrum). Where few nodes stick, the slipping nodes' block ``G_SS`` is solved
+    through the stuck ones ``K`` (`solve_slipping`): by the inverse of a partitioned matrix,
+    ``A_SS^-1 = B_SS - B_SK B_KK^-1 B_KS`` with ``B = A^-1``, and ``G_SS = A_SS - c 1 1^T`` by
+    Sherman-Morrison; each solve then costs ``|K|^3 / 3`` and products of order ``N^2``. ``B`` is
+    formed once, when first needed, by a stiffness that is `kept` across increments (a model's),
+    where its ``N^3`` pays.
+    """
+
+    def __init__(self, G, kept=True):
+        self.G, self.kept = G, kept
+
+    @cached_property
+    def G_abs(self):
+        """``|G|``, elementwise, for the rounding allowance."""
+        return np.abs(self.G)
+
+    @cached_property
+    def regularised_inverse(self):
+        """``(c, B)``: ``B = (G + c 1 1^T)^-1`` [m/Pa], ``c`` [Pa/m]."""
+        c = np.trace(self.G) / self.G.shape[0] ** 2
+        L, info = linalg.lapack.dpotrf(self.G + c, lower=1, clean=1)
+        if info == 0:
+            B, info = linalg.lapack.dpotri(L, lower=1)
+        if info != 0:
+            raise SolverError(f"G + c 1 1^T is not positive definite (info {info})")
+        return c, np.tril(B) + np.tril(B, -1).T
+
+    def by_complement(self, slipping):
+        """True if the block of the nodes `slipping` is solved through the stuck ones (`COMPLEMENT`)."""
+        return self.kept and self.G.shape[0] - slipping.size < COMPLEMENT * slipping.size
+
+    def solve_slipping(self, slipping, rhs):
+        """``G_SS^-1 rhs`` for the ascending nodes `slipping` ``S`` (at least one node sticks), through
+        the stuck nodes, refined `REFINEMENT_ROUNDS` times against ``G_SS``."""
+        c, B = self.regularised_inverse
+        stuck = np.flatnonzero(~np.isin(np.arange(self.G.shape[0]), slipping))
+        factor = linalg.cho_factor(B[np.ix_(stuck, stuck)], lower=True)
+
+        def A_SS_inverse(v):  # B_SS v - B_SK B_KK^-1 B_KS v
+            u = _columns_times(B, slipping, v)
+            return (u - _columns_times(B, stuck, linalg.cho_solve(factor, u[stuck])))[slipping]
+
+        shift = A_SS_inverse(np.ones(slipping.size))
+
+        def G_SS_inverse(v):
+            y = A_SS_inverse(v)
+            return y + shift * (c * y.sum() / (1.0 - c * shift.sum()))
+
+        x = G_SS_inverse(rhs)
+        for _ in range(REFINEMENT_ROUNDS):
+            full = np.zeros(self.G.shape[0])
+            full[slipping] = x
+            x = x + G_SS_inverse(rhs - _rows_times(self.G, slipping, full))
+        return x
+
+
 @dataclass(frozen=True, eq=False)
 class Increment:
     """Solution of one increment: new slip [m], its increment ``ds`` [m] and the traction ``g`` [Pa] at the nodes."""
@@ -86,13 +165,14 @@ class Increment:
     iterations: int
 
 
-def solve_increment(G, g_stuck, limit, slip=None, guess=None, G_abs=None):
+def solve_increment(G, g_stuck, limit, slip=None, guess=None):
     """Slip increment that restores the friction conditions at every node.
 
     Parameters
     ----------
-    G : ndarray, shape (N, N)
-        Slip-to-traction matrix [Pa/m], ``g = g_stuck - G slip``.
+    G : ndarray, shape (N, N), or Stiffness
+        Slip-to-traction matrix [Pa/m], ``g = g_stuck - G slip``; a `Stiffness` kept by a caller
+        that solves many increments with one ``G`` keeps what is derived from it once.
     g_stuck : ndarray, shape (N,)
         ``sqrt(1 - t^2) q_st`` [Pa], the fully stuck traction at the new loads.
     limit : ndarray, shape (N,)
@@ -103,9 +183,6 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None, G_abs=None):
         Slip directions (+1, -1; 0: stuck) to try first, e.g. those of the increment before.
         A start only: the answer does not depend on it (the last working set fixes it), the
         number of linear solves does.
-    G_abs : ndarray, shape (N, N), optional
-        ``|G|``, elementwise, for the rounding allowance; given by a caller that solves many
-        increments with one `G`, since forming it costs as much as a product with ``G``.
 
     Returns
     -------
@@ -115,39 +192,42 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None, G_abs=None):
         increment, so a state that repeats a cycle later repeats bit for bit (the periodic
         shortcut of `fretting.engine.simulation` relies on it).
     """
+    stiffness = G if isinstance(G, Stiffness) else Stiffness(G, kept=False)
+    G = stiffness.G
     slip = np.zeros_like(g_stuck) if slip is None else slip
     new = slip
-    factor = _Factor(G)
+    factor = _Factor(stiffness)
     direction = np.zeros(g_stuck.size, dtype=np.int8)  # +1, -1: slipping; 0: stuck
-    locked = G @ slip
-    g = g_stuck - locked
-    # g is a difference of terms that may be far larger than the limit (locked-in slip under
-    # large sigma): its rounding at each node scales with the largest of them there, and only
-    # there (a node at the edge, where the limit is small, slips under loads of its own size).
-    G_abs = np.abs(G) if G_abs is None else G_abs
-    tolerance = ROUNDING * (limit + np.abs(g_stuck) + G_abs @ np.abs(slip))
-    over = np.abs(g) - limit > tolerance
-    if not over.any():  # Coulomb's law holds without slip: nothing moves, not even by rounding
+    g = g_stuck - G @ slip
+    over = _over(stiffness, np.arange(g.size), g, g_stuck, limit, slip)
+    if over.size == 0:  # Coulomb's law holds without slip: nothing moves, not even by rounding
         return Increment(slip, np.zeros_like(slip), g, 0)
     if guess is not None:  # and the nodes whose traction exceeds the limit already
-        direction[:] = np.where(over, np.sign(g), guess)
+        direction[:] = guess
+        direction[over] = np.sign(g[over])
         if direction.all():
             direction[:] = 0
         new = _minimise(factor, g_stuck, limit, slip, new, direction)
         g = g_stuck - G @ new
-    single = False
-    for iteration in range(1, 4 * g_stuck.size + 2):
-        excess = np.abs(g) - limit
-        released = np.flatnonzero((direction == 0) & (excess > tolerance))
-        if released.size == 0:
-            return Increment(new, new - slip, g, iteration - 1)
+    single, iteration = False, 0
+    while (released := _over(stiffness, np.flatnonzero(direction == 0), g, g_stuck, limit, new)).size:
+        iteration += 1
+        if iteration > 4 * g_stuck.size:
+            raise SolverError("the active set did not settle: the increment has no solution on this grid")
         if single or released.size == np.count_nonzero(direction == 0):
-            released = released[[np.argmax(excess[released])]]
+            released = released[[np.argmax(np.abs(g[released]) - limit[released])]]
         direction[released] = np.sign(g[released])
-        new = _minimise(factor, g_stuck, limit, slip, new, direction)
+        before, new = new, _minimise(factor, g_stuck, limit, slip, new, direction)
         single = not direction[released].all()  # a node just released stuck again on the way
-        g = g_stuck - G @ new
-    raise SolverError("the active set did not settle: the increment has no solution on this grid")
+        if not direction[released].any() and np.array_equal(new, before):
+            # All stuck again where they were: J could not fall, and the same release would
+            # follow. Their excess is rounding of the equilibrium they close (the stuck nodes'
+            # traction takes the sum of the slipping ones' residuals, near sliding).
+            break
+        stuck = np.flatnonzero(direction == 0)
+        g[stuck] = _rows_product(G, stuck, new, g_stuck)
+    g[direction != 0] = _rows_product(G, np.flatnonzero(direction), new, g_stuck)
+    return Increment(new, new - slip, g, iteration)
 
 
 def _minimise(factor, g_stuck, limit, slip, new, direction):
@@ -166,7 +246,7 @@ def _minimise(factor, g_stuck, limit, slip, new, direction):
         if slipping.size == 0:
             return slip
         held = np.where(direction == 0, slip, 0.0)  # the stuck nodes' slip, which stays
-        rhs = (g_stuck - G @ held - direction * limit)[slipping]
+        rhs = _rows_product(G, slipping, held, g_stuck) - direction[slipping] * limit[slipping]
         target = slip.copy()
         target[slipping] = factor.solve(slipping, rhs)
         ds, target_ds = new - slip, target - slip
@@ -179,6 +259,58 @@ def _minimise(factor, g_stuck, limit, slip, new, direction):
         stops = wrong[fractions <= alpha]
         new[stops] = slip[stops]
         direction[stops] = 0
+
+
+def _over(stiffness, nodes, g, g_stuck, limit, slip):
+    """The nodes of `nodes` (ascending) whose traction ``g = g_stuck - G slip`` exceeds the limit by
+    more than its rounding.
+
+    ``g`` is a difference of terms that may be far larger than the limit (locked-in slip under
+    large sigma, or the slip of an increment close to sliding): its rounding at each node scales
+    with the largest of them there, ``|g_stuck| + |G| |slip|`` for the slip it was computed from,
+    and only there (a node at the edge, where the limit is small, slips under loads of its own
+    size).
+    """
+    candidates = nodes[np.abs(g[nodes]) > limit[nodes]]
+    scale = limit[candidates] + np.abs(g_stuck[candidates]) + _rows_times(stiffness.G_abs, candidates, np.abs(slip))
+    return candidates[np.abs(g[candidates]) - limit[candidates] > ROUNDING * scale]
+
+
+def _rows_product(G, rows, v, g_stuck):
+    """``(g_stuck - G v)[rows]`` for ascending node numbers `rows`: only the rows asked for are
+    multiplied, those of the stuck nodes for the releases, those of the slipping ones for a solve."""
+    return g_stuck[rows] - _rows_times(G, rows, v)
+
+
+def _rows_times(M, rows, v):
+    """``M[rows] @ v`` for ascending `rows`, each run of consecutive rows a view of `M` (`_runs`)."""
+    runs = _runs(rows)
+    if runs is None:
+        return M[rows] @ v
+    return np.concatenate([M[start:end] @ v for start, end, _ in runs])
+
+
+def _columns_times(M, columns, v):
+    """``M[:, columns] @ v`` for a symmetric `M` and ascending `columns`: ``M[run].T @ v[run]`` summed
+    over the runs of consecutive columns (`_runs`), rows of a C-ordered `M` being contiguous."""
+    runs = _runs(columns)
+    if runs is None:
+        return M[columns].T @ v
+    total = 0.0
+    for start, end, offset in runs:
+        total = total + M[start:end].T @ v[offset : offset + end - start]
+    return total
+
+
+def _runs(nodes):
+    """``(start, end, offset)`` of each run ``nodes[offset:offset + end - start] == range(start, end)``
+    of the ascending `nodes`; None where they are empty or more than `MAX_RUNS`."""
+    breaks = np.flatnonzero(np.diff(nodes) != 1) + 1
+    if nodes.size == 0 or breaks.size >= MAX_RUNS:
+        return None
+    offsets = np.r_[0, breaks]
+    ends = np.r_[breaks, nodes.size]
+    return [(nodes[o], nodes[e - 1] + 1, o) for o, e in zip(offsets, ends, strict=True)]
 
 
 def _rigid_shift(g_stuck, limit, slip, new, direction):
@@ -213,14 +345,17 @@ class _Factor:
     copies nothing already factored.
     """
 
-    def __init__(self, G):
-        self.G = G
+    def __init__(self, stiffness):
+        self.stiffness, self.G = stiffness, stiffness.G
         self.order = np.zeros(0, dtype=np.int64)
-        self.factored = np.zeros(G.shape[0], dtype=bool)  # the nodes of `order`
+        self.factored = np.zeros(self.G.shape[0], dtype=bool)  # the nodes of `order`
         self.blocks = []  # (X, L_new) of each bordering, in order
 
     def solve(self, slipping, rhs):
-        """``G[slipping][:, slipping]^-1 rhs`` for ascending node numbers `slipping`."""
+        """``G[slipping][:, slipping]^-1 rhs`` for ascending node numbers `slipping`; through the stuck
+        nodes where they are few (`Stiffness.by_complement`)."""
+        if self.stiffness.by_complement(slipping):
+            return self.stiffness.solve_slipping(slipping, rhs)
         if np.count_nonzero(self.factored[slipping]) < self.order.size:  # nodes left the set: factor anew
             self.order, self.blocks = self.order[:0], []
             self.factored[:] = False

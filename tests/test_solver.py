@@ -1,0 +1,56 @@
+"""The active-set solver's two ways of solving the slipping block: a Cholesky factor of it, and,
+where few nodes stick, the stuck nodes' block of the regularised inverse (`Stiffness.solve_slipping`)."""
+
+import numpy as np
+import pytest
+from scipy import linalg
+
+import fretting as fr
+from fretting.models import solver
+
+
+@pytest.fixture(scope="module")
+def model():
+    """A Galerkin model graded toward the edges and a stick zone, as adapted meshes are."""
+    contact = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.6, 1e5)
+    theta = np.unique(np.r_[np.linspace(0, np.pi, 301), np.pi / 2 + np.geomspace(1e-4, 0.2, 60)])
+    return fr.models.Mesh(theta=theta).build(contact)
+
+
+@pytest.mark.parametrize("stuck", [slice(140, 150), slice(0, 3), slice(200, 201)])
+def test_the_slipping_block_solved_through_the_stuck_nodes_as_by_cholesky(model, stuck):
+    N = model.G.shape[0]
+    slipping = np.delete(np.arange(N), np.arange(N)[stuck])
+    rhs = np.random.default_rng(1).standard_normal(slipping.size) * 1e7
+    block = model.G[np.ix_(slipping, slipping)]
+    exact = linalg.cho_solve(linalg.cho_factor(block), rhs)
+    found = solver.Stiffness(model.G).solve_slipping(slipping, rhs)
+    assert np.abs(found - exact).max() <= 1e-11 * np.abs(exact).max()
+    residual = np.abs(block @ found - rhs).max()
+    assert residual <= 2 * np.abs(block @ exact - rhs).max() + 1e-15 * np.abs(rhs).max()
+
+
+def test_an_increment_near_sliding_is_the_same_by_either_way(model):
+    """Q at 0.999 f P with sigma: most nodes slip, so a kept stiffness solves through the stuck ones;
+    the slip agrees with the Cholesky factor's to rounding, and the stick set is the same."""
+    contact = model.contact
+    g_stuck = model.g_stuck(0.999 * contact.f * contact.P, 0.3 * contact.f * contact.p0)
+    kept = solver.Stiffness(model.G)
+    by_complement = solver.solve_increment(kept, g_stuck, model.limit)
+    by_cholesky = solver.solve_increment(solver.Stiffness(model.G, kept=False), g_stuck, model.limit)
+    assert "regularised_inverse" in kept.__dict__  # the complement was taken
+    np.testing.assert_array_equal(by_complement.ds == 0, by_cholesky.ds == 0)
+    assert np.abs(by_complement.slip - by_cholesky.slip).max() <= 1e-11 * np.abs(by_cholesky.slip).max()
+
+
+@pytest.mark.parametrize("complement", [0.0, solver.COMPLEMENT])
+def test_one_ulp_below_sliding_settles_by_either_way(monkeypatch, complement):
+    """Q = nextafter(f P, 0) on the adapted mesh: the one node left stuck closes the equilibrium and
+    takes the sum of the slipping nodes' residuals, over its limit by rounding; releasing it sticks
+    it again where it was. By the Cholesky factor alone (complement 0) that cycled until the
+    solver gave up."""
+    monkeypatch.setattr(solver, "COMPLEMENT", complement)
+    hertz = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.6, 1e5)
+    Q = np.nextafter(hertz.f * hertz.P, 0)
+    result = fr.simulate(hertz, fr.History.piecewise_linear([0, Q], None, 4), rtol=1e-4)
+    assert result.stick.values[-1].any() and np.all(np.isfinite(result.slip.values))
