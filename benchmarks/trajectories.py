@@ -5,7 +5,9 @@ ellipses at 45, 90 and 135 degrees, box and L-shaped paths, near sliding up to 0
 of 1e-4 fP, sigma up to 3 f p0, rounded flats with b/a = 0.25 and 0.75, asymmetric gap profiles),
 runs each on a uniform Galerkin mesh of `REFERENCE_ELEMENTS` elements in ``theta`` (the reference)
 and of `CHECK_ELEMENTS` (its convergence check: scored against the reference like any run, its
-errors bound the reference's own), then scores the default (and optionally ``rtol=1e-4`` and the
+errors bound the reference's own; for the small amplitudes of `BANDED`, whose cyclic slip zones
+are narrower than those elements, the reference's elements there are bisected and the check's
+once fewer), then scores the default (and optionally ``rtol=1e-4`` and the
 384-node grid) at every step:
 
 - stick ends [a]: `fretting.analysis.accuracy.zone_distance` of the step's stick zones;
@@ -34,7 +36,7 @@ from harness import asymmetric_flat
 import fretting as fr
 from fretting.analysis.accuracy import BAND, memory_kinks, traction_error, zone_distance
 from fretting.loading.examples import EXAMPLES
-from fretting.models.galerkin import located_end
+from fretting.models.galerkin import located_end, refine
 from fretting.models.method4 import stick_zones
 
 #: Elements of the uniform reference mesh in theta: 7.9e-4 a apart at the centre.
@@ -47,6 +49,9 @@ FIRST_STEPS = 4
 TARGETS = {"stick_a": 1e-3, "slip_history": 1e-3, "slip_step": 1e-3, "traction_fp0": 1e-3, "energy": 1e-4}
 #: Models scored: keywords of `fretting.simulate`.
 MODELS = {"default": {}, "rtol": {"rtol": 1e-4}, "grid": {"nodes": 384}}
+#: Histories whose cyclic slip zones are narrower than the reference's elements: their elements
+#: there are bisected this many times (the check's one time fewer), `banded_mesh`.
+BANDED = {"tiny_1e-4_ellipse": 6, "tiny_1e-4_walk": 6}
 CACHE = Path(__file__).resolve().parent / ".cache" / "trajectories"
 GAP_TABLE = EXAMPLES / "asymmetric_pad_gap.csv"
 QUICK = ("walk_s0_8", "ellipse_90", "near_sliding_0.999", "flat_0.25_walk", "asym_flat_walk")
@@ -153,18 +158,35 @@ def _key(contact, history, elements):
     return digest.hexdigest()[:20]
 
 
-def fine_run(contact, history, elements):
-    """Fields of a run on the uniform mesh of `elements` elements in theta, cached in `CACHE`."""
-    path_ = CACHE / f"{_key(contact, history, elements)}.npz"
+def fine_run(contact, history, elements, bisections=0):
+    """Fields of a run on the uniform mesh of `elements` elements in theta, cached in `CACHE`; with
+    `bisections`, on that mesh with the elements of its cyclic slip zones bisected that many times
+    (`banded_mesh`)."""
+    path_ = CACHE / f"{_key(contact, history, (elements, bisections) if bisections else elements)}.npz"
     if path_.exists():
         with np.load(path_) as stored:
             return {name: stored[name] for name in FIELDS} | {"seconds": float(stored["seconds"])}
+    mesh = np.linspace(0.0, np.pi, elements + 1)
+    if bisections:
+        mesh = banded_mesh(mesh, fine_run(contact, history, elements), history, bisections)
     began = time.perf_counter()
-    result = fr.simulate(contact, history, mesh=np.linspace(0.0, np.pi, elements + 1))
+    result = fr.simulate(contact, history, mesh=mesh)
     fields = {name: result[name].values for name in FIELDS} | {"seconds": time.perf_counter() - began}
     CACHE.mkdir(parents=True, exist_ok=True)
     np.savez(path_, **fields)
     return fields
+
+
+def banded_mesh(theta, fields, history, bisections):
+    """`theta` [rad] with the elements that hold a stick/slip boundary of the run `fields` on it at
+    any step after the history's first vertex, and two on either side, bisected `bisections` times
+    (then graded): the cyclic slip zones of small amplitudes are narrower than a uniform mesh's
+    elements."""
+    status = np.sign(np.diff(fields["slip"][history.vertex_step[1] :], axis=0))[:, ::-1]  # theta order
+    boundary = np.any(status[:, 1:] != status[:, :-1], axis=0)
+    near = np.convolve(boundary, np.ones(5), mode="same") > 0
+    targets = np.where(near, np.diff(theta) / 2**bisections, np.inf)
+    return refine(theta, targets)
 
 
 def fields_of(result):
@@ -287,11 +309,13 @@ def main(argv=None):
     checks = []
     for name in names:
         contact, history = selected[name]
-        ref = with_located_ends(fine_run(contact, history, REFERENCE_ELEMENTS), contact)
+        bisections = BANDED.get(name, 0)
+        ref = with_located_ends(fine_run(contact, history, REFERENCE_ELEMENTS, bisections), contact)
         if not args.no_check:
-            check = with_located_ends(fine_run(contact, history, CHECK_ELEMENTS), contact)
+            check_mesh = (REFERENCE_ELEMENTS, bisections - 1) if bisections else (CHECK_ELEMENTS, 0)
+            check = with_located_ends(fine_run(contact, history, *check_mesh), contact)
             checks.append(
-                {"name": name, "model": "mesh", "nodes": CHECK_ELEMENTS + 1, "seconds": ref["seconds"]}
+                {"name": name, "model": "mesh", "nodes": check["x"].size, "seconds": ref["seconds"]}
                 | {"ms_step": 1e3 * ref["seconds"] / len(history), "worst": score(check, ref, contact, history)}
             )
         for model in rows:
@@ -307,8 +331,8 @@ def main(argv=None):
     if checks:
         table(
             checks,
-            f"Reference convergence: {CHECK_ELEMENTS} against {REFERENCE_ELEMENTS} uniform elements "
-            f"(seconds: the {REFERENCE_ELEMENTS}-element run)",
+            f"Reference convergence: {CHECK_ELEMENTS} against {REFERENCE_ELEMENTS} uniform elements, "
+            f"{', '.join(BANDED)} as in BANDED (seconds: the reference's run)",
         )
     for model, model_rows in rows.items():
         table(model_rows, f"{model} ({MODELS[model] or 'fretting.simulate defaults'}) against the reference")

@@ -3,7 +3,7 @@
 from fretting import models
 from fretting.analysis.methods import partial_slip
 from fretting.engine.adaptation import adapted_mesh
-from fretting.engine.choice import MAX_DEFAULT_MESH, ModelFallbackWarning, choose_model
+from fretting.engine.choice import MAX_DEFAULT_MESH, MAX_DEFAULT_WORK, ModelFallbackWarning, choose_model
 from fretting.engine.recorder import final_state
 from fretting.engine.runner import run_file
 from fretting.engine.simulation import simulate
@@ -24,6 +24,7 @@ __all__ = [
     "DEFAULT_NODES",
     "DEFAULT_RTOL",
     "MAX_DEFAULT_MESH",
+    "MAX_DEFAULT_WORK",
     "FlatPunch",
     "FrettingError",
     "Gap",

@@ -16,7 +16,7 @@ from tqdm import tqdm
 from fretting import __version__
 from fretting._validate import positive
 from fretting.analysis import nucleation
-from fretting.engine.choice import MAX_DEFAULT_MESH
+from fretting.engine.choice import MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.engine.recorder import RECORD_ALL_STEPS, RECORDED_ENDS
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
@@ -101,7 +101,8 @@ def _parser():
         type=_positive,
         help=f"relative accuracy of the energy asked of the P1 Galerkin model, on a mesh adapted to "
         f"the whole history (default: the exact model where Q alone loads a symmetric profile, else "
-        f"{DEFAULT_RTOL:g}, or --nodes {DEFAULT_NODES} where that mesh would exceed {MAX_DEFAULT_MESH} nodes)",
+        f"{DEFAULT_RTOL:g}; a coarser mesh, said in a note, where that mesh would exceed {MAX_DEFAULT_MESH} "
+        f"nodes or its run {MAX_DEFAULT_WORK:.2g} nodes squared times increments)",
     )
     run.add_argument(
         "--record",

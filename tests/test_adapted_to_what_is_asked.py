@@ -117,11 +117,14 @@ def test_ends_past_the_bound_run_the_energy_mesh_and_say_so(contact, monkeypatch
     the mesh adapted to the energy runs: recorded and said, with the accuracy its ends reach."""
     history = walk(contact)
     energy_only = adaptation.adapted_model(contact, history, recorded=[])
-    monkeypatch.setattr(choice, "MAX_DEFAULT_MESH", energy_only.theta.size + 50)
+    located = adaptation.adapted_model(contact, history)
+    increments = history.Q.size - 1
+    monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", (located.theta.size - 1) ** 2 * increments)
     with pytest.warns(fr.ModelFallbackWarning, match="locates the stick ends") as said:
         result = fr.simulate(contact, history)
-    assert result.sizes["x"] <= choice.MAX_DEFAULT_MESH < adaptation.adapted_model(contact, history).theta.size
+    assert result.sizes["x"] == energy_only.theta.size < located.theta.size
     assert result.attrs["model_fallback"] in str(said[0].message)
+    assert f"times the run's {increments} increments" in result.attrs["model_fallback"]
     assert "err by up to about 0.005 a" in result.attrs["model_fallback"]
 
 
@@ -129,7 +132,7 @@ def test_a_sampled_mesh_that_falls_back_says_both(contact, small_sample, monkeyp
     """Past the bound, the energy's mesh of a sample runs: the fallback and the sample are both said."""
     history = in_phase_cycles(contact, 12)
     energy_only = adaptation.adapted_model(contact, history, recorded=[])
-    monkeypatch.setattr(choice, "MAX_DEFAULT_MESH", energy_only.theta.size + 50)
+    monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", energy_only.theta.size**2 * (history.Q.size - 1))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = fr.simulate(contact, history)

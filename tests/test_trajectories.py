@@ -29,19 +29,6 @@ def histories():
     }
 
 
-#: Targets the default does not meet yet on these histories (measured worst step, reference of
-#: `REFERENCE_ELEMENTS`): the slip relative to the step's largest at the first steps of narrow
-#: edge slip zones (4.6e-3 on the walk at step 5).
-OPEN = {("random walk", "slip_step")}
-
-
-def _cases():
-    for name in histories():
-        for quantity in TARGETS:
-            marks = pytest.mark.xfail(strict=True, reason="issue 18, open") if (name, quantity) in OPEN else ()
-            yield pytest.param(name, quantity, marks=marks, id=f"{name}-{quantity}")
-
-
 @pytest.fixture(scope="module")
 def scores():
     """``name: (result, worst errors)`` of the default on each of `histories`, computed once."""
@@ -53,7 +40,8 @@ def scores():
     return out
 
 
-@pytest.mark.parametrize(("name", "quantity"), list(_cases()))
+@pytest.mark.parametrize("quantity", list(TARGETS))
+@pytest.mark.parametrize("name", list(histories()))
 def test_every_step_of_the_default_within_the_targets(scores, name, quantity):
     value, step = scores[name][1][quantity]
     assert value <= TARGETS[quantity], f"{quantity} {value:.2e} at step {step}"

@@ -80,14 +80,17 @@ class MeshTooLarge(Exception):
 
     Attributes: ``nodes`` it would need at least, ``step`` of the turning points where that
     became certain, ``model`` the `GalerkinModel` of the last mesh within the bound (that of the
-    pass under way), ``ends`` True where it is the second stage of `adapted_model` that passes
-    the bound: ``model`` then resolves the energy to rtol, and the stick ends to about
-    ``ENERGY_SPAN rtol a`` only.
+    pass under way), ``ends`` the number of increments of the run where it is the second stage of
+    `adapted_model` that passes its bound of work (None otherwise): ``model`` then resolves the
+    energy to rtol, and the stick ends to about ``ENERGY_SPAN rtol a`` only.
     """
 
-    def __init__(self, nodes, step, model, ends=False):
-        if ends:
-            message = f"the mesh that locates the stick ends of the recorded steps would need {nodes} nodes"
+    def __init__(self, nodes, step, model, ends=None):
+        if ends is not None:
+            message = (
+                f"the mesh that locates the stick ends of the recorded steps would need {nodes} nodes, "
+                f"{nodes**2 * ends:.2g} nodes squared times the run's {ends} increments"
+            )
         else:
             message = f"the adapted mesh would need {nodes} nodes or more (at step {step} of the turning points)"
         super().__init__(message)
@@ -120,7 +123,7 @@ def adapted_mesh(
         return None
 
 
-def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=None):
+def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=None, max_work=None):
     """The `GalerkinModel` (built once, for the run to use) whose mesh ``theta`` [rad] resolves the
     stick and slip zones of `history` to `rtol`.
 
@@ -138,9 +141,11 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
     dataset's ``model_sample``). Each sample's passes start from the last sample's mesh, so
     none is thrown away.
 
-    Raises `MeshTooLarge` as soon as a refinement is certain to give more than `max_nodes` nodes
-    (the targets only shrink within a pass, so the mesh they ask for only grows:
-    `_bisected_size`), with the model of the energy stage where it is the ends that pass the bound.
+    Raises `MeshTooLarge` as soon as a refinement of the energy stage is certain to give more than
+    `max_nodes` nodes (the targets only shrink within a pass, so the mesh they ask for only grows:
+    `_bisected_size`), or where the ends' mesh of ``N`` nodes would make the run's work
+    ``N^2 x increments`` exceed `max_work` (an increment costs about ``N^2``: the products with the
+    stiffness of each release of the active set), with the model of the energy stage.
     """
     sliding = np.flatnonzero(np.abs(history.Q) >= contact.f * contact.P)
     if sliding.size:  # the run will stop there: adapt to the steps before
@@ -148,7 +153,7 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
     steps = history.turning_steps(MAX_TURN, _units(contact))
     turning = history.turning_points(MAX_TURN, _units(contact))
     mirrored = contact.profile.SYMMETRIC and not (history.Q.any() and history.sigma.any())
-    adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored)
+    adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored, max_work)
     size = min(SAMPLE_TURNS, len(turning))
     model = adapt(turning[:size], initial_theta())
     while size < len(turning):
@@ -186,8 +191,8 @@ def _located(model, adapt, history, recorded):
     theta = adapt.refined(model.theta, targets)
     if np.array_equal(theta, model.theta):
         return model
-    if adapt.max_nodes is not None and theta.size > adapt.max_nodes:
-        raise MeshTooLarge(theta.size, len(steps) - 1, model, ends=True)
+    if adapt.max_work is not None and theta.size**2 * adapt.increments > adapt.max_work:
+        raise MeshTooLarge(theta.size, len(steps) - 1, model, ends=adapt.increments)
     located = Mesh(adapt.rtol, theta).build(model.contact, previous=model)
     located.spec = replace(located.spec, sample=model.spec.sample)
     return located
@@ -201,11 +206,13 @@ SAMPLE_TURNS = 256
 
 class _Adaptation:
     """The energy passes of `adapted_model` (its first stage, elements of ``ENERGY_SPAN rtol a``) over
-    the turning points of (a part of) one history."""
+    the turning points of (a part of) one history, and the bounds of both stages: `max_nodes` of the
+    energy's mesh, `max_work` of the run's ``N^2 x increments`` on the ends' mesh."""
 
-    def __init__(self, contact, history, rtol, max_nodes, mirrored):
+    def __init__(self, contact, history, rtol, max_nodes, mirrored, max_work=None):
         self.contact, self.history, self.rtol = contact, history, rtol
-        self.max_nodes, self.mirrored = max_nodes, mirrored
+        self.max_nodes, self.mirrored, self.max_work = max_nodes, mirrored, max_work
+        self.increments = len(history.Q) - 1  # the run's, up to gross slip
 
     def __call__(self, turning, theta):
         """The model whose mesh, refined from `theta` [rad], resolves the increments of `turning`."""

@@ -10,11 +10,11 @@ The default for a contact and a history (`choose_model`):
 2. else method 4 on the Galerkin mesh adapted to the history (`Mesh()`, `DEFAULT_RTOL`): to
    the energy, then to the stick ends of the recorded steps
    (`fretting.engine.adaptation.adapted_model`);
-3. where that mesh would need more than `MAX_DEFAULT_MESH` nodes, the mesh adapted to the energy
-   (when it is the ends that pass the bound) or the last mesh of the adaptation within the
-   bound, with the reason recorded in the spec (`Mesh.fallback`, the dataset's
-   ``model_fallback``) and a `ModelFallbackWarning`; the adaptation stops as soon as the bound
-   is certain;
+3. where the energy's mesh would need more than `MAX_DEFAULT_MESH` nodes, the last mesh of the
+   adaptation within that bound; where the run on the ends' mesh would cost more than
+   `MAX_DEFAULT_WORK`, the energy's mesh; each with the reason recorded in the spec
+   (`Mesh.fallback`, the dataset's ``model_fallback``) and a `ModelFallbackWarning`; the
+   adaptation stops as soon as a bound is certain;
 4. a long history's mesh is adapted to a sample of its turning points
    (`fretting.engine.adaptation.SAMPLE_TURNS`), said by a `MeshSampleWarning` and recorded
    (`Mesh.sample`, the dataset's ``model_sample``).
@@ -42,6 +42,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MAX_DEFAULT_MESH",
+    "MAX_DEFAULT_WORK",
     "SPECS",
     "MeshSampleWarning",
     "ModelFallbackWarning",
@@ -67,11 +68,17 @@ RECORDED_BEFORE = {
     "Ciavarella-Jaeger with Masing's rule: exact for Q alone on a symmetric profile, at fixed nodes": Exact.name,
 }
 
-#: Nodes at which the default's mesh adaptation stops: an increment costs ``N^2`` to ``N^3``, and
-#: the elements that locate every recorded step's stick ends (`fretting.models.galerkin.BOUNDARY_SPAN`)
-#: take the meshes of general Q/sigma histories to a few thousand nodes (benchmarks/trajectories.py);
-#: past the bound the mesh adapted to the energy runs, or the last mesh within the bound.
+#: Nodes at which the default's adaptation to the energy stops; past it the last mesh within the
+#: bound runs.
 MAX_DEFAULT_MESH = 4 * DEFAULT_NODES
+
+#: The default's bound of ``N^2 x increments`` of a run on the mesh of ``N`` nodes that locates the
+#: recorded steps' stick ends (`fretting.models.galerkin.BOUNDARY_SPAN`): an increment costs about
+#: ``N^2`` (products with the stiffness), and those meshes have 1,000 to 4,000 nodes on general
+#: Q/sigma histories (benchmarks/trajectories.py prints each with its run time). The bound takes in
+#: every history of that benchmark, the longest runs taking about a minute of one core; past it the
+#: mesh adapted to the energy runs.
+MAX_DEFAULT_WORK = 3e9
 
 
 class ModelFallbackWarning(UserWarning):
@@ -113,17 +120,19 @@ def _default_model(contact, history, recorded=None):
     if exact.holds_for(contact, history) is None:
         return exact.resolved_for(contact, history).build(contact)
     try:
-        return _said(adapted_model(contact, history, DEFAULT_RTOL, MAX_DEFAULT_MESH, recorded))
+        return _said(adapted_model(contact, history, DEFAULT_RTOL, MAX_DEFAULT_MESH, recorded, MAX_DEFAULT_WORK))
     except MeshTooLarge as error:
-        model, reason = error.model, f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
-        if error.ends:
+        model = error.model
+        if error.ends is not None:
             span = ENERGY_SPAN * DEFAULT_RTOL
-            reason += (
+            reason = (
+                f"{error}, over the default's bound of {MAX_DEFAULT_WORK:.2g}"
                 f": runs the mesh adapted to the energy, {model.theta.size} nodes, whose stick ends between "
                 f"turning points err by up to about {span:g} a"
             )
         else:
-            reason += (
+            reason = (
+                f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
                 f": runs the last mesh within it, {model.theta.size} nodes, coarser than rtol = {DEFAULT_RTOL:g} asks"
             )
     warnings.warn(f"the default model falls back: {reason}", ModelFallbackWarning, stacklevel=3)
@@ -182,7 +191,7 @@ def continued(contact, state, history):
 
     A state of a `Mesh` adapted to an ``rtol`` has its mesh refined where the new loads need it
     (`fretting.engine.adaptation.refined_for`); any other is continued as it is, and so is a
-    mesh the default capped at `MAX_DEFAULT_MESH` (its ``fallback`` stays true of it).
+    mesh the default capped (its ``fallback`` stays true of it).
     """
     spec = state.model
     if isinstance(spec, Mesh) and spec.rtol is not None and spec.fallback is None:

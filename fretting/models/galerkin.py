@@ -919,6 +919,8 @@ def element_targets(
             size = width[zone] * zone_fraction(rtol)
         if zone_status[zone]:  # swept by the boundaries of the steps between: locate them too
             size = np.minimum(size, _span((theta[:-1] + theta[1:])[overlapping] / 2, rtol, swept))
+            if zone in (0, width.size - 1):  # grown from the contact's edge through every width
+                size = np.minimum(size, _graded_from_edge(theta, zone == 0, rtol)[overlapping])
         targets[overlapping] = np.minimum(targets[overlapping], size)
     for zone, (k, position) in enumerate(zip(inside, ends[1:-1], strict=True)):  # between zone and zone + 1
         scale = min(width[zone], width[zone + 1], *(abs(position - b) or np.inf for b in breakpoints))
@@ -932,6 +934,20 @@ def element_targets(
 def _span(position, rtol, span=BOUNDARY_SPAN):
     """Size [rad] of an element at `position` [rad] that spans ``span rtol a`` in x."""
     return span * rtol / np.maximum(np.sin(position), span * rtol / np.pi)
+
+
+def _graded_from_edge(theta, left, rtol):
+    """Targets [rad] growing like ``zone_fraction(rtol)`` times the distance from the contact's edge
+    (``theta = 0`` if `left`, else ``pi``), from `EDGE_SIZE`.
+
+    A slip zone at the edge grows through every width between two turning points, and the slip
+    there is smooth in ``theta`` up to the edge, so that each of those widths is spanned by
+    ``ZONE_ELEMENTS`` elements or more, as a zone at a turning point is: with the elements a
+    turning point's wide zone asks for, the slip of the narrow zones of the steps before it
+    erred by over 1e-3 of the step's largest slip (benchmarks/trajectories.py).
+    """
+    distance = theta[:-1] if left else np.pi - theta[1:]
+    return np.maximum(zone_fraction(rtol) * distance, EDGE_SIZE)
 
 
 def _graded_toward(theta, position, size):
