@@ -156,3 +156,22 @@ def test_an_increment_off_the_line_is_refused():
     state = State.virgin(model)
     with pytest.raises(ValueError, match="not in phase"):
         model.increment(state, 1e4, 0.0)
+
+
+def test_a_continued_run_equals_the_whole_run(tmp_path):
+    """Cut at a vertex, saved, loaded and continued from its state (the ratio and the open turning points
+    read back): the same slip, delta_sigma and energy, bit for bit. Loads off the line are refused."""
+    contact = hertz_si()
+    history = in_phase(contact, [0.0, 0.8, -0.5, 0.6, -0.2, 0.9, -0.9], 0.7, 3)
+    whole = fr.simulate(contact, history)
+    cut = int(history.vertex_step[4])
+    fr.save(fr.simulate(contact, history[: cut + 1]), tmp_path / "head.h5")
+    state = fr.final_state(fr.load(tmp_path / "head.h5"))
+    assert state.memory == tuple(history.Q[history.vertex_step[1:4]])
+    tail = fr.simulate(contact, history[cut:], state=state)
+    np.testing.assert_array_equal(tail.slip.values, whole.slip.values[cut:])
+    np.testing.assert_array_equal(tail.delta_sigma.values, whole.delta_sigma.values[cut:])
+    assert tail.total_dissipation.values == whole.total_dissipation.values
+    off = fr.History.piecewise_linear([history.Q[cut], 0.0], [history.sigma[cut], 1e6], 2)
+    with pytest.raises(fr.HistoryError, match="leaves the model's line"):
+        fr.simulate(contact, off, state=state)

@@ -51,7 +51,7 @@ if TYPE_CHECKING:
     from fretting.loading.history import History
     from fretting.physics.contact import Contact
 
-__all__ = ["InPhase", "InPhaseModel", "proportional_ratio", "regime_bound"]
+__all__ = ["InPhase", "InPhaseModel", "on_line", "proportional_ratio", "regime_bound"]
 
 #: Largest departure of ``sigma`` from ``k Q``, relative to ``|k| max |Q|``, that a history (and an
 #: increment) may show and still be in phase: rounding of loads formed separately, as the steps
@@ -75,7 +75,13 @@ def proportional_ratio(history: History) -> float | None:
     if Q[largest] == 0:
         return 0.0 if not np.any(sigma) else None
     ratio = float(sigma[largest] / Q[largest])
-    return ratio if _on_path(Q, sigma, ratio, abs(Q[largest])) else None
+    return ratio if on_line(history, ratio) else None
+
+
+def on_line(history: History, ratio: float) -> bool:
+    """True where every step of `history` has ``sigma = ratio Q`` to `PROPORTIONAL_RTOL` of ``|ratio| max |Q|``."""
+    Q = np.asarray(history.Q, dtype=float)
+    return _on_path(Q, np.asarray(history.sigma, dtype=float), ratio, np.abs(Q).max(initial=0.0))
 
 
 def _on_path(Q, sigma, ratio, scale):
@@ -137,11 +143,11 @@ class InPhase(ModelSpec):
             return f"{contact.profile!r} is not a Hertz profile"
         if history is None:
             return None if self.ratio is not None else "no history gives the ratio sigma/Q"
-        ratio = proportional_ratio(history)
+        if self.ratio is not None and not on_line(history, self.ratio):
+            return f"the history leaves the model's line sigma = {self.ratio:g} 1/m * Q"
+        ratio = self.ratio if self.ratio is not None else proportional_ratio(history)
         if ratio is None:
             return "sigma is not proportional to Q (the load path is not a straight line through the origin)"
-        if self.ratio is not None and ratio != self.ratio:
-            return f"the history has sigma/Q = {ratio:g} 1/m, the model {self.ratio:g} 1/m"
         if abs(ratio) > regime_bound(contact):
             return (
                 f"|sigma/Q| = {abs(ratio):g} 1/m passes regime A's 4/(pi a) = {regime_bound(contact):g} 1/m "
