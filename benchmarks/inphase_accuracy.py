@@ -8,10 +8,18 @@ history and at all nodes, the slip [of the largest slip] at those nodes and at a
 energy of an increment, delta_Q and delta_sigma [of their largest], the stick ends [a]; and the
 CPU time of each run. Where method 4's errors fall with its mesh, the exact model is their limit.
 
-Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/inphase_accuracy.py   (about a minute)
+With ``--service-life``: the in-phase history of benchmarks/service_life.py (`CYCLES` random cycles)
+through `fretting run` at default settings, its CPU time and peak memory (`service_life.run`), and
+the largest relative error of its energy per cycle against method 4 on the finest mesh over the
+first `PREFIX` cycles (the same draws): a converged reference, where service_life.py's own row
+compares the default with itself solving every step.
+
+Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/inphase_accuracy.py [--service-life]   (about a minute each)
 """
 
+import argparse
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -21,10 +29,14 @@ import fretting as fr
 from fretting.models.inphase import InPhase, regime_bound
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+import service_life  # noqa: E402
 from conftest import hertz_si  # noqa: E402
 from test_inphase import END_BAND  # noqa: E402
 
 MESHES = (1001, 2001, 4001)
+
+#: Cycles of the service-life run, and those of its method-4 reference.
+CYCLES, PREFIX = 10**4, 8
 
 
 def history(contact):
@@ -72,5 +84,27 @@ def main():
         print("| " + " | ".join(cells) + " |")
 
 
+def service_life_row():
+    """The service-life in-phase run at default settings against method 4 on the finest mesh (module docstring)."""
+    with tempfile.TemporaryDirectory() as directory:
+        folder = Path(directory)
+        output, seconds, peak = service_life.run(folder, CYCLES, True)
+        source = folder / "prefix.toml"
+        source.write_text(service_life.history_text(PREFIX, True))
+        reference = fr.simulate(*fr.read_history(source), mesh=np.linspace(0, np.pi, MESHES[-1]))
+        result = fr.load(output)
+        error = service_life.worst(result.cycle_dissipation.values[:PREFIX], reference.cycle_dissipation.values)
+        print(
+            f"in phase, {CYCLES:,} cycles, default ({result.attrs['model']}, {result.attrs['nodes']} nodes): "
+            f"{seconds:.1f} s CPU, {peak / 1e6:.0f} MB; energy per cycle against method 4 on {MESHES[-1]} "
+            f"nodes over the first {PREFIX} cycles: {error:.1e}"
+        )
+
+
 if __name__ == "__main__":
-    main()
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--service-life", action="store_true", help="the service-life in-phase row instead")
+    if parser.parse_args().service_life:
+        service_life_row()
+    else:
+        main()

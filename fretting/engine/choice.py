@@ -102,8 +102,10 @@ def choose_model(contact: Contact, history: History) -> ModelSpec:
     >>> fP = contact.f * contact.P
     >>> choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP, -0.5 * fP], None, 8)).name
     'exact'
-    >>> spec = choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP], [0, 50e6], 8))
-    >>> spec.name, spec.resolved  # sigma: a Galerkin mesh adapted to the history
+    >>> choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP, -0.5 * fP], [0, 50e6, -50e6], 8)).name
+    'inphase'
+    >>> spec = choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP, -0.5 * fP], [0, 50e6, 0], 8))
+    >>> spec.name, spec.resolved  # sigma off the line sigma = k Q: a Galerkin mesh adapted to the history
     ('mesh', True)
     """
     return _default_model(contact, history).spec
