@@ -235,13 +235,19 @@ class InPhaseModel(ExactModel):
         q = f * (self._p - p_c)
         if c >= a:
             return _Branch(a, q, np.zeros(self.x.size), 0.0, 0.0)
-        slip = f * hertz_slip_shape(X, c) / (2 * R)
-        energy, delta_Q = 0.0, 0.0
-        for X_, dX, root in (_zone(-a, e - c, a), _zone(e + c, a, a)):
-            g = hertz_slip_shape(X_ - e, c) / (2 * R)
-            energy += np.dot(contact.p0 * root / a * g, dX)
-            delta_Q += f / np.pi * np.dot(g / root, dX)
+        slip = np.zeros(self.x.size)
+        slip[~inside] = f * hertz_slip_shape(X[~inside], c) / (2 * R)
+        X, dX, root = (np.concatenate(pair) for pair in zip(_zone(-a, e - c, a), _zone(e + c, a, a), strict=True))
+        g = hertz_slip_shape(X - e, c) / (2 * R)  # both slip zones at once
+        energy, delta_Q = np.dot(contact.p0 * root / a * g, dX), f / np.pi * np.dot(g / root, dX)
         return _Branch(c, q, slip, float(energy), float(delta_Q))
+
+
+#: ``X = low + (high - low) sin(phi / 2)^2`` with ``phi = pi (u + 1) / 2`` at the Gauss-Legendre points ``u``
+#: (`_zone`): ``sin(phi/2)^2``, ``cos(phi/2)^2`` and ``dX / (high - low)`` times the weights.
+_PHI = np.pi * (_U + 1) / 2
+_SIN2, _COS2 = np.sin(_PHI / 2) ** 2, np.cos(_PHI / 2) ** 2
+_DX = (np.pi / 2) * _WEIGHTS * np.sin(_PHI) / 2
 
 
 def _zone(low, high, a):
@@ -251,12 +257,10 @@ def _zone(low, high, a):
     pressure ``~ sqrt(a -+ X)`` at the contact's edge become smooth in ``phi``; the distance to that
     edge is formed without cancellation.
     """
-    phi = np.pi * (_U + 1) / 2
     width = high - low
-    X = low + width * np.sin(phi / 2) ** 2
-    dX = (np.pi / 2) * _WEIGHTS * width * np.sin(phi) / 2
+    X = low + width * _SIN2
     if high == a:
-        root = np.sqrt(width * np.cos(phi / 2) ** 2 * (a + X))
+        root = np.sqrt(width * _COS2 * (a + X))
     else:
-        root = np.sqrt((a - X) * width * np.sin(phi / 2) ** 2)
-    return X, dX, root
+        root = np.sqrt((a - X) * width * _SIN2)
+    return X, width * _DX, root
