@@ -23,11 +23,13 @@ def contact():
     return fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
 
 
-def in_phase_cycles(contact, cycles, amplitudes=None):
-    """Q and sigma in phase between +-amplitude (fractions of f P and f p0), one vertex a reversal."""
+def in_phase_cycles(contact, cycles, amplitudes=None, sigma_mean=0.0):
+    """Q and sigma in phase between +-amplitude (fractions of f P and f p0), one vertex a reversal; sigma
+    about `sigma_mean` (of f p0; not zero: the load path misses the origin, and the default meshes it)."""
     amplitudes = np.full(cycles, 0.5) if amplitudes is None else amplitudes
     levels = np.r_[0.0, np.ravel(np.c_[amplitudes, -amplitudes])]
-    return fr.History.piecewise_linear(levels * contact.f * contact.P, levels * 0.5 * contact.f * contact.p0, 4)
+    sigma = levels * 0.5 + np.where(levels != 0, sigma_mean, 0.0)
+    return fr.History.piecewise_linear(levels * contact.f * contact.P, sigma * contact.f * contact.p0, 4)
 
 
 def turning(contact, history):
@@ -67,7 +69,7 @@ def test_short_histories_adapt_as_before(contact, monkeypatch):
 
 
 def test_the_sample_is_recorded_and_said(contact, small_sample):
-    history = in_phase_cycles(contact, 12)
+    history = in_phase_cycles(contact, 12, sigma_mean=0.05)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = fr.simulate(contact, history)
@@ -130,7 +132,7 @@ def test_ends_past_the_bound_run_the_energy_mesh_and_say_so(contact, monkeypatch
 
 def test_a_sampled_mesh_that_falls_back_says_both(contact, small_sample, monkeypatch):
     """Past the bound, the energy's mesh of a sample runs: the fallback and the sample are both said."""
-    history = in_phase_cycles(contact, 12)
+    history = in_phase_cycles(contact, 12, sigma_mean=0.05)
     energy_only = adaptation.adapted_model(contact, history, recorded=[])
     monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", energy_only.theta.size**2 * (history.Q.size - 1))
     with warnings.catch_warnings(record=True) as caught:

@@ -290,8 +290,8 @@ def test_the_engine_runs_blas_on_one_thread_and_gives_the_threads_back(hertz, mo
     monkeypatch.setattr(engine, "solve_increment", spying)
     with threadpool_limits(limits=2, user_api="blas"):  # the caller's, whatever the environment's
         before = blas_threads()
-        loads = 0.5 * hertz.f * hertz.P, 0.2 * hertz.f * hertz.p0  # sigma: the default adapts a mesh
-        fr.simulate(hertz, fr.History.sinusoidal(*loads, cycles=2, steps_per_cycle=8), **model)
+        loads = 0.5 * hertz.f * hertz.P, 0.2 * hertz.f * hertz.p0  # sigma out of phase: the default adapts a mesh
+        fr.simulate(hertz, fr.History.sinusoidal(*loads, 90.0, cycles=2, steps_per_cycle=8), **model)
         after = blas_threads()
     assert set(before.values()) == {2} and after == before
     assert seen and all(set(threads.values()) == {BLAS_THREADS} for threads in seen)

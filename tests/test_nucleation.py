@@ -225,7 +225,7 @@ def test_the_specimen_carries_the_bulk_stress_by_default():
     np.testing.assert_allclose(peak, expected, rtol=0, atol=2e-4 * fp0)
     assert round(peak[-1] / 1e6, 1) == 267.6
     stress = nu.surface_stress(result)
-    assert stress.attrs["role"] == "specimen" and result.x.values[int(stress.values.max(axis=0).argmax())] == a
+    assert stress.attrs["role"] == "specimen" and int(stress.values.max(axis=0).argmax()) == result.x.size - 1
     pad = nu.per_cycle(result, body=1)
     assert pad.attrs["role"] == "pad" and pad.sigma_xx_max.values[-1] < peak[-1] - 0.5 * sigma
     assert nu.ruiz(result).F2.values[-1] > 1.8 * pad.F2.values[-1]  # 3.66e9 against 1.98e9 Pa J/m^2

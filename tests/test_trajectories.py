@@ -25,7 +25,7 @@ def histories():
     return {
         "random walk": (contact, walk(contact, seed=1, steps=8, vertices=5)),
         "ellipse at 90 degrees": (contact, ellipse(contact, 90, cycles=1, steps=32)),
-        "near sliding": (contact, path(contact, [(0.999, 0.3), (-0.999, -0.3)], steps=8)),
+        "near sliding": (contact, path(contact, [(0.999, 0.3), (-0.999, -0.2)], steps=8)),
     }
 
 
@@ -49,6 +49,7 @@ def test_every_step_of_the_default_within_the_targets(scores, name, quantity):
 
 @pytest.mark.parametrize("name", list(histories()))
 def test_default_runs_a_galerkin_mesh(scores, name):
+    """Each history leaves the straight line through the origin (tests/test_inphase.py has those)."""
     assert scores[name][0].attrs["model"] == "mesh"
 
 

@@ -7,15 +7,18 @@ The default for a contact and a history (`choose_model`):
 1. the exact model of ``Q`` alone (`Exact`) where it holds: no ``sigma`` in the history and a
    symmetric profile (`Exact.holds_for`); where the answer is known in closed form it is not
    solved for;
-2. else method 4 on the Galerkin mesh adapted to the history (`Mesh()`, `DEFAULT_RTOL`): to
+2. the exact model of in-phase ``Q`` and ``sigma`` (`InPhase`) where it holds: a Hertz contact,
+   ``sigma = k Q`` at every step (a straight load path through the origin) and regime A,
+   ``|k| <= 4 / (pi a)`` (`InPhase.holds_for`);
+3. else method 4 on the Galerkin mesh adapted to the history (`Mesh()`, `DEFAULT_RTOL`): to
    the energy, then to the stick ends of the recorded steps
    (`fretting.engine.adaptation.adapted_model`);
-3. where the energy's mesh would need more than `MAX_DEFAULT_MESH` nodes, the last mesh of the
+4. where the energy's mesh would need more than `MAX_DEFAULT_MESH` nodes, the last mesh of the
    adaptation within that bound; where the run on the ends' mesh would cost more than
    `MAX_DEFAULT_WORK`, the energy's mesh; each with the reason recorded in the spec
    (`Mesh.fallback`, the dataset's ``model_fallback``) and a `ModelFallbackWarning`; the
    adaptation stops as soon as a bound is certain;
-4. a long history's mesh is adapted to a sample of its turning points
+5. a long history's mesh is adapted to a sample of its turning points
    (`fretting.engine.adaptation.SAMPLE_TURNS`), said by a `MeshSampleWarning` and recorded
    (`Mesh.sample`, the dataset's ``model_sample``).
 """
@@ -34,6 +37,7 @@ from fretting.models.base import ModelSpec
 from fretting.models.collocation import DEFAULT_NODES, Grid
 from fretting.models.exact import Exact
 from fretting.models.galerkin import DEFAULT_RTOL, ENERGY_SPAN, Mesh
+from fretting.models.inphase import InPhase
 from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART, Varying
 
 if TYPE_CHECKING:
@@ -56,7 +60,7 @@ __all__ = [
 ]
 
 #: Every kind of model, by the name the dataset records: a new model adds its spec here.
-SPECS = {spec.name: spec for spec in (Exact, Mesh, Grid, Varying)}
+SPECS = {spec.name: spec for spec in (Exact, InPhase, Mesh, Grid, Varying)}
 
 #: The ``model`` attribute of results written by fretting 0.1.0, before models had names: the name
 #: it stands for, so that a result kept from then can still be continued or resumed.
@@ -96,7 +100,7 @@ def choose_model(contact: Contact, history: History) -> ModelSpec:
     Returns
     -------
     ModelSpec
-        `Exact` or `Mesh`, with its nodes fixed.
+        `Exact`, `InPhase` or `Mesh`, with its nodes fixed.
 
     Examples
     --------
@@ -105,8 +109,10 @@ def choose_model(contact: Contact, history: History) -> ModelSpec:
     >>> fP = contact.f * contact.P
     >>> choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP, -0.5 * fP], None, 8)).name
     'exact'
-    >>> spec = choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP], [0, 50e6], 8))
-    >>> spec.name, spec.resolved  # sigma: a Galerkin mesh adapted to the history
+    >>> choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP, -0.5 * fP], [0, 50e6, -50e6], 8)).name
+    'inphase'
+    >>> spec = choose_model(contact, fr.History.piecewise_linear([0, 0.5 * fP, -0.5 * fP], [0, 50e6, 0], 8))
+    >>> spec.name, spec.resolved  # sigma off the line sigma = k Q: a Galerkin mesh adapted to the history
     ('mesh', True)
     """
     return _default_model(contact, history).spec
@@ -116,9 +122,9 @@ def _default_model(contact, history, recorded=None):
     """The built model of `choose_model` (a mesh's stiffness is assembled once, by its adaptation)."""
     if varies_P(contact, history):
         return Varying().resolved_for(contact, history).build(contact)
-    exact = Exact()
-    if exact.holds_for(contact, history) is None:
-        return exact.resolved_for(contact, history).build(contact)
+    for exact in (Exact(), InPhase()):
+        if exact.holds_for(contact, history) is None:
+            return exact.resolved_for(contact, history).build(contact)
     try:
         return _said(adapted_model(contact, history, DEFAULT_RTOL, MAX_DEFAULT_MESH, recorded, MAX_DEFAULT_WORK))
     except MeshTooLarge as error:
@@ -157,7 +163,7 @@ def check(spec, contact, history):
 def could_be_default(spec):
     """True if `choose_model` can give the resolved `spec` (one read from a result, say)."""
     return (
-        isinstance(spec, Exact)
+        isinstance(spec, (Exact, InPhase))
         or (isinstance(spec, Mesh) and spec.rtol == DEFAULT_RTOL)
         or (isinstance(spec, Varying) and (spec.cells, spec.load_part) == (DEFAULT_CELLS, DEFAULT_LOAD_PART))
     )

@@ -3,6 +3,7 @@
 The specs a user picks a model with:
 
 - `Exact`: the exact model of ``Q`` alone on a symmetric profile (Ciavarella-Jaeger with Masing's rule);
+- `InPhase`: the exact model of in-phase ``Q`` and ``sigma`` on a Hertz contact (Nowell-Hills with Masing's rule);
 - `Mesh`: method 4 by P1 Galerkin on a mesh in ``theta``, given or adapted to a relative accuracy;
 - `Grid`: method 4 by Gauss-Chebyshev collocation on a fixed number of nodes.
 """
@@ -11,5 +12,6 @@ from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.collocation import Grid
 from fretting.models.exact import Exact
 from fretting.models.galerkin import Mesh
+from fretting.models.inphase import InPhase
 
-__all__ = ["Exact", "Grid", "Mesh", "Model", "ModelSpec", "Outcome"]
+__all__ = ["Exact", "Grid", "InPhase", "Mesh", "Model", "ModelSpec", "Outcome"]

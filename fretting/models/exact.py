@@ -129,15 +129,16 @@ class Exact(ModelSpec):
         return cls(int(attrs.get("grid_nodes", DEFAULT_NODES)), theta)
 
 
-def nodes_theta(contact, history, N):
+def nodes_theta(contact, history, N, offset=0.0):
     """Node angles [rad] of the exact model for `history`, ``x = centre + a cos(theta)``, ascending.
 
     The `N` Gauss-Chebyshev angles ``(2k - 1) pi / (2N)``, `EDGE_OCTAVES` octaves of
     `EDGE_NODES_PER_OCTAVE` toward each edge, and `STICK_NODES` Gauss-Chebyshev points of the
     smallest stick zone ``[-c, c]`` where fewer lie in it: that of the largest ``|Q| < f P`` of
     the history (a branch from a turning point changes the load by at most twice that, and
-    its corrective load, ``P - |Q - Q_k| / (2f)``, is no smaller). Without a history (None), no
-    stick-zone points are added.
+    its corrective load, ``P - |Q - Q_k| / (2f)``, is no smaller), centred at `offset` [m] from the
+    contact's centre (where ``sigma`` shifts it, `fretting.models.inphase`). Without a history
+    (None), no stick-zone points are added.
     """
     grid = chebyshev_angles(N)
     edge = grid[0] * 2.0 ** (-np.arange(1, EDGE_OCTAVES * EDGE_NODES_PER_OCTAVE + 1) / EDGE_NODES_PER_OCTAVE)
@@ -146,8 +147,9 @@ def nodes_theta(contact, history, N):
         return theta
     largest = history.largest_Q_below(contact.f * contact.P)
     c = contact.profile.half_width(contact.P - largest / contact.f, contact.E_star)[0] / contact.a
-    if np.count_nonzero(np.abs(np.cos(theta)) < c) < STICK_NODES:
-        theta = np.union1d(theta, np.arccos(c * np.cos(chebyshev_angles(STICK_NODES))))
+    centre = offset / contact.a
+    if np.count_nonzero(np.abs(np.cos(theta) - centre) < c) < STICK_NODES:
+        theta = np.union1d(theta, np.arccos(centre + c * np.cos(chebyshev_angles(STICK_NODES))))
     return theta
 
 
