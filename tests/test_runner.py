@@ -83,3 +83,28 @@ def test_a_skipping_run_in_chunks_equals_the_whole_skipping_run(tmp_path, monkey
     for name, variable in whole.variables.items():
         if name != "cycle_copied":
             np.testing.assert_array_equal(chunked[name].values, variable.values, err_msg=name)
+
+
+def test_chunks_begin_at_most_CHUNK_CYCLES_and_parts_never_exceed_PART_CYCLES(tmp_path, monkeypatch):
+    """A part is saved before a chunk could take it past PART_CYCLES, and chunks larger in steps
+    than CHUNK_CYCLES cycles are cut: every part saved holds at most PART_CYCLES cycles, and the
+    result joined from them is the run in one piece bit for bit."""
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 1000)
+    monkeypatch.setattr(runner, "CHUNK_CYCLES", 3)
+    monkeypatch.setattr(runner, "PART_CYCLES", 5)
+    saved, chunks = [], []
+    monkeypatch.setattr(runner, "save", lambda result, path: saved.append(result.sizes) or fr.save(result, path))
+    recorder = runner.Recorder
+    monkeypatch.setattr(runner, "Recorder", lambda *args: chunks.append(args[1]) or recorder(*args))
+    history_file = tmp_path / "random.toml"
+    loads = '[[loading]]\nkind = "random"\ncycles = 20\nQ_amplitude = 30e3\nseed = 3\nsteps_per_segment = 2\n'
+    history_file.write_text(HERTZ_TOML + loads)
+    contact, history = fr.read_history(history_file)
+    result = runner.run_file(history_file, tmp_path / "random.h5", Grid(32), checkpoint_interval=1e6).result
+    whole = fr.simulate(contact, history, nodes=32)
+    begun = [np.count_nonzero(np.diff(chunk.cycle)) for chunk in chunks]
+    assert len(chunks) >= 7 and max(begun) == 3
+    assert len(saved) >= 4 and max(sizes["cycle_number"] for sizes in saved) <= 5
+    for name, variable in whole.variables.items():
+        if name != "cycle_copied":
+            np.testing.assert_array_equal(result[name].values, variable.values, err_msg=name)

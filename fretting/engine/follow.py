@@ -146,6 +146,7 @@ class _Run:
             self.skip = np.zeros(len(history), dtype=bool)
         else:
             self.skip = skippable(history, recorder.row >= 0, model.contact)
+        self.solved = np.flatnonzero(~self.skip)  # the last step is never skipped
 
     def follow(self, state):
         """Run from `state`; return the state at the end."""
@@ -168,9 +169,10 @@ class _Run:
                     step += copies * len(previous.steps)
                     repeated = True
                     continue
-            if self.skip[step]:
-                steps.append(None)
-                step += 1
+            if self.skip[step]:  # a straight stretch: on to its next solved step, in the same cycle
+                after = int(self.solved[np.searchsorted(self.solved, step)])
+                steps.extend([None] * (after - step))
+                step = after
                 continue
             guess = None if self.guess is None else self.guess(step)
             Q, sigma = self.history.Q[step], self.history.sigma[step]

@@ -3,9 +3,9 @@
 `run_file` steps one `Stepper` through the history chunk by chunk, so the model's set-up (the
 stiffness, the exact model's branches) is built once per run. Chunks are joined as they come
 (`fretting.results.io.Joiner`) into a *part*, which is saved to the checkpoint folder
-``OUTPUT.checkpoint/`` every `CHECKPOINT_SECONDS`, when it holds `PART_CYCLES` cycles, and on an
-interruption; a part saved is never rewritten, so memory does not grow with the run's cycles and
-a checkpoint costs only the part. At the end the parts are joined into the result file
+``OUTPUT.checkpoint/`` every `CHECKPOINT_SECONDS`, before it would hold more than `PART_CYCLES`
+cycles, and on an interruption; a part saved is never rewritten, so memory does not grow with the
+run's cycles and a checkpoint costs only the part. At the end the parts are joined into the result file
 (`fretting.results.io.save_joined`: the per-cycle rows appended part by part) and the folder is
 deleted. A run resumed from its checkpoint goes on from its last part's final state, to the same
 result bit for bit.
@@ -71,9 +71,14 @@ MAX_CHUNK_STEPS = 2**18
 #: checkpoint saves the part joined since the last one.
 CHECKPOINT_SECONDS = 60.0
 
-#: Cycles a part holds at most before it is saved, whatever the time: the per-cycle rows held in
-#: memory (5 rows of N float32 each: 10 MB at 500 nodes).
-PART_CYCLES = 1024
+#: Cycles a part holds at most, whatever the time: the per-cycle rows held in memory (5 rows of N
+#: float32 each: 80 MB at 500 nodes). Each part costs a file written and read again at the end,
+#: whatever its size, so parts are made large.
+PART_CYCLES = 8192
+
+#: Cycles that one chunk begins at most: its per-cycle tallies (six fields of N float64 each)
+#: are held until the chunk is joined into the part.
+CHUNK_CYCLES = 1024
 
 
 @dataclass(frozen=True)
@@ -279,7 +284,7 @@ def run_file(
                 start += chunk.attrs["steps"] - 1
                 if progress is not None:
                     progress(start, len(history) - 1)
-                if time.monotonic() - written >= checkpoint_interval or part.cycles >= PART_CYCLES:
+                if time.monotonic() - written >= checkpoint_interval or part.cycles + _chunk_cycles() > PART_CYCLES:
                     _save_part(part, checkpoint, attributes)
                     part, written = Joiner(), time.monotonic()
         except KeyboardInterrupt:
@@ -354,13 +359,14 @@ def _chunks(stepper, history, record, start, skipping):
 
 
 def _cut(history, record, start, stop, contact, skipping):
-    """`stop`, or an earlier step, at which the chunk from `start` ends: one that touches at most
-    `PART_CYCLES` cycles and, when `skipping`, ends at a step that the whole run solves too (not
+    """`stop`, or an earlier step, at which the chunk from `start` ends: one that begins at most
+    `_chunk_cycles` cycles and, when `skipping`, ends at a step that the whole run solves too (not
     `fretting.engine.follow.skippable` in the whole history), so that cutting keeps the run bit
     for bit; a straight stretch longer than the chunk is cut at its end."""
     if history.cycle is not None:
         begins = np.flatnonzero(np.diff(history.cycle[start : stop + 1])) + start + 1  # steps that begin a stretch
-        stop = stop if begins.size < PART_CYCLES else int(begins[PART_CYCLES - 1])
+        most = _chunk_cycles()
+        stop = stop if begins.size < most else int(begins[most - 1])
     if not skipping:
         return stop
     end = stop
@@ -370,6 +376,12 @@ def _cut(history, record, start, stop, contact, skipping):
             below = solved[solved <= stop]
             return int(below[-1] if below.size else solved[0])
         end = min(2 * end - start, len(history) - 1)
+
+
+def _chunk_cycles():
+    """Cycles that a chunk begins at most: `CHUNK_CYCLES`, and no more than a part holds, so that a
+    part saved before it would overflow holds at most `PART_CYCLES`."""
+    return min(CHUNK_CYCLES, PART_CYCLES)
 
 
 def _solved(history, record, start, end, contact):
