@@ -71,7 +71,7 @@ def row(spec, seconds, result, reference, label=None):
     flag = " (zones differ)" if differ else ""
     return (
         f"{spec.cells if label is None else label:>6} {spec.load_part:>10.3g} {seconds:>8.2f} {energy:>13.6e}"
-        f" {abs(energy - expected) / expected:>13.2e} {stick:>12.2e}{flag}"
+        f" {(energy - expected) / expected:>+13.2e} {stick:>12.2e}{flag}"
     )
 
 
@@ -98,7 +98,8 @@ def main(argv=None):
         f"{'cells':>6} {'load_part':>10} {'CPU [s]':>8} {'energy [J/m]':>13} {'energy error':>13} {'stick ends':>12}"
     )
     print(f"varying P, walk {args.walk!r}: {len(history)} steps")
-    print(f"errors against {args.reference} cells at load_part {finest:.3g}; stick ends: the largest at any step [a]")
+    print(f"errors against {args.reference} cells at load_part {finest:.3g}: the energy's relative, signed;")
+    print("the stick ends' largest at any step [a]")
     print(header)
     for key in table:
         print(row(*runs[key], reference))
