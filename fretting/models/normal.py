@@ -48,6 +48,13 @@ an increment (`NormalModel.free_surface`). A node that enters sticks with the di
 just before (continuity) under a traction that starts from zero; a node that leaves carries no
 traction and forgets its slip. Everything depends on the loads and the slip alone, so a periodic
 history that shakes down repeats its cycles bit for bit.
+
+Stick ends. An end between a stuck and a slipping node is placed by the square-root kink of the
+traction, from the friction deficit of the one and the slip of the other (`kink_end`); slip zones one
+cell wide are common here, as an edge recedes. A stick zone that reaches the outermost node in
+contact ends at the edge, unless that edge slips in the increment (`NormalModel.edges_slip`: it
+recedes, or grows under more shear than Jaeger's rule carries); its slip zone is then narrower than
+a cell, and `edge_end` extrapolates the deficit to it.
 """
 
 from __future__ import annotations
@@ -57,7 +64,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
-from scipy import linalg
+from scipy import linalg, optimize
 
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.method4 import stick_zones
@@ -176,10 +183,12 @@ def flexibility(N, h, E_star):
 
 @dataclass(frozen=True, eq=False)
 class NormalOutcome(Outcome):
-    """An `Outcome` of `NormalModel`: also the normal load ``P`` [N/m] after the increment and its energy
-    density [J/m^2] (the pressure changes within the increment)."""
+    """An `Outcome` of `NormalModel`: also the normal load ``P`` [N/m] after the increment, its energy
+    density [J/m^2] (the pressure changes within the increment), and whether each contact edge (``x < 0``,
+    ``x > 0``) slips in it (`NormalModel.edges_slip`)."""
 
     P: float = np.nan
+    edges: tuple = (False, False)
     density: np.ndarray | None = None
 
 
@@ -324,7 +333,17 @@ class NormalModel(Model):
             dissipation += float(np.dot(mean, np.abs(solved.ds)))
             P_begin = P_
             slip = self.free_surface(slip, g, sigma_, m)
-        return NormalOutcome(g, ds, slip, dissipation, P=P, density=density)
+        edges = self.edges_slip(loads, (Q, sigma, P))
+        return NormalOutcome(g, ds, slip, dissipation, P=P, density=density, edges=edges)
+
+    def edges_slip(self, before, after):
+        """Whether each edge of the contact (``x = -a``, ``x = a``) slips in the increment from the loads
+        `before` to `after`, ``(Q, sigma, P)``: always where the contact recedes (its traction must vanish at
+        the new edge), else where ``|dQ -/+ (pi a / 4) dsigma| > f dP``, the fully stuck traction increment
+        (eqs 9, 20) exceeding ``f`` times the flat-punch pressure increment at that edge (Jaeger 1998)."""
+        dQ, dsigma, dP = (b - a for a, b in zip(before, after, strict=True))
+        moment = np.pi * self.half_width(after[2]) / 4 * dsigma
+        return tuple(bool(dP < 0 or abs(dQ + side * moment) > self.contact.f * dP) for side in (-1, 1))
 
     def parts(self, P_from, P_to):
         """``(fraction, pairs)`` of the parts of the increment from `P_from` to `P_to` [N/m]: the end of each
@@ -347,10 +366,24 @@ class NormalModel(Model):
 
     def stick_zones(self, outcome, state):
         """Stick intervals in ``t = (x - centre) / a`` of the contact formed, within the contact of the
-        increment's load (a run of stuck nodes that reaches its last cell ends at its edge)."""
-        nodes, a = self.cells(self.pairs(outcome.P)), self.half_width(outcome.P)
-        x = self.x[nodes] - self.contact.centre
-        zones = stick_zones(x / a, (outcome.slip - state.episode_start)[nodes])
+        increment's load. An end between a stuck and a slipping node is `kink_end`, from the traction
+        deficit of one and the slip of the other; an end at the outermost node in contact is `edge_end`."""
+        m = self.pairs(outcome.P)
+        nodes, a = self.cells(m), self.half_width(outcome.P)
+        t = (self.x[nodes] - self.contact.centre) / a
+        deficit = (self.contact.f * self.force(outcome.P, m)[nodes] - np.abs(outcome.g[nodes])) / self.h
+
+        def located(position, d, slipping, beyond):
+            return kink_end(position * a, d, deficit, 2 * slipping - beyond, slipping, self.contact.E_star) / a
+
+        zones = stick_zones(t, (outcome.slip - state.episode_start)[nodes], located)
+        zones = [
+            tuple(
+                edge_end(t, deficit, side) if bound == side and slips else bound
+                for bound, side, slips in zip(zone, (-1.0, 1.0), outcome.edges, strict=True)
+            )
+            for zone in zones
+        ]
         scale = a / self.contact.a
         return [(start * scale, end * scale) for start, end in zones]
 
@@ -379,6 +412,48 @@ class NormalModel(Model):
 
     def surface_at(self, outcome):
         return self.surface[0], self.pressure_at(outcome.P)
+
+
+def kink_end(x, slip, deficit, stuck, slipping, E_star):
+    """Stick/slip boundary [m] between the stuck node `stuck` and its neighbour `slipping` (positions `x` [m]).
+
+    Near a boundary ``c`` the traction of the stick zone falls short of its limit by ``K sqrt(|x - c|)``
+    (`deficit`, ``f p - |q|`` [Pa]: the square-root kink), and the slip since the episode began grows in
+    the slip zone as ``(4 K / (3 E_star)) |x - c|^(3/2)``: the slip gradient of the kink is
+    ``(2 / (pi E_star))`` times its Hilbert transform, ``-pi K sqrt(|x - c|)`` (eq 19 for
+    Cattaneo-Mindlin). The deficit of one node and the slip `slip` [m] of the other eliminate ``K``:
+    with ``w = |c - x_stuck| / h``, ``h`` their spacing, ``(1 - w)^3 = rho^2 w``, ``rho = 3 E_star |slip| /
+    (4 deficit h)``, whose one root in ``[0, 1]`` is found by Brent's method. Local to one spacing, it
+    holds for slip zones narrower than two spacings, where an extrapolation of the slip alone has one node.
+    """
+    h = x[slipping] - x[stuck]
+    if deficit[stuck] <= 0:
+        return float(x[stuck])
+    rho = 3 * E_star * abs(slip[slipping]) / (4 * deficit[stuck] * abs(h))
+    w = optimize.brentq(lambda w: (1 - w) ** 3 - rho**2 * w, 0.0, 1.0)
+    return float(x[stuck] + w * h)
+
+
+def edge_end(t, deficit, side):
+    """End on `side` (-1 or +1) of a stick zone that reaches the outermost node in contact, in ``t = x / a``,
+    where that edge slips in the increment (`NormalModel.edges_slip`).
+
+    Its slip zone then lies between that node and the contact edge ``t = side``, narrower than a cell
+    (as a receding edge leaves it), with no slipping node: ``deficit^2`` (`kink_end`) is extrapolated
+    linearly to zero from the two outermost nodes, within ``[t_outer, side]``. Where the deficit does
+    not fall outwards (a step that moves the edge by several cells leaves the outermost node far
+    from its limit) nothing places the end: it is the middle of ``[t_outer, side]``, as
+    `fretting.models.method4.stick_zones` takes the middle between two nodes it cannot tell apart.
+    The end is the edge itself where the node lies at or beyond it.
+    """
+    outer, inner = (t.size - 1, t.size - 2) if side > 0 else (0, 1)
+    v1, v2 = deficit[outer] ** 2, deficit[inner] ** 2
+    if side * t[outer] >= 1:
+        return side
+    if v2 <= v1:
+        return float((t[outer] + side) / 2)
+    estimate = t[outer] + v1 * (t[outer] - t[inner]) / (v2 - v1)
+    return float(np.clip(estimate, *sorted((t[outer], side))))
 
 
 def toeplitz_inverse(column):
