@@ -357,3 +357,17 @@ def test_stick_end_between_two_nodes_from_the_kink_of_cattaneo_mindlin():
         slip = cf.cattaneo_mindlin_slip(formed, Q, x)
         assert abs(kink_end(x, slip, deficit, 0, 1, E_STAR) - b) < 0.005 * h
         assert abs(kink_end(-x[::-1], -slip[::-1], deficit[::-1], 1, 0, E_STAR) + b) < 0.005 * h
+
+
+@pytest.mark.parametrize("n", [8, 64, 512])
+def test_toeplitz_inverse_is_the_inverse_and_symmetric(n):
+    """Trench's recursion against LAPACK's inverse of the dense flexibility (1e-12 relative), exactly symmetric."""
+    from scipy import linalg
+
+    from fretting.models.normal import flexibility, toeplitz_inverse
+
+    column = flexibility(n, 1e-5, E_STAR)
+    B = toeplitz_inverse(column)
+    expected = np.linalg.inv(linalg.toeplitz(column))
+    assert np.max(np.abs(B - expected)) < 1e-12 * np.max(np.abs(expected))
+    np.testing.assert_array_equal(B, B.T)

@@ -246,9 +246,12 @@ class NormalModel(Model):
     @functools.lru_cache(maxsize=CACHED_CONTACTS)  # noqa: B019 (a model lives as long as its stepper)
     def stiffness(self, m):
         """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring)."""
-        B = toeplitz_inverse(self.column[: 2 * m])
-        b = B.sum(axis=1)
-        return B - np.outer(b, b) / b.sum()
+        G = toeplitz_inverse(self.column[: 2 * m])
+        b = G.sum(axis=1)
+        correction = np.outer(b, b)
+        correction /= b.sum()
+        G -= correction  # in place: no third matrix of (2m)^2
+        return G
 
     def _cumulative(self):
         """Nodal forces ``p h`` [N/m] at each load `start` (Jaeger's superposition of the `punch` of each run)."""
@@ -461,16 +464,22 @@ def toeplitz_inverse(column):
 
     Trench's recursion (Trench 1964; Gohberg & Semencul 1972): with ``v`` the first column of the
     inverse ``B`` (one Levinson solve), ``B[i + 1, j + 1] = B[i, j] + (v[i + 1] v[j + 1] -
-    v[n - 1 - i] v[n - 1 - j]) / v[0]``, filled row by row.
+    v[n - 1 - i] v[n - 1 - j]) / v[0]``, filled row by row in place. The products are taken of
+    ``w = v / sqrt(v[0])``, so that each term is symmetric in ``i, j`` to the last bit and ``B`` is
+    exactly symmetric. A loop over rows, each a few vector operations in place, moves less memory
+    than the same sums taken along the diagonals of a skewed array (``np.cumsum``).
     """
     n = column.size
     v = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
+    w = v / np.sqrt(v[0])
+    head, tail = w[1:], w[:0:-1]  # w[j + 1], w[n - 1 - j], j = 0 .. n - 2
     B = np.empty((n, n))
-    B[0] = v
-    tail = v[::-1][: n - 1]  # v[n - 1 - j], j = 0 .. n - 2
+    B[0], B[1:, 0] = v, v[1:]
     for i in range(n - 1):
-        B[i + 1, 0] = v[i + 1]
-        B[i + 1, 1:] = B[i, :-1] + (v[i + 1] * v[1:] - v[n - 1 - i] * tail) / v[0]
+        row = B[i + 1, 1:]
+        np.multiply(head, w[i + 1], out=row)
+        row -= w[n - 1 - i] * tail
+        row += B[i, :-1]
     return B
 
 
