@@ -17,7 +17,13 @@ from fretting import __version__
 from fretting._validate import positive
 from fretting.analysis import nucleation
 from fretting.engine.choice import MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
-from fretting.engine.recorder import RECORD_ALL_STEPS, RECORDED_ENDS
+from fretting.engine.recorder import (
+    CYCLE_FIELDS_EXPECTED,
+    CYCLE_FIELDS_STORED,
+    RECORD_ALL_STEPS,
+    RECORDED_ENDS,
+    CycleFields,
+)
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
 from fretting.fatigue import CRITERIA, Material, MaterialFileError, apply, line_method, point_method
@@ -123,6 +129,16 @@ def _parser():
         action="store_true",
         help="solve every step (default: the steps inside straight stretches that are not recorded are skipped; "
         "the energy, w, slip range and q_peak are the same, the sigma_xx peaks per cycle are then not tallied)",
+    )
+    run.add_argument(
+        "--cycle-fields",
+        type=_cycle_fields,
+        default="default",
+        metavar="POLICY",
+        help=f"cycles whose fields (w, slip amplitude, peaks) are stored: default every cycle of histories up to "
+        f"{CYCLE_FIELDS_STORED} cycles, else first,last,every=K,maxima with K = cycles / {CYCLE_FIELDS_STORED} "
+        f"rounded up; all; or a list of first, last, every=K, maxima. Energy per cycle, w_total and the fields' "
+        f"maxima always cover every cycle",
     )
     run.set_defaults(command=_run)
 
@@ -244,6 +260,15 @@ def _examples(args):
         print(f"{name:<32} {description}")
 
 
+def _cycle_fields(text):
+    """`text` once `fretting.engine.recorder.CycleFields` reads it as a policy; argparse's error otherwise."""
+    try:
+        CycleFields.parse(text, 0)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(f"expected {CYCLE_FIELDS_EXPECTED}, found {text!r}") from error
+    return text
+
+
 def _run(args):
     history = resolve_history(args.file)
     output = Path(args.output or f"{history.stem}.h5")
@@ -263,6 +288,7 @@ def _run(args):
             checkpoint_interval=args.checkpoint_interval,
             progress=progress,
             every_step=args.every_step,
+            cycle_fields=args.cycle_fields,
         )
     for note in run.notes:
         print(f"fretting: note: {note}", file=sys.stderr)

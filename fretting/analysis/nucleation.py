@@ -95,6 +95,17 @@ def _require_cycles(result: xr.Dataset) -> None:
         raise ValueError("the result has no load cycles: its history counts none")
 
 
+def _require_every_cycle(result: xr.Dataset, name: str) -> None:
+    """Refuse to read the per-cycle field `name` of every cycle from a result that stores it only for
+    the cycles its ``cycle_fields`` policy chose (dims field_cycle, x: `fretting.run_file`)."""
+    if "field_cycle" in result.dims:
+        raise ValueError(
+            f"the result stores {name} only for the cycles {result.field_cycle.values.tolist()[:5]}... that its "
+            f"cycle_fields policy ({result.attrs.get('cycle_fields')}) chose (result.{name}, dims field_cycle, x); "
+            f"over every cycle it has w_total and the *_max fields, or run with cycle_fields='all'"
+        )
+
+
 def _refuse_varying_P(result: xr.Dataset, what: str) -> None:
     """Refuse `what` for a result of a varying ``P`` (it has ``p_step``): it would assume the contact formed."""
     if "p_step" in result:
@@ -159,9 +170,11 @@ def dissipation_density(result: xr.Dataset) -> xr.DataArray:
     xarray.DataArray
         ``w``, dims (cycle_number, x): the engine's tally over every step when the result has
         it; otherwise from the recorded steps, NaN for cycles not recorded whole (ValueError for a
-        result of a varying ``P``: the pressure changes within each increment).
+        result of a varying ``P``: the pressure changes within each increment, and for a result
+        that stores ``w`` only for the cycles of its ``cycle_fields`` policy).
     """
     _require_cycles(result)
+    _require_every_cycle(result, "w")
     if "w" in result:
         w = result.w.astype(np.float64)  # the engine keeps float32 rows; sums over many cycles need more
     else:
@@ -192,6 +205,7 @@ def slip_amplitude(result: xr.Dataset) -> xr.DataArray:
         result of a varying ``P``, whose recorded slip out of contact is that of the free surfaces).
     """
     _require_cycles(result)
+    _require_every_cycle(result, "slip_amplitude")
     if "slip_amplitude" in result:
         delta = result.slip_amplitude.astype(np.float64)
     else:
@@ -409,6 +423,7 @@ def _cycle_peaks(result: xr.Dataset, body: int, bulk: ArrayLike | None) -> dict[
     dict
         ``sigma_xx_peak``, ``q_peak``, ``sigma_xx_q_peak``: ndarray, shape (cycles, N).
     """
+    _require_every_cycle(result, "the peaks per cycle")
     tallied = {name: result[name].values.astype(np.float64) for name in CYCLE_PEAKS if name in result}
     if len(tallied) == len(CYCLE_PEAKS) and body == specimen(result) and bulk is None:
         return tallied

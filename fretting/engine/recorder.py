@@ -9,15 +9,26 @@ per load cycle, and turns them into the variables of `fretting.results.variables
 from __future__ import annotations
 
 import itertools
+import math
+from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 
 from fretting.engine.choice import recorded_spec
 from fretting.engine.state import State, Tally
-from fretting.results.variables import CYCLE_PEAKS, build_dataset
+from fretting.results.variables import ACCUMULATED, CYCLE_FIELDS, CYCLE_PEAKS, build_dataset, variable
 
-__all__ = ["RECORDED_ENDS", "RECORD_ALL_STEPS", "Recorder", "final_state", "recorded_steps"]
+__all__ = [
+    "CYCLE_FIELDS_STORED",
+    "RECORDED_ENDS",
+    "RECORD_ALL_STEPS",
+    "CycleFields",
+    "FieldSelector",
+    "Recorder",
+    "final_state",
+    "recorded_steps",
+]
 
 #: Default recording: every step of histories up to this many steps; of longer ones the first
 #: and the last RECORDED_ENDS steps (64 cycles of 64 steps), so that the fields stored stay
@@ -35,6 +46,140 @@ CYCLE_PEAKS_TALLIED = {
     True: "q_peak over every step (its largest is at the solved ends of a straight stretch); "
     "sigma_xx_peak and sigma_xx_q_peak not tallied: steps inside straight stretches were skipped",
 }
+
+
+#: Cycles whose fields the default policy stores about at most: histories of up to this many
+#: cycles keep every cycle's; longer ones the first and the last, every k-th with
+#: ``k = ceil(cycles / CYCLE_FIELDS_STORED)``, and those that set a new maximum of the energy per
+#: cycle (a few: about the logarithm of the cycles on a random spectrum).
+CYCLE_FIELDS_STORED = 1000
+
+#: What `CycleFields.parse` accepts, for its error.
+CYCLE_FIELDS_EXPECTED = '"all", "default", or a comma-separated list of first, last, every=K (K >= 1) and maxima'
+
+
+@dataclass(frozen=True)
+class CycleFields:
+    """The policy that chooses the cycles whose per-cycle fields (`CYCLE_FIELDS`) a run stores.
+
+    Per-cycle scalars (``cycle_dissipation``, ``cycle_copied``) are stored for every cycle
+    whatever the policy. Written as text (`parse`, `str`): ``all``, or the cycles chosen,
+    ``first,last,every=K,maxima`` (any of them).
+
+    Attributes
+    ----------
+    all : bool
+        Every cycle (the fields then keep their dims ``(cycle_number, x)``).
+    first, last : bool
+        The first cycle (number 1) and the history's last one.
+    every : int
+        Every cycle whose number is a multiple of `every` (0: none).
+    maxima : bool
+        Every cycle whose ``cycle_dissipation`` exceeds that of every cycle before it.
+    """
+
+    all: bool = False
+    first: bool = False
+    last: bool = False
+    every: int = 0
+    maxima: bool = False
+
+    @classmethod
+    def parse(cls, text: str, cycles: int) -> CycleFields:
+        """The policy written `text` (`CYCLE_FIELDS_EXPECTED`) for a history of `cycles` cycles.
+
+        ``default`` is every cycle for histories of up to `CYCLE_FIELDS_STORED` cycles, else
+        ``first,last,every=K,maxima`` with ``K = ceil(cycles / CYCLE_FIELDS_STORED)``.
+
+        Raises
+        ------
+        ValueError
+            Naming ``cycle_fields`` and what is expected.
+        """
+        if text == "all" or (text == "default" and cycles <= CYCLE_FIELDS_STORED):
+            return cls(all=True)
+        if text == "default":
+            return cls(first=True, last=True, every=math.ceil(cycles / CYCLE_FIELDS_STORED), maxima=True)
+        items = text.split(",")
+        flags = {item: True for item in items if item in ("first", "last", "maxima")}
+        every = [item.removeprefix("every=") for item in items if item.startswith("every=")]
+        if len(flags) + len(every) != len(items) or len(every) > 1 or not all(map(_positive_integer, every)):
+            raise ValueError(f"cycle_fields must be {CYCLE_FIELDS_EXPECTED}, found {text!r}")
+        return cls(every=int(every[0]) if every else 0, **flags)
+
+    def __str__(self) -> str:
+        if self.all:
+            return "all"
+        chosen = ["first"] * self.first + ["last"] * self.last + [f"every={self.every}"] * bool(self.every)
+        return ",".join(chosen + ["maxima"] * self.maxima)
+
+    def chosen(self, numbers: np.ndarray, new_maximum: np.ndarray, last: int) -> np.ndarray:
+        """Which of the complete cycles `numbers` (with `new_maximum`: each sets one) are stored,
+        in a history whose last cycle is `last`."""
+        chosen = np.full(numbers.shape, self.all) | (self.maxima & new_maximum)
+        chosen |= (self.first & (numbers == 1)) | (self.last & (numbers == last))
+        return chosen | ((numbers % self.every == 0) if self.every else False)
+
+
+def _positive_integer(text):
+    return text.isdigit() and int(text) > 0
+
+
+class FieldSelector:
+    """The per-cycle fields of a run's chunks cut to the cycles its `CycleFields` policy chooses
+    (not ``all``: a result of every cycle's fields is left as it is), and their accumulation over
+    every complete cycle (`ACCUMULATED`, and ``cycle_dissipation_max``).
+
+    A cycle's row is taken once the cycle is complete (the chunk reaches its last step); a chunk's
+    row of a cycle still in progress is left for the chunk that completes it. Sums and maxima run
+    over the complete cycles in their order, so a run cut anywhere accumulates the same bits.
+
+    Parameters
+    ----------
+    policy : CycleFields
+    cycle : ndarray of int
+        The load cycle of each step of the whole history (``History.cycle``).
+    done : xarray.Dataset, optional
+        The result so far of a resumed run (its accumulated fields and ``cycle_dissipation_max``).
+    """
+
+    def __init__(self, policy, cycle, done=None):
+        self.policy, self.last = policy, int(cycle.max())
+        changes = np.append(np.flatnonzero(cycle[1:] != cycle[:-1]), cycle.size - 1)
+        self.ends = np.zeros(self.last + 1, dtype=np.int64)
+        self.ends[cycle[changes]] = changes  # the last step of each cycle
+        self.taken = 0 if done is None else int(np.searchsorted(self.ends[1:], done.attrs["steps"] - 1, "right"))
+        self.accumulated = {} if done is None else {name: done[name].values for name in ACCUMULATED if name in done}
+        self.peak = -np.inf if done is None else float(np.nan_to_num(done.cycle_dissipation_max, nan=-np.inf))
+
+    def take(self, chunk, stop):
+        """`chunk` (a result of the steps up to `stop` of the whole history) with the fields of the
+        cycles chosen and the accumulated fields."""
+        numbers = chunk.cycle_number.values
+        complete = (numbers > self.taken) & (self.ends[numbers] <= stop)
+        fields = [name for name in CYCLE_FIELDS if name in chunk]
+        rows = {name: chunk[name].values[complete] for name in fields}
+        energy = chunk.cycle_dissipation.values[complete]
+        before = np.maximum.accumulate(np.append(self.peak, energy))
+        chosen = self.policy.chosen(numbers[complete], energy > before[:-1], self.last)
+        self.peak, self.taken = float(before[-1]), int(numbers[complete].max(initial=self.taken))
+        for name, field in ACCUMULATED.items():
+            if field in rows:
+                self.accumulated[name] = self._accumulate(name, rows[field])
+        data = {name: variable(name, values) for name, values in self.accumulated.items()}
+        data["cycle_dissipation_max"] = variable("cycle_dissipation_max", self.peak if self.peak > -np.inf else np.nan)
+        data |= {name: variable(name, rows[name][chosen], ("field_cycle", "x")) for name in fields}
+        data["field_cycle"] = variable("field_cycle", numbers[complete][chosen], ("field_cycle",))
+        return chunk.drop_vars(fields).assign(data).set_coords("field_cycle")
+
+    def _accumulate(self, name, rows):
+        """The accumulated field `name` after the complete cycles' `rows` (float32) of its field."""
+        held = self.accumulated.get(name)
+        if name == "w_total":  # summed cycle after cycle, in float64 (cumsum adds in order)
+            start = np.zeros(rows.shape[1]) if held is None else held
+            return np.cumsum(np.vstack([start, rows.astype(np.float64)]), axis=0)[-1]
+        largest = rows.astype(np.float64).max(axis=0, initial=-np.inf)
+        return largest if held is None else np.fmax(held, largest)
 
 
 def recorded_steps(record, n):

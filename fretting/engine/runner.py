@@ -33,7 +33,14 @@ from filelock import FileLock, Timeout
 
 from fretting.engine.choice import ModelFallbackWarning, could_be_default, recorded_spec
 from fretting.engine.follow import skippable
-from fretting.engine.recorder import CYCLE_PEAKS_TALLIED, Recorder, final_state, recorded_steps
+from fretting.engine.recorder import (
+    CYCLE_PEAKS_TALLIED,
+    CycleFields,
+    FieldSelector,
+    Recorder,
+    final_state,
+    recorded_steps,
+)
 from fretting.engine.stepper import Stepper
 from fretting.errors import GrossSlipError
 from fretting.loading.history_file import read_history_source
@@ -203,6 +210,7 @@ def run_file(
     checkpoint_interval: float = CHECKPOINT_SECONDS,
     progress: Callable[[int, int], object] | None = None,
     every_step: bool = False,
+    cycle_fields: str = "default",
 ) -> Run:
     """Run a history file and write its result to `output`, checkpointed and resumable.
 
@@ -228,6 +236,16 @@ def run_file(
         are not recorded (`record`) are skipped (`fretting.engine.follow.skippable`): the energy, ``w`` and
         slip range are the same to rounding, but the specimen's ``sigma_xx`` peaks per cycle
         are not tallied (the result's ``cycle_peaks`` attribute says which are).
+    cycle_fields : str
+        The cycles whose per-cycle fields (``w``, ``slip_amplitude``, the peaks) are stored
+        (`fretting.engine.recorder.CycleFields.parse`): ``"default"`` (every cycle of histories
+        of up to `fretting.engine.recorder.CYCLE_FIELDS_STORED` cycles, else the first, the last,
+        every k-th and those of a new maximum of the energy), ``"all"``, or a list such as
+        ``"first,last,every=100,maxima"``. Cycles chosen from all of them have their fields on
+        dims ``(field_cycle, x)``, beside the accumulated fields over every complete cycle
+        (``w_total``, ``slip_amplitude_max``, ...: with every cycle's fields stored, the sums and
+        maxima of their rows). The per-cycle scalars cover every cycle whatever the policy; the
+        result's ``cycle_fields`` attribute records the policy.
 
     Returns
     -------
@@ -238,6 +256,8 @@ def run_file(
     OSError
         Before any step, when `output` cannot be written (`writable`) or another run is writing
         it (`holding`).
+    ValueError
+        When `cycle_fields` is not a policy.
 
     Examples
     --------
@@ -251,6 +271,7 @@ def run_file(
     result.nc True 5 []
     """
     source = read_history_source(history_path)
+    policy = CycleFields.parse(cycle_fields, source.history.cycle_count)
     output = writable(output)
     with holding(output):
         checkpoint = checkpoint_path(output)
@@ -261,7 +282,8 @@ def run_file(
         history = source.history
         record = recorded_steps(record, len(history))
         skipping = not every_step and record.size < len(history)  # a recorded step is solved
-        start, state, notes = _started(checkpoint, source, model, resume, skipping)
+        attributes = source_attributes(source) | {"cycle_fields": str(policy)}
+        start, state, notes, done = _started(checkpoint, source, model, resume, skipping, attributes)
         if skipping:
             notes.append(
                 "the unrecorded steps inside straight stretches are skipped: sigma_xx_peak and sigma_xx_q_peak "
@@ -276,12 +298,12 @@ def run_file(
                 notes.append(str(warning.message))
             else:
                 warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
-        attributes = source_attributes(source)
+        selector = None if history.cycle is None or policy.all else FieldSelector(policy, history.cycle, done)
         part, written = Joiner(), time.monotonic()
         try:
             for chunk in _chunks(stepper, history, record, start, skipping):
-                part.add(chunk)
                 start += chunk.attrs["steps"] - 1
+                part.add(chunk if selector is None else selector.take(chunk, start))
                 if progress is not None:
                     progress(start, len(history) - 1)
                 if time.monotonic() - written >= checkpoint_interval or part.cycles + _chunk_cycles() > PART_CYCLES:
@@ -304,9 +326,9 @@ def run_file(
     return Run(output, notes)
 
 
-def _started(checkpoint, source, model, resume, skipping):
-    """``(start, state, notes)`` a run begins with: the checkpoint's last step and state when
-    resumed, else step 0 and no state."""
+def _started(checkpoint, source, model, resume, skipping, attributes):
+    """``(start, state, notes, done)`` a run begins with: the checkpoint's last step, state and
+    result so far (its steps, state and accumulated fields) when resumed, else step 0 and None."""
     if checkpoint.is_file():
         raise ResultError(f"{checkpoint}: found the checkpoint file of an earlier version of fretting: delete it")
     if _parts(checkpoint) and not resume:
@@ -314,11 +336,11 @@ def _started(checkpoint, source, model, resume, skipping):
             f"{checkpoint}: found the checkpoint of an interrupted run: continue it with --resume, or delete it"
         )
     if resume and _parts(checkpoint):
-        done = _resumable(checkpoint, source, model, skipping)
-        return done.attrs["steps"] - 1, final_state(done), []
+        done = _resumable(checkpoint, source, model, skipping, attributes)
+        return done.attrs["steps"] - 1, final_state(done), [], done
     shutil.rmtree(checkpoint, ignore_errors=True)  # a folder without parts: killed before its first
     notes = [f"{checkpoint}: no checkpoint to resume from: the run starts at step 0"] if resume else []
-    return 0, None, notes
+    return 0, None, notes, None
 
 
 def _save_part(part, checkpoint, attributes):
@@ -392,13 +414,18 @@ def _solved(history, record, start, end, contact):
     return np.flatnonzero(~skippable(near, recorded, contact)[1 : end - start + 1]) + start + 1
 
 
-def _resumable(checkpoint, source, model, skipping):
+def _resumable(checkpoint, source, model, skipping, attributes):
     """The recorded steps and state of the parts in `checkpoint` (their per-cycle rows left on disk),
-    checked to belong to this history file, the `model` asked (None: any) and to have `skipping`
-    steps or not."""
+    checked to belong to this history file, the `model` asked (None: any), to have `skipping`
+    steps or not and to store the per-cycle fields of `attributes`' ``cycle_fields`` policy."""
     done = joined_steps(_parts(checkpoint))
     if done.attrs.get("history_sha256") != source.sha256:
         raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
+    if done.attrs.get("cycle_fields") != attributes["cycle_fields"]:
+        raise ResultError(
+            f"{checkpoint}: found a run with cycle_fields = {done.attrs.get('cycle_fields')}, "
+            f"expected {attributes['cycle_fields']}"
+        )
     if done.attrs.get("cycle_peaks") != CYCLE_PEAKS_TALLIED[skipping]:
         ways = ["every step solved (--every-step)", "steps skipped (without --every-step)"]
         raise ResultError(f"{checkpoint}: found a run with {ways[not skipping]}, expected {ways[skipping]}")

@@ -50,9 +50,13 @@ ENGINE = "h5netcdf"
 #: to write.
 COMPRESSION = {"zlib": True, "complevel": 4, "shuffle": True}
 
-#: Rows of a per-cycle variable in one HDF5 chunk: the ``cycle_number`` dimension is unlimited, so
-#: that rows are appended (`save_joined`), and a chunk of 256 rows of 500 float32 nodes is 0.5 MB.
+#: Rows of a per-cycle variable in one HDF5 chunk: the `CYCLE_DIMS` are unlimited, so that rows are
+#: appended (`save_joined`), and a chunk of 256 rows of 500 float32 nodes is 0.5 MB.
 CYCLE_CHUNK_ROWS = 256
+
+#: Dimensions of per-cycle rows: every cycle (``cycle_number``), and the cycles whose fields a
+#: run's ``cycle_fields`` policy chose (``field_cycle``; a cycle's row comes once, complete).
+CYCLE_DIMS = ("cycle_number", "field_cycle")
 
 #: Random bytes in the name of `save`'s temporary file, ``.NAME.<hex>.tmp``: two saves of one
 #: path never share it.
@@ -119,8 +123,8 @@ def save_joined(parts: Sequence[str | os.PathLike], path: str | os.PathLike, att
 
     The parts' steps and state are joined in memory (`Joiner`): their size is set by the steps
     recorded. The per-cycle variables are appended to the file part by part along its unlimited
-    ``cycle_number`` dimension; a cycle that spans two parts is rewritten with the later part's
-    row, as `join_results` takes it.
+    `CYCLE_DIMS`; a cycle that spans two parts is rewritten with the later part's row, as
+    `join_results` takes it.
 
     Parameters
     ----------
@@ -158,21 +162,23 @@ def _rows(part):
         return opened[_per_cycle(opened)].load()
 
 
-def _per_cycle(result):
-    """Names of the per-cycle variables of `result` (those along ``cycle_number``)."""
-    return [name for name, variable in result.variables.items() if "cycle_number" in variable.dims]
+def _per_cycle(result, dims=CYCLE_DIMS):
+    """Names of the per-cycle variables of `result` (those along one of `dims`)."""
+    return [name for name, variable in result.variables.items() if variable.dims[:1] in [(dim,) for dim in dims]]
 
 
 def _append_cycles(file, rows):
     """Append the per-cycle variables `rows` (a dataset) to the open h5netcdf `file`; a first row
     whose cycle is the file's last one replaces it."""
-    held = file.dimensions["cycle_number"].size
-    numbers = rows.cycle_number.values
-    start = held - 1 if held and numbers.size and file.variables["cycle_number"][held - 1] == numbers[0] else held
-    file.resize_dimension("cycle_number", start + numbers.size)
-    for name in _per_cycle(rows):
-        stored, variable = file.variables[name], rows[name]
-        stored[start : start + numbers.size] = variable.values.astype(stored.dtype)
+    for dim in set(CYCLE_DIMS) & set(rows.dims):
+        held = file.dimensions[dim].size
+        numbers = rows[dim].values
+        spans = held and numbers.size and file.variables[dim][held - 1] == numbers[0]
+        start = held - 1 if spans else held
+        file.resize_dimension(dim, start + numbers.size)
+        for name in _per_cycle(rows, (dim,)):
+            stored, variable = file.variables[name], rows[name]
+            stored[start : start + numbers.size] = variable.values.astype(stored.dtype)
 
 
 def remove_temporaries(path: str | os.PathLike) -> list[Path]:
@@ -197,15 +203,12 @@ def remove_temporaries(path: str | os.PathLike) -> list[Path]:
 
 def _write(result: xr.Dataset, temporary: Path, path: Path, fsync: bool = True) -> None:
     """Write `result` to the file `temporary` and (`fsync`) flush it to disk; errors name `path`,
-    the file asked for. Its ``cycle_number`` dimension is unlimited, in chunks of `CYCLE_CHUNK_ROWS` rows."""
+    the file asked for. Its `CYCLE_DIMS` are unlimited, in chunks of `CYCLE_CHUNK_ROWS` rows."""
     encoding = {name: dict(COMPRESSION) for name, variable in result.variables.items() if variable.dtype.kind in "biuf"}
-    for name, variable in result.variables.items():
-        if variable.dims[:1] == ("cycle_number",):
-            encoding.setdefault(name, {})["chunksizes"] = (CYCLE_CHUNK_ROWS, *variable.shape[1:])
+    for name in _per_cycle(result):
+        encoding.setdefault(name, {})["chunksizes"] = (CYCLE_CHUNK_ROWS, *result[name].shape[1:])
     try:
-        result.to_netcdf(
-            temporary, engine=ENGINE, encoding=encoding, unlimited_dims=set(result.dims) & {"cycle_number"}
-        )
+        result.to_netcdf(temporary, engine=ENGINE, encoding=encoding, unlimited_dims=set(result.dims) & set(CYCLE_DIMS))
     except OSError as error:
         raise OSError(error.errno, f"cannot write: {error.strerror or error}", str(path)) from error
     if fsync:
@@ -276,7 +279,8 @@ def join_results(parts: Sequence[xr.Dataset]) -> xr.Dataset:
         a later part's step 0, which repeats the previous one's last step, is dropped; steps,
         vertex steps and cycles are numbered as in the whole history; a cycle that spans
         parts is taken from the last part that has it (its tally carries on from part to
-        part); the state is the last part's. Attributes are the first part's.
+        part), and the rows along ``field_cycle`` (each cycle's once) are concatenated; the
+        state and the accumulated fields are the last part's. Attributes are the first part's.
     """
     joiner = Joiner()
     for part in parts:
@@ -296,7 +300,7 @@ class Joiner:
     def __init__(self) -> None:
         self._pieces, self._vertices, self._end = [], {}, 0
         self._first_attrs, self._last = None, None
-        self._rows, self._count = {}, 0
+        self._rows, self._counts = {}, dict.fromkeys(CYCLE_DIMS, 0)
 
     def __len__(self) -> int:
         """Number of parts added."""
@@ -305,7 +309,7 @@ class Joiner:
     @property
     def cycles(self) -> int:
         """Cycles of the joined result so far."""
-        return self._count
+        return self._counts["cycle_number"]
 
     @property
     def steps(self) -> int:
@@ -314,7 +318,7 @@ class Joiner:
 
     def add(self, part: xr.Dataset) -> None:
         """Join `part`, which continues the parts added before (see `join_results`)."""
-        per_cycle = [name for name, variable in part.variables.items() if "cycle_number" in variable.dims]
+        per_cycle = _per_cycle(part)
         if self._last is not None:
             _check_continues(self._last, part)
         later = self._last is not None
@@ -325,8 +329,8 @@ class Joiner:
         self._end += part.attrs["steps"] - 1
         if self._first_attrs is None:
             self._first_attrs = part.attrs
-        if per_cycle:
-            self._add_rows({name: part[name].variable for name in per_cycle})
+        for dim in set(CYCLE_DIMS) & set(part.dims):
+            self._add_rows(dim, {name: part[name].variable for name in _per_cycle(part, (dim,))})
         self._last = part.drop_vars(per_cycle)
 
     def _add_vertices(self, part: xr.Dataset, later: bool) -> None:
@@ -339,15 +343,14 @@ class Joiner:
                 values = variable.values[kept]
                 self._vertices.setdefault(name, []).append(values + self._end if name == "vertex_step" else values)
 
-    def _add_rows(self, cycles: dict[str, xr.Variable]) -> None:
-        """Take the per-cycle variables `cycles` (name -> xarray.Variable) of a part into the run's rows."""
-        numbers = cycles["cycle_number"].values
-        held = self._rows.get("cycle_number")
-        spans = self._count and numbers.size and held.last == numbers[0]  # the later row is whole
-        start = self._count - 1 if spans else self._count
+    def _add_rows(self, dim: str, cycles: dict[str, xr.Variable]) -> None:
+        """Take the per-cycle variables `cycles` (name -> xarray.Variable) along `dim` of a part into the run's rows."""
+        numbers, count = cycles[dim].values, self._counts[dim]
+        spans = count and numbers.size and self._rows[dim].last == numbers[0]  # the later row is whole
+        start = count - 1 if spans else count
         for name, variable in cycles.items():
             self._rows.setdefault(name, _Rows(variable)).put(start, variable.values)
-        self._count = start + numbers.size
+        self._counts[dim] = start + numbers.size
 
     def result(self) -> xr.Dataset:
         """The joined result of the parts added so far."""

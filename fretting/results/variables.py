@@ -8,11 +8,20 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
 
-__all__ = ["CYCLE_PEAKS", "VARIABLES", "build_dataset"]
+__all__ = ["ACCUMULATED", "CYCLE_FIELDS", "CYCLE_PEAKS", "VARIABLES", "build_dataset", "variable"]
 
 #: Per-node peaks over every step of each load cycle that the engine tallies (`fretting.engine.state.Tally`);
 #: each is also recorded as ``state_<name>`` for the cycle in progress at the last step.
 CYCLE_PEAKS = ("sigma_xx_peak", "q_peak", "sigma_xx_q_peak")
+
+#: Per-cycle fields (dims cycle_number, x): of every cycle, or of the cycles a run's ``cycle_fields``
+#: policy chose (dims field_cycle, x; `fretting.engine.recorder.CycleFields`).
+CYCLE_FIELDS = ("w", "slip_amplitude", *CYCLE_PEAKS)
+
+#: Accumulated field -> the per-cycle field it accumulates over every complete cycle of a run of
+#: `fretting.run_file` whose ``cycle_fields`` policy leaves cycles out: ``w_total`` their sum, the others
+#: their maxima.
+ACCUMULATED = {"w_total": "w"} | {f"{name}_max": name for name in CYCLE_FIELDS[1:]}
 
 #: name -> (dims, units, long_name). Units assume SI inputs; any consistent set works.
 VARIABLES = {
@@ -60,6 +69,13 @@ VARIABLES = {
         "Pa2",
         "largest product of the specimen's surface direct stress and |q| over the steps of each load cycle",
     ),
+    "field_cycle": (("field_cycle",), "1", "load cycle whose fields are stored (the cycle_fields policy's choice)"),
+    "w_total": (("x",), "J/m2", "energy dissipated per unit area, summed over every complete load cycle"),
+    "slip_amplitude_max": (("x",), "m", "largest slip amplitude over every complete load cycle"),
+    "sigma_xx_peak_max": (("x",), "Pa", "largest sigma_xx_peak over every complete load cycle"),
+    "q_peak_max": (("x",), "Pa", "largest q_peak over every complete load cycle"),
+    "sigma_xx_q_peak_max": (("x",), "Pa2", "largest sigma_xx_q_peak over every complete load cycle"),
+    "cycle_dissipation_max": ((), "J/m", "largest energy dissipated in one complete load cycle (NaN: none yet)"),
     "state_Q": ((), "N/m", "shear force at the last step"),
     "state_sigma": ((), "Pa", "bulk tension at the last step"),
     "state_P": ((), "N/m", "normal load at the last step, where the history varies it"),
@@ -89,11 +105,15 @@ VARIABLES = {
 }
 
 
+def variable(name: str, values: ArrayLike, dims: tuple[str, ...] | None = None) -> xr.Variable:
+    """The variable `name` of `VARIABLES` holding `values`, with its units and long name, on its
+    dims or on `dims` (a per-cycle field of chosen cycles: ``("field_cycle", "x")``)."""
+    declared, units, long_name = VARIABLES[name]
+    return xr.Variable(declared if dims is None else dims, np.asarray(values), {"units": units, "long_name": long_name})
+
+
 def build_dataset(data: Mapping[str, ArrayLike], attrs: dict) -> xr.Dataset:
     """Dataset of the arrays in `data` (names from `VARIABLES`), with units and long names."""
-    variables = {}
-    for name, values in data.items():
-        dims, units, long_name = VARIABLES[name]
-        variables[name] = xr.Variable(dims, np.asarray(values), {"units": units, "long_name": long_name})
+    variables = {name: variable(name, values) for name, values in data.items()}
     coords = {name: variables.pop(name) for name in ("x", "step", "cycle_number") if name in variables}
     return xr.Dataset(variables, coords=coords, attrs=attrs)
