@@ -360,7 +360,9 @@ def figures_for(result):
     Snapshots always, and the whole path's loop of Q unless Q is zero throughout; per-cycle
     figures when the history counts cycles: the energy per cycle always, the loops of Q (of
     sigma) when Q (sigma) varies in a cycle recorded whole, densities and slip amplitudes when
-    they are known for a cycle.
+    they are known for a cycle and stored for every cycle (not for a long run whose
+    ``cycle_fields`` policy stored them for some cycles: `fretting.analysis.nucleation` refuses
+    those, and the result's ``w_total`` and ``*_max`` fields hold what every cycle adds up to).
     """
     names = {"traction", "slip", "surface_stress"} | ({"contact_edges"} if "a" in result else set())
     if np.any(result.Q.values != 0):
@@ -371,7 +373,7 @@ def figures_for(result):
         for load, name in (("Q", "loops"), ("sigma", "sigma_loops")):
             if any(np.ptp(result[load].values[rows]) > 0 for rows in whole):
                 names.add(name)
-        if not np.isnan(nucleation.dissipation_density(result).values).all():
+        if "field_cycle" not in result.dims and not np.isnan(nucleation.dissipation_density(result).values).all():
             names |= {"dissipation_density", "accumulated_density", "slip_amplitude", "peak_density"}
     return [name for name in FIGURES if name in names]
 

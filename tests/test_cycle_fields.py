@@ -13,6 +13,7 @@ from fretting.cli import main
 from fretting.engine import recorder, runner
 from fretting.engine.recorder import CycleFields
 from fretting.models import Grid
+from fretting.plots import figures_for
 
 #: Random amplitudes of Q alone (the exact model): cycles of unequal energy, so some set new maxima.
 RANDOM = '[[loading]]\nkind = "random"\ncycles = 16\nQ_amplitude = 40e3\nseed = 3\nsteps_per_segment = 4\n'
@@ -135,3 +136,11 @@ def test_a_bad_policy_is_a_one_line_error(history_file, policy, capsys):
     assert exit_.value.code == 2 and "argument --cycle-fields: expected" in err and repr(policy) in err
     with pytest.raises(ValueError, match="cycle_fields must be"):
         CycleFields.parse(policy, 10)
+
+
+def test_figures_of_a_result_with_some_cycles_leave_out_the_per_cycle_fields(some, every):
+    """`fretting plot` draws what a result with some cycles' fields can give, without the per-cycle
+    densities that `fretting.analysis.nucleation` refuses for it."""
+    names = figures_for(some)
+    assert "energy" in names and "dissipation_density" not in names and "slip_amplitude" not in names
+    assert "dissipation_density" in figures_for(every)
