@@ -49,9 +49,11 @@ FIRST_STEPS = 4
 TARGETS = {"stick_a": 1e-3, "slip_history": 1e-3, "slip_step": 1e-3, "traction_fp0": 1e-3, "energy": 1e-4}
 #: Models scored: keywords of `fretting.simulate`.
 MODELS = {"default": {}, "rtol": {"rtol": 1e-4}, "grid": {"nodes": 384}}
-#: Histories whose cyclic slip zones are narrower than the reference's elements: their elements
-#: there are bisected this many times (the check's one time fewer), `banded_mesh`.
-BANDED = {"tiny_1e-4_ellipse": 6, "tiny_1e-4_walk": 6}
+#: Histories whose reference has the elements that hold stick ends after the first vertex bisected
+#: this many times (the check's one time fewer), `banded_mesh`: the small amplitudes, whose cyclic
+#: slip zones are narrower than the uniform mesh's elements, and one ellipse whose uniform
+#: reference locates its own stick ends to about its element only.
+BANDED = {"tiny_1e-4_ellipse": 6, "tiny_1e-4_walk": 6, "ellipse_45": 2}
 CACHE = Path(__file__).resolve().parent / ".cache" / "trajectories"
 GAP_TABLE = EXAMPLES / "asymmetric_pad_gap.csv"
 QUICK = ("walk_s0_8", "ellipse_90", "near_sliding_0.999", "flat_0.25_walk", "asym_flat_walk")

@@ -81,19 +81,18 @@ def stick_zones(t, ds, end=None):
 
 def _zone(t, ds, first, last, end):
     """Stick interval of the run of stuck nodes `first` .. `last`."""
-    middle = (t[first] + t[last]) / 2
-    return _boundary(t, ds, first, -1, middle, end), _boundary(t, ds, last, +1, middle, end)
+    return _boundary(t, ds, first, -1, end), _boundary(t, ds, last, +1, end)
 
 
-def _boundary(t, ds, inner, side, middle, end):
+def _boundary(t, ds, inner, side, end):
     """Stick/slip boundary beyond the stuck node `inner` on `side` (-1 below, +1 above).
 
-    The discrete stick zone may overshoot the true one by part of a node spacing, so the
-    estimate may lie up to one spacing inside the last stuck node, but never past `middle`, the
-    middle of the run of stuck nodes, nor beyond the first slipping node. The bound at `middle`
-    keeps the two ends of a zone ordered where the d^(3/2) law fails at the node scale: a stick
-    zone narrower than a spacing between slip zones of opposite directions, whose episode slips
-    cross zero nearly linearly, so that each side's extrapolation overshoots past the other's.
+    The estimate of `end` is kept between `inner` and the first slipping node: where the
+    ``d^(3/2)`` law fails near the end (a slip zone growing into slip locked in before, a stick
+    zone narrower than a spacing between slip zones of opposite directions) the extrapolation
+    runs into the stuck nodes, while the converged end lies beyond the last of them (against
+    references with the elements at their ends bisected: benchmarks/trajectories.py, `BANDED`).
+    The two ends of a zone are then ordered.
     """
     outer = inner + side
     if outer < 0 or outer >= t.size:
@@ -101,8 +100,7 @@ def _boundary(t, ds, inner, side, middle, end):
     estimate = end(t, ds, outer, outer + side)
     if estimate is None:
         return float((t[inner] + t[outer]) / 2)
-    deepest = t[inner] - side * min(abs(t[outer] - t[inner]), abs(t[inner] - middle))
-    return float(np.clip(estimate, *sorted((deepest, t[outer]))))
+    return float(np.clip(estimate, *sorted((t[inner], t[outer]))))
 
 
 def extrapolated_end(position, d, slipping, beyond):
