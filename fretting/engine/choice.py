@@ -78,10 +78,10 @@ MAX_DEFAULT_MESH = 4 * DEFAULT_NODES
 
 #: The default's bound of ``N^2 x increments`` of a run on the mesh of ``N`` nodes that locates the
 #: recorded steps' stick ends (`fretting.models.galerkin.BOUNDARY_SPAN`): an increment costs about
-#: ``N^2`` (products with the stiffness), and those meshes have 1,000 to 4,000 nodes on general
-#: Q/sigma histories (benchmarks/trajectories.py prints each with its run time). The bound takes in
-#: every history of that benchmark, the longest runs taking about a minute of one core; past it the
-#: mesh adapted to the energy runs.
+#: ``N^2`` (products with the stiffness), and those meshes reach a few thousand nodes on general
+#: Q/sigma histories (benchmarks/trajectories.py prints each with its nodes and run time). The bound
+#: takes in every history of that benchmark; past it (long histories) the mesh adapted to the energy
+#: runs.
 MAX_DEFAULT_WORK = 3e9
 
 

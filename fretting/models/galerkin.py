@@ -942,9 +942,9 @@ def _graded_from_edge(theta, left, rtol):
 
     A slip zone at the edge grows through every width between two turning points, and the slip
     there is smooth in ``theta`` up to the edge, so that each of those widths is spanned by
-    ``ZONE_ELEMENTS`` elements or more, as a zone at a turning point is: with the elements a
+    ``ZONE_ELEMENTS`` elements or more, as a zone at a turning point is: with only the elements a
     turning point's wide zone asks for, the slip of the narrow zones of the steps before it
-    erred by over 1e-3 of the step's largest slip (benchmarks/trajectories.py).
+    missed the slip target of benchmarks/trajectories.py.
     """
     distance = theta[:-1] if left else np.pi - theta[1:]
     return np.maximum(zone_fraction(rtol) * distance, EDGE_SIZE)
