@@ -48,9 +48,11 @@ def test_every_step_of_the_default_within_the_targets(scores, name, quantity):
 
 
 @pytest.mark.parametrize("name", list(histories()))
-def test_default_runs_a_galerkin_mesh(scores, name):
-    """Each history leaves the straight line through the origin (tests/test_inphase.py has those)."""
-    assert scores[name][0].attrs["model"] == "mesh"
+def test_default_runs_a_galerkin_mesh_that_locates_every_step(scores, name):
+    """Each history leaves the straight line through the origin (tests/test_inphase.py has those),
+    and its run on the mesh that locates every step's stick ends is within `MAX_DEFAULT_WORK`."""
+    attrs = scores[name][0].attrs
+    assert attrs["model"] == "mesh" and "model_fallback" not in attrs
 
 
 @pytest.mark.parametrize("psi", [0.3, 0.6, 0.9])
