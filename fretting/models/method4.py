@@ -81,18 +81,27 @@ def stick_zones(t, ds, end=None):
 
 def _zone(t, ds, first, last, end):
     """Stick interval of the run of stuck nodes `first` .. `last`."""
-    return _boundary(t, ds, first, -1, end), _boundary(t, ds, last, +1, end)
+    middle = (t[first] + t[last]) / 2
+    return _boundary(t, ds, first, -1, middle, end), _boundary(t, ds, last, +1, middle, end)
 
 
-def _boundary(t, ds, inner, side, end):
+#: How far inside the last stuck node [its spacing to the first slipping node] a stick end may be
+#: placed. Where a zone grows monotonically the discrete stick zone overshoots the true one by
+#: part of a spacing, and the ``d^(3/2)`` law places the end inside it (exact in-phase model
+#: against method 4 on a fine mesh: tests/test_inphase.py); where the law fails (a slip zone
+#: growing into slip locked in before) the extrapolation runs further in while the converged end
+#: lies beyond the stuck node (references with the elements at their ends bisected:
+#: benchmarks/trajectories.py, `BANDED`; allowing a whole spacing erred by more than 1e-3 a there).
+INWARD = 0.25
+
+
+def _boundary(t, ds, inner, side, middle, end):
     """Stick/slip boundary beyond the stuck node `inner` on `side` (-1 below, +1 above).
 
-    The estimate of `end` is kept between `inner` and the first slipping node: where the
-    ``d^(3/2)`` law fails near the end (a slip zone growing into slip locked in before, a stick
-    zone narrower than a spacing between slip zones of opposite directions) the extrapolation
-    runs into the stuck nodes, while the converged end lies beyond the last of them (against
-    references with the elements at their ends bisected: benchmarks/trajectories.py, `BANDED`).
-    The two ends of a zone are then ordered.
+    The estimate of `end` is kept between the first slipping node and `INWARD` of a spacing
+    inside `inner`, never past `middle`, the middle of the run of stuck nodes, which keeps the two
+    ends of a zone ordered where a stick zone narrower than a spacing lies between slip zones of
+    opposite directions.
     """
     outer = inner + side
     if outer < 0 or outer >= t.size:
@@ -100,7 +109,8 @@ def _boundary(t, ds, inner, side, end):
     estimate = end(t, ds, outer, outer + side)
     if estimate is None:
         return float((t[inner] + t[outer]) / 2)
-    return float(np.clip(estimate, *sorted((t[inner], t[outer]))))
+    deepest = t[inner] - side * min(INWARD * abs(t[outer] - t[inner]), abs(t[inner] - middle))
+    return float(np.clip(estimate, *sorted((deepest, t[outer]))))
 
 
 def extrapolated_end(position, d, slipping, beyond):
