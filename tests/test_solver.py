@@ -48,9 +48,14 @@ def test_one_ulp_below_sliding_settles_by_either_way(monkeypatch, complement):
     """Q = nextafter(f P, 0) on the adapted mesh: the one node left stuck closes the equilibrium and
     takes the sum of the slipping nodes' residuals, over its limit by rounding; releasing it sticks
     it again where it was. By the Cholesky factor alone (complement 0) that cycled until the
-    solver gave up."""
+    solver gave up. A result, or GrossSlipError where the discrete friction force is below f P by
+    rounding (it is, with other versions of numpy and scipy)."""
     monkeypatch.setattr(solver, "COMPLEMENT", complement)
     hertz = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.6, 1e5)
     Q = np.nextafter(hertz.f * hertz.P, 0)
-    result = fr.simulate(hertz, fr.History.piecewise_linear([0, Q], None, 4), rtol=1e-4)
-    assert result.stick.values[-1].any() and np.all(np.isfinite(result.slip.values))
+    try:
+        result = fr.simulate(hertz, fr.History.piecewise_linear([0, Q], None, 4), rtol=1e-4)
+    except fr.GrossSlipError as error:
+        assert error.step == 4 and error.limit <= hertz.f * hertz.P
+    else:
+        assert result.stick.values[-1].any() and np.all(np.isfinite(result.slip.values))
