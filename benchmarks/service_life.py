@@ -6,8 +6,10 @@ in phase, ``sigma_amplitude = 1e8``, 0.53 f p0), each run at default settings by
 in a fresh process, on one BLAS thread:
 
 - random in-phase Q and sigma, the default model: energy per cycle against a run solving every
-  step (``--every-step``) of the first `PREFIX` cycles (a prefix of the same draws; the default
-  adapts its mesh to that history, so the two runs differ by their meshes as well);
+  step (``--every-step``) of the first `PREFIX` cycles (a prefix of the same draws). The default
+  there is the exact in-phase model (`fretting.models.InPhase`), so this compares it with itself;
+  its error against a converged method-4 run is printed by
+  ``benchmarks/inphase_accuracy.py --service-life``;
 - the same on the fixed grid of `GRID` nodes, against ``--every-step`` on that grid: the cost
   of the steps alone and the error of skipping them;
 - random Q alone, the default (the exact model): energy per cycle against the Masing walk of
