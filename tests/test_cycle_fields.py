@@ -97,8 +97,12 @@ def test_the_default_past_CYCLE_FIELDS_STORED_cycles(history_file, monkeypatch):
     assert CycleFields.parse("default", recorder.CYCLE_FIELDS_STORED).all
     assert str(CycleFields.parse("default", 3 * recorder.CYCLE_FIELDS_STORED + 1)) == "first,last,every=4,maxima"
     monkeypatch.setattr(recorder, "CYCLE_FIELDS_STORED", 10)
-    result = _run(history_file, "default.h5", "default")
+    run = fr.run_file(history_file, history_file.with_name("default.h5"), MODEL, cycle_fields="default")
+    result = run.result.load()
     assert result.attrs["cycle_fields"] == "first,last,every=2,maxima"
+    assert any("stored for the cycles first,last,every=2,maxima only" in note for note in run.notes)
+    every_cycle = fr.run_file(history_file, history_file.with_name("each.h5"), MODEL, cycle_fields="all")
+    assert not any("per-cycle fields" in note for note in every_cycle.notes)
     assert {1, 2, 4, 14, 16} <= set(result.field_cycle.values.tolist()) and result.sizes["cycle_number"] == 16
 
 

@@ -284,6 +284,11 @@ def run_file(
         skipping = not every_step and record.size < len(history)  # a recorded step is solved
         attributes = source_attributes(source) | {"cycle_fields": str(policy)}
         start, state, notes, done = _started(checkpoint, source, model, resume, skipping, attributes)
+        if history.cycle is not None and not policy.all:
+            notes.append(
+                f"per-cycle fields (w, slip_amplitude, the peaks) are stored for the cycles {policy} only "
+                "(field_cycle); w_total and the *_max fields add up every cycle (--cycle-fields all stores each)"
+            )
         if skipping:
             notes.append(
                 "the unrecorded steps inside straight stretches are skipped: sigma_xx_peak and sigma_xx_q_peak "
