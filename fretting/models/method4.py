@@ -91,7 +91,7 @@ def _zone(t, ds, first, last, end):
 #: against method 4 on a fine mesh: tests/test_inphase.py); where the law fails (a slip zone
 #: growing into slip locked in before) the extrapolation runs further in while the converged end
 #: lies beyond the stuck node (references with the elements at their ends bisected:
-#: benchmarks/trajectories.py, `BANDED`; allowing a whole spacing erred by more than 1e-3 a there).
+#: benchmarks/trajectories.py, `BANDED`, which scores the stick ends of both kinds).
 INWARD = 0.25
 
 
