@@ -134,24 +134,25 @@ class Stiffness:
         """``G_SS^-1 rhs`` for the ascending nodes `slipping` ``S`` (at least one node sticks), through
         the stuck nodes, refined `REFINEMENT_ROUNDS` times against ``G_SS``."""
         c, B = self.regularised_inverse
-        stuck = np.flatnonzero(~np.isin(np.arange(self.G.shape[0]), slipping))
+        is_stuck = np.ones(self.G.shape[0], dtype=bool)
+        is_stuck[slipping] = False
+        stuck = np.flatnonzero(is_stuck)
         factor = linalg.cho_factor(B[np.ix_(stuck, stuck)], lower=True)
 
         def A_SS_inverse(v):  # B_SS v - B_SK B_KK^-1 B_KS v
             u = _columns_times(B, slipping, v)
             return (u - _columns_times(B, stuck, linalg.cho_solve(factor, u[stuck])))[slipping]
 
-        shift = A_SS_inverse(np.ones(slipping.size))
+        y, shift = A_SS_inverse(np.column_stack([rhs, np.ones(slipping.size)])).T  # one pass over B for both
 
-        def G_SS_inverse(v):
-            y = A_SS_inverse(v)
+        def G_SS_inverse(y):  # Sherman-Morrison, from y = A_SS^-1 v
             return y + shift * (c * y.sum() / (1.0 - c * shift.sum()))
 
-        x = G_SS_inverse(rhs)
+        x = G_SS_inverse(y)
         for _ in range(REFINEMENT_ROUNDS):
             full = np.zeros(self.G.shape[0])
             full[slipping] = x
-            x = x + G_SS_inverse(rhs - _rows_times(self.G, slipping, full))
+            x = x + G_SS_inverse(A_SS_inverse(rhs - _rows_times(self.G, slipping, full)))
         return x
 
 
