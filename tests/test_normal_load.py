@@ -360,14 +360,22 @@ def test_stick_end_between_two_nodes_from_the_kink_of_cattaneo_mindlin():
 
 
 @pytest.mark.parametrize("n", [8, 64, 512])
-def test_toeplitz_inverse_is_the_inverse_and_symmetric(n):
-    """Trench's recursion against LAPACK's inverse of the dense flexibility (1e-12 relative), exactly symmetric."""
+def test_slip_to_traction_is_the_dense_one_and_symmetric(n):
+    """Trench's recursion less the flat punch against LAPACK's inverse of the dense flexibility, ``B - b b^T / beta``
+    (1e-12 relative), exactly symmetric and persymmetric, with the rigid shift in its null space."""
     from scipy import linalg
 
-    from fretting.models.normal import flexibility, toeplitz_inverse
+    from fretting.models.normal import flexibility, slip_to_traction
 
     column = flexibility(n, 1e-5, E_STAR)
-    B = toeplitz_inverse(column)
-    expected = np.linalg.inv(linalg.toeplitz(column))
-    assert np.max(np.abs(B - expected)) < 1e-12 * np.max(np.abs(expected))
-    np.testing.assert_array_equal(B, B.T)
+    B = np.linalg.inv(linalg.toeplitz(column))
+    b = B.sum(axis=1)
+    G = slip_to_traction(column, linalg.solve_toeplitz(column, np.ones(n)) / b.sum())
+    expected = B - np.outer(b, b) / b.sum()
+    scale = np.max(np.abs(expected))
+    assert np.max(np.abs(G - expected)) < 1e-12 * scale
+    np.testing.assert_array_equal(G, G.T)
+    np.testing.assert_array_equal(G, G[::-1, ::-1])
+    assert np.max(np.abs(G.sum(axis=1))) < 1e-12 * scale
+    with pytest.raises(ValueError, match="even number"):
+        slip_to_traction(column[:-1], np.ones(n - 1) / (n - 1))

@@ -68,7 +68,7 @@ from scipy import linalg, optimize
 
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.method4 import stick_zones
-from fretting.models.solver import solve_increment
+from fretting.models.solver import Stiffness, solve_increment
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
@@ -82,7 +82,7 @@ __all__ = [
     "NormalOutcome",
     "Varying",
     "flexibility",
-    "toeplitz_inverse",
+    "slip_to_traction",
 ]
 
 #: Cells over the largest contact of `Varying()`: the closed forms of tests/test_normal_load.py hold
@@ -95,9 +95,10 @@ DEFAULT_CELLS = 512
 #: converges with this share (benchmarks/normal_load.py prints the table).
 DEFAULT_LOAD_PART = 1 / 400
 
-#: Contacts (runs of cells) whose slip-to-traction matrix `NormalModel` keeps, each ``(2m)^2`` floats
-#: (at most 2 MB at 512 cells): a cycle meets each contact it sweeps twice, and one not kept costs ``O(m^2)``.
-CACHED_CONTACTS = 64
+#: Contacts (runs of cells) whose `Stiffness` (``G`` and ``|G|``, ``2 (2m)^2`` floats, 8 MB at 512 cells)
+#: `NormalModel` keeps: consecutive parts of an increment mostly share a contact, and one not kept costs
+#: ``O(m^2)`` to form again (`slip_to_traction`), less than keeping many costs in memory traffic.
+CACHED_CONTACTS = 8
 
 
 @dataclass(frozen=True, eq=False)
@@ -245,13 +246,9 @@ class NormalModel(Model):
 
     @functools.lru_cache(maxsize=CACHED_CONTACTS)  # noqa: B019 (a model lives as long as its stepper)
     def stiffness(self, m):
-        """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring)."""
-        G = toeplitz_inverse(self.column[: 2 * m])
-        b = G.sum(axis=1)
-        correction = np.outer(b, b)
-        correction /= b.sum()
-        G -= correction  # in place: no third matrix of (2m)^2
-        return G
+        """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring, `slip_to_traction`), kept
+        as a `Stiffness` (not `kept` for the solver's inverse) so that the parts on one run share ``|G|``."""
+        return Stiffness(slip_to_traction(self.column[: 2 * m], self.punch(m)), kept=False)
 
     def _cumulative(self):
         """Nodal forces ``p h`` [N/m] at each load `start` (Jaeger's superposition of the `punch` of each run)."""
@@ -289,7 +286,7 @@ class NormalModel(Model):
         """Nodal forces ``g = h q`` [N/m] of the slip `slip` [m] under `Q`, `sigma`, `P` on `m` pairs."""
         m = self.pairs(P) if m is None else m
         nodes, g = self.cells(m), np.zeros(self.x.size)
-        g[nodes] = Q * self.punch(m) - self.stiffness(m) @ (slip[nodes] - self.bulk_slip(sigma)[nodes])
+        g[nodes] = Q * self.punch(m) - self.stiffness(m).G @ (slip[nodes] - self.bulk_slip(sigma)[nodes])
         return g
 
     def free_surface(self, slip, g, sigma, m):
@@ -326,7 +323,7 @@ class NormalModel(Model):
                 for before, after in zip(loads, (Q, sigma, P), strict=True)
             )
             nodes, limit = self.cells(m), self.contact.f * self.force(P_, m)
-            g_stuck = Q_ * self.punch(m) + self.stiffness(m) @ self.bulk_slip(sigma_)[nodes]
+            g_stuck = Q_ * self.punch(m) + self.stiffness(m).G @ self.bulk_slip(sigma_)[nodes]
             solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes])
             slip, g = slip.copy(), np.zeros(self.x.size)
             slip[nodes], g[nodes] = solved.slip, solved.g
@@ -459,28 +456,42 @@ def edge_end(t, deficit, side):
     return float(np.clip(estimate, *sorted((t[outer], side))))
 
 
-def toeplitz_inverse(column):
-    """Inverse of the symmetric positive definite Toeplitz matrix of first column `column`, in ``O(n^2)``.
+def slip_to_traction(column, punch):
+    """``G = B - b b^T / beta`` of the symmetric positive definite Toeplitz matrix ``D`` of first column
+    `column` (an even number ``n`` of cells), ``B = D^-1``, ``b = B 1``, ``beta = 1^T b`` (module docstring),
+    in ``O(n^2)``, given ``punch = b / beta`` (`NormalModel.punch`).
 
-    Trench's recursion (Trench 1964; Gohberg & Semencul 1972): with ``v`` the first column of the
-    inverse ``B`` (one Levinson solve), ``B[i + 1, j + 1] = B[i, j] + (v[i + 1] v[j + 1] -
-    v[n - 1 - i] v[n - 1 - j]) / v[0]``, filled row by row in place. The products are taken of
-    ``w = v / sqrt(v[0])``, so that each term is symmetric in ``i, j`` to the last bit and ``B`` is
-    exactly symmetric. A loop over rows, each a few vector operations in place, moves less memory
-    than the same sums taken along the diagonals of a skewed array (``np.cumsum``).
+    ``B`` by Trench's recursion (Trench 1964; Gohberg & Semencul 1972): with ``v`` the first column of
+    ``B``, ``B[i + 1, j + 1] = B[i, j] + (v[i + 1] v[j + 1] - v[n - 1 - i] v[n - 1 - j]) / v[0]``, one
+    row from the row before; ``v`` is one Levinson solve. Each row of ``B`` is kept only until the next
+    is formed, and written to ``G`` less ``c_i c``, ``c = b / sqrt(beta) = sqrt(beta) punch``, with
+    ``beta = 1 / (D punch)_0`` (``D punch = 1 / beta`` at every node). ``G`` is symmetric and
+    persymmetric (``G[i, j] = G[n - 1 - i, n - 1 - j]``), as ``D`` is, so the recursion forms only the
+    entries ``i + j <= n - 1`` of the first ``n / 2`` rows and the rest are copies of them: ``G`` is
+    exactly symmetric and persymmetric. The products are taken of ``w = v / sqrt(v[0])`` and of ``c``,
+    so that each term is symmetric in ``i, j`` to the last bit.
     """
     n = column.size
-    v = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
-    w = v / np.sqrt(v[0])
+    if n % 2:
+        raise ValueError(f"column must have an even number of entries, found {n}")
+    first = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
+    w, c = first / np.sqrt(first[0]), punch / np.sqrt(column @ punch)
     head, tail = w[1:], w[:0:-1]  # w[j + 1], w[n - 1 - j], j = 0 .. n - 2
-    B = np.empty((n, n))
-    B[0], B[1:, 0] = v, v[1:]
-    for i in range(n - 1):
-        row = B[i + 1, 1:]
-        np.multiply(head, w[i + 1], out=row)
-        row -= w[n - 1 - i] * tail
-        row += B[i, :-1]
-    return B
+    G = np.empty((n, n))
+    row, previous = first.copy(), np.empty(n)
+    for i in range(n // 2):
+        width = n - i  # the entries i + j <= n - 1 of row i
+        if i:
+            row, previous = previous, row
+            row[0] = first[i]
+            np.multiply(head[: width - 1], w[i], out=row[1:width])
+            row[1:width] -= w[width] * tail[: width - 1]
+            row[1:width] += previous[: width - 1]
+            G[i, width:] = G[i - 1 :: -1, width - 1]  # G[i, j] = G[n - 1 - j, n - 1 - i], j >= n - i
+        np.multiply(c[:width], -c[i], out=G[i, :width])
+        G[i, :width] += row[:width]
+    G[n // 2 :] = G[n // 2 - 1 :: -1, ::-1]
+    return G
 
 
 class CellSurfaceStress:
