@@ -111,6 +111,17 @@ def test_slices_keep_vertices_and_cycle_numbers():
     assert len(history[-1:]) == 1
 
 
+def test_a_slice_keeps_the_vertices_inside_it():
+    """Every slice of a history with repeated vertex steps keeps the vertices ``start <= step < stop``,
+    renumbered, and no other."""
+    vertex_step = np.array([0, 2, 2, 3, 5, 5, 5, 7, 9])
+    history = History(np.arange(10.0), np.zeros(10), vertex_step)
+    for start in range(10):
+        for stop in range(start + 1, 11):
+            inside = vertex_step[(vertex_step >= start) & (vertex_step < stop)]
+            np.testing.assert_array_equal(history[start:stop].vertex_step, inside - start)
+
+
 @pytest.mark.parametrize("key", [3, slice(0, 4, 2)])
 def test_only_contiguous_slices(key):
     with pytest.raises(TypeError, match="contiguous"):

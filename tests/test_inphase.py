@@ -15,7 +15,8 @@ from test_hard_cases import rounded_flat
 import fretting as fr
 from fretting.engine.choice import recorded_spec
 from fretting.engine.state import State
-from fretting.models.inphase import InPhase, regime_bound
+from fretting.loading import history as history_module
+from fretting.models.inphase import InPhase, on_line, proportional_ratio, regime_bound
 from fretting.physics import closed_forms as cf
 
 #: The fine mesh of method 4 (uniform in theta) that the model is compared with, and how far [a]
@@ -175,3 +176,23 @@ def test_a_continued_run_equals_the_whole_run(tmp_path):
     off = fr.History.piecewise_linear([history.Q[cut], 0.0], [history.sigma[cut], 1e6], 2)
     with pytest.raises(fr.HistoryError, match="leaves the model's line"):
         fr.simulate(contact, off, state=state)
+
+
+def test_the_ratio_is_read_block_by_block(monkeypatch):
+    """Blocks of 4 steps: the ratio is read at the largest |Q| of the whole history (in its third
+    block), and a step off the line in any block, also the last, is found, as one pass over all
+    the steps finds them."""
+    monkeypatch.setattr(history_module, "BLOCK_STEPS", 4)
+    Q = np.array([0.0, 3.0, -9.0, 2.0, -5.0, 12.0, -7.5, 4.0, -14.0, 1.0, 6.0])
+    k = 2.5e-3
+    history = fr.History(Q, k * Q * (1 + 1e-14 * np.arange(Q.size)), [0])  # on the line to rounding
+    ratios = history.sigma / np.where(Q == 0, 1.0, Q)
+    assert np.argmax(np.abs(Q)) == 8 and np.unique(ratios[1:]).size == Q.size - 1
+    assert proportional_ratio(history) == ratios[8]
+    assert on_line(history, k) and not on_line(history, 1.01 * k)
+    for step in (2, 5, 10):
+        sigma = k * Q
+        sigma[step] *= 1 + 1e-9
+        assert proportional_ratio(fr.History(Q, sigma, [0])) is None
+    assert proportional_ratio(fr.History(np.zeros(9), np.zeros(9), [0])) == 0.0
+    assert proportional_ratio(fr.History(np.zeros(9), np.eye(9)[6], [0])) is None

@@ -92,7 +92,7 @@ class History:
         start, stop, _ = steps.indices(len(self))
         if stop <= start:
             raise HistoryError(f"steps {start}:{stop} of a {len(self)}-step history are empty")
-        inside = (self.vertex_step >= start) & (self.vertex_step < stop)
+        inside = slice(*np.searchsorted(self.vertex_step, [start, stop]))  # vertex_step is sorted
         cycle = None if self.cycle is None else self.cycle[start:stop]
         P = None if self.P is None else self.P[start:stop]
         return History(self.Q[start:stop], self.sigma[start:stop], self.vertex_step[inside] - start, cycle, P)
@@ -128,10 +128,19 @@ class History:
         Taken `BLOCK_STEPS` steps at a time, with no temporary array of the whole history.
         """
         largest = 0.0
-        for start in range(0, len(self), BLOCK_STEPS):
-            loads = np.abs(self.Q[start : start + BLOCK_STEPS])
+        for Q, _ in self.blocks():
+            loads = np.abs(Q)
             largest = max(largest, float(loads.max(where=loads < bound, initial=0.0)))
         return largest
+
+    def blocks(self):
+        """``(Q, sigma)`` [N/m], [Pa] of `BLOCK_STEPS` steps at a time, in order (views, not copies).
+
+        A pass over a long history block by block makes temporary arrays of one block, not of
+        the whole history.
+        """
+        for start in range(0, len(self), BLOCK_STEPS):
+            yield self.Q[start : start + BLOCK_STEPS], self.sigma[start : start + BLOCK_STEPS]
 
     def turning_steps(self, max_turn=None, units=(1.0, 1.0)):
         """Steps of the path's turning points, ascending: the first and last steps, the vertices, the

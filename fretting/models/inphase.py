@@ -67,21 +67,31 @@ def regime_bound(contact: Contact) -> float:
 def proportional_ratio(history: History) -> float | None:
     """``k = sigma / Q`` [1/m] of a history whose every step has ``sigma = k Q`` (to `PROPORTIONAL_RTOL`), else None.
 
-    ``k`` is read at the step of the largest ``|Q|``; a history without ``Q`` is in phase only
-    without ``sigma`` (``k = 0``).
+    ``k`` is read at the step of the largest ``|Q|`` (the first such step); a history without ``Q``
+    is in phase only without ``sigma`` (``k = 0``).
     """
-    Q, sigma = np.asarray(history.Q, dtype=float), np.asarray(history.sigma, dtype=float)
-    largest = int(np.argmax(np.abs(Q)))
-    if Q[largest] == 0:
-        return 0.0 if not np.any(sigma) else None
-    ratio = float(sigma[largest] / Q[largest])
+    Q, sigma = _peak(history)
+    ratio = float(sigma / Q) if Q else 0.0
     return ratio if on_line(history, ratio) else None
 
 
 def on_line(history: History, ratio: float) -> bool:
-    """True where every step of `history` has ``sigma = ratio Q`` to `PROPORTIONAL_RTOL` of ``|ratio| max |Q|``."""
-    Q = np.asarray(history.Q, dtype=float)
-    return _on_path(Q, np.asarray(history.sigma, dtype=float), ratio, np.abs(Q).max(initial=0.0))
+    """True where every step of `history` has ``sigma = ratio Q`` to `PROPORTIONAL_RTOL` of ``|ratio| max |Q|``.
+
+    Checked `History.blocks` at a time: no temporary array of a long history's length.
+    """
+    scale = abs(_peak(history)[0])
+    return all(_on_path(Q, sigma, ratio, scale) for Q, sigma in history.blocks())
+
+
+def _peak(history):
+    """``(Q, sigma)`` [N/m], [Pa] at the first step of the largest ``|Q|``, found `History.blocks` at a time."""
+    peak = (0.0, 0.0)
+    for Q, sigma in history.blocks():
+        step = int(np.argmax(np.abs(Q)))
+        if abs(Q[step]) > abs(peak[0]):
+            peak = (float(Q[step]), float(sigma[step]))
+    return peak
 
 
 def _on_path(Q, sigma, ratio, scale):
