@@ -3,9 +3,10 @@
 `run_file` steps one `Stepper` through the history chunk by chunk, so the model's set-up (the
 stiffness, the exact model's branches) is built once per run. Chunks are joined as they come
 (`fretting.results.io.Joiner`) into a *part*, which is saved to the checkpoint folder
-``OUTPUT.checkpoint/`` every `CHECKPOINT_SECONDS`, before it would hold more than `PART_CYCLES`
-cycles, and on an interruption; a part saved is never rewritten, so memory does not grow with the
-run's cycles and a checkpoint costs only the part. At the end the parts are joined into the result file
+``OUTPUT.checkpoint/`` every `CHECKPOINT_SECONDS`, before it would hold the fields of more than
+`PART_CYCLES` cycles (or more than `PART_SCALAR_CYCLES` cycles), and on an interruption; a part
+saved is never rewritten, so memory does not grow with the run's cycles and a checkpoint costs
+only the part. At the end the parts are joined into the result file
 (`fretting.results.io.save_joined`: the per-cycle rows appended part by part) and the folder is
 deleted. A run resumed from its checkpoint goes on from its last part's final state, to the same
 result bit for bit.
@@ -62,7 +63,7 @@ if TYPE_CHECKING:
 
     from fretting.models.base import ModelSpec
 
-__all__ = ["CHECKPOINT_SECONDS", "PART_CYCLES", "Run", "checkpointed", "holding", "run_file"]
+__all__ = ["CHECKPOINT_SECONDS", "PART_CYCLES", "PART_SCALAR_CYCLES", "Run", "checkpointed", "holding", "run_file"]
 
 #: Steps of the first chunk run at a time: how often progress is reported and a checkpoint can be
 #: written. A chunk that takes less than CHUNK_SECONDS doubles the next one's steps, so that runs
@@ -78,10 +79,15 @@ MAX_CHUNK_STEPS = 2**18
 #: checkpoint saves the part joined since the last one.
 CHECKPOINT_SECONDS = 60.0
 
-#: Cycles a part holds at most, whatever the time: the per-cycle rows held in memory (5 rows of N
-#: float32 each: 80 MB at 500 nodes). Each part costs a file written and read again at the end,
-#: whatever its size, so parts are made large.
+#: Cycles whose per-cycle fields a part holds at most, whatever the time: the rows held in memory
+#: (5 rows of N float32 each: 80 MB at 500 nodes). Each part costs a file written and read again
+#: at the end, whatever its size, so parts are made large.
 PART_CYCLES = 8192
+
+#: Cycles a part holds at most where a `CycleFields` policy stores the fields of some cycles only:
+#: their per-cycle scalars (17 bytes a cycle: 18 MB) and the fields of the cycles chosen, at most
+#: `PART_CYCLES` of them.
+PART_SCALAR_CYCLES = 2**20
 
 #: Cycles that one chunk begins at most: its per-cycle tallies (six fields of N float64 each)
 #: are held until the chunk is joined into the part.
@@ -311,7 +317,7 @@ def run_file(
                 part.add(chunk if selector is None else selector.take(chunk, start))
                 if progress is not None:
                     progress(start, len(history) - 1)
-                if time.monotonic() - written >= checkpoint_interval or part.cycles + _chunk_cycles() > PART_CYCLES:
+                if time.monotonic() - written >= checkpoint_interval or _full(part, selector is not None):
                     _save_part(part, checkpoint, attributes)
                     part, written = Joiner(), time.monotonic()
         except KeyboardInterrupt:
@@ -403,6 +409,13 @@ def _cut(history, record, start, stop, contact, skipping):
             below = solved[solved <= stop]
             return int(below[-1] if below.size else solved[0])
         end = min(2 * end - start, len(history) - 1)
+
+
+def _full(part, selected):
+    """True if the next chunk could take the Joiner `part` past `PART_CYCLES` cycles of fields (on
+    ``field_cycle`` where `selected`: a policy chose some cycles) or `PART_SCALAR_CYCLES` cycles."""
+    fields = part.rows("field_cycle" if selected else "cycle_number")
+    return fields + _chunk_cycles() > PART_CYCLES or part.cycles + _chunk_cycles() > PART_SCALAR_CYCLES
 
 
 def _chunk_cycles():

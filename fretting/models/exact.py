@@ -31,6 +31,7 @@ quadratures, which serve every other symmetric profile.
 
 from __future__ import annotations
 
+import bisect
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
@@ -185,9 +186,11 @@ class ExactModel(Model):
         self.contact = contact
         self.theta = spec.theta
         self.x = contact.centre + contact.a * np.cos(self.theta[::-1])
+        self._x = self.x.tolist()  # ascending: the nodes inside a half-width found by bisection
         self.t = (self.x - contact.centre) / contact.a
         self.friction_force = contact.f * contact.P
         self._p = contact.pressure(self.x)
+        self._fp = contact.f * self._p
         self._branches = {}  # P_c -> _Branch
         self._memories = {}  # turning points -> (slip, q, delta_Q) summed over their branches
 
@@ -207,7 +210,7 @@ class ExactModel(Model):
 
     def dissipation_density(self, ds):
         """``f p |ds|`` [J/m^2] at the nodes."""
-        return self.contact.f * self._p * np.abs(ds)
+        return self._fp * np.abs(ds)
 
     def at_rest(self, state):
         return self.increment(state, state.Q, state.sigma)
@@ -274,14 +277,15 @@ class ExactModel(Model):
         contact, profile = self.contact, self.contact.profile
         a, f, E_star = contact.a, contact.f, contact.E_star
         c = float(profile.half_width(P_c, E_star)[0])  # a for the sharp flat punch, whose contact does not grow
-        inside = np.abs(self.x) < c
+        lo, hi = bisect.bisect_right(self._x, -c), bisect.bisect_left(self._x, c)  # x[lo:hi] in (-c, c)
         p_c, slip = np.zeros(self.x.size), np.zeros(self.x.size)
-        p_c[inside] = profile.pressure(self.x[inside] / c, c, 0.0, P_c, E_star)
+        p_c[lo:hi] = profile.pressure(self.x[lo:hi] / c, c, 0.0, P_c, E_star)
         q = f * (self._p - p_c)  # closed_forms.ciavarella_jaeger's, without the Contact (and its p0) it builds
         if c >= a:  # nothing slips
             return _Branch(a, q, slip, 0.0, 0.0)
         outside = _hertz_slip_zones if isinstance(profile, Hertz) else _quadrature_slip_zones
-        slip[~inside], energy, delta_Q = outside(contact, c, self.x[~inside])
+        found, energy, delta_Q = outside(contact, c, np.concatenate((self.x[:lo], self.x[hi:])))
+        slip[:lo], slip[hi:] = found[:lo], found[lo:]
         return _Branch(c, q, slip, energy, delta_Q)
 
 

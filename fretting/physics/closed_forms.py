@@ -97,9 +97,11 @@ def hertz_slip_shape(x: ArrayLike, b: float) -> np.ndarray:
     small = z < SHAPE_SERIES_BELOW
     if np.any(small):
         w = 2 * np.arcsinh(z[small])
+        w2 = w**2
         series = np.full(w.size, _SINH_SERIES[-1])
         for coefficient in _SINH_SERIES[-2::-1]:  # Horner in w^2
-            series = series * w**2 + coefficient
+            series *= w2
+            series += coefficient
         shape[small] = w**3 * series / 2
     return b**2 * shape.reshape(X.shape)
 

@@ -311,6 +311,10 @@ class Joiner:
         """Cycles of the joined result so far."""
         return self._counts["cycle_number"]
 
+    def rows(self, dim: str) -> int:
+        """Rows along the per-cycle dimension `dim` (one of `CYCLE_DIMS`) of the joined result so far."""
+        return self._counts[dim]
+
     @property
     def steps(self) -> int:
         """Steps of the joined result so far (its ``steps`` attribute)."""
