@@ -59,3 +59,31 @@ def test_one_ulp_below_sliding_settles_by_either_way(monkeypatch, complement):
         assert error.step == 4 and error.limit <= hertz.f * hertz.P
     else:
         assert result.stick.values[-1].any() and np.all(np.isfinite(result.slip.values))
+
+
+def test_the_solves_leave_slipping_nodes_well_within_the_rounding_allowance():
+    """Out of phase near sliding (Q 0.9 f P, sigma 1.5 f p0), on the adapted mesh: at every step,
+    every slipping node's traction is at the limit to a tenth of `solver.ROUNDING` of the largest
+    term of its traction, so that the allowance holds the rounding the solves leave with a margin."""
+    contact = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.6, 1e5)
+    history = fr.History.sinusoidal(0.9 * contact.f * contact.P, 1.5 * contact.f * contact.p0, 90, 1, 32)
+    model = fr.models.Mesh(theta=fr.adapted_mesh(contact, history)).build(contact)
+    slip, worst = np.zeros(model.limit.size), 0.0
+    for Q, sigma in zip(history.Q[1:], history.sigma[1:], strict=True):
+        g_stuck = model.g_stuck(Q, sigma)
+        solved = solver.solve_increment(model.stiffness, g_stuck, model.limit, slip)
+        slipping = solved.ds != 0
+        scale = model.limit + np.abs(g_stuck) + model.stiffness.G_abs @ np.abs(solved.slip)
+        residual = np.abs(solved.g - np.sign(solved.ds) * model.limit)[slipping] / scale[slipping]
+        worst, slip = max(worst, residual.max(initial=0.0)), solved.slip
+    assert 0 < worst <= solver.ROUNDING / 10
+
+
+def test_small_cycles_of_Q_on_a_large_locked_in_slip_dissipate_as_the_cube_of_the_amplitude():
+    """After loading to (0.3 f P, 0.2 f p0), cycles of 1e-6 f P with sigma held dissipate as the
+    cube of the amplitude: ``W / A^3`` as the cycles of 1e-5 f P have it, to 1e-4."""
+    import small_loops  # benchmarks/, on the path by conftest
+
+    contact = small_loops.hertz()
+    W = {A: small_loops.second_cycle(contact, A, "Q")[0] / A**3 for A in (1e-5, 1e-6)}
+    assert W[1e-6] == pytest.approx(W[1e-5], rel=1e-4)

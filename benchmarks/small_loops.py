@@ -1,0 +1,75 @@
+"""Energy of small load changes on a large locked-in slip: the default mesh against its laws (issue 18).
+
+A Hertzian contact (the tests' contact) is loaded to ``Q0 = 0.3 f P`` (and ``sigma0 = 0.2 f p0``
+where sigma is held) and then cycled with small amplitudes ``A``; at each amplitude:
+
+- reversal: one unloading increment of ``A f P`` after loading to ``0.5 f P`` under Q alone, on
+  the default Galerkin mesh (``rtol=DEFAULT_RTOL``) against the exact model (Mindlin-Deresiewicz):
+  ``W / W_exact - 1``;
+- Q cycles, sigma held: the energy ``W`` of the second of two cycles of ``Q0 +- A f P``, printed as
+  ``W / A^3`` (a small loop at the edges of the contact dissipates as the cube of its amplitude),
+  at default settings and at ``FINE_RTOL``, and their relative difference;
+- sigma cycles, Q held: the same for cycles of ``sigma0 +- A f p0``, printed as ``W / A`` (the
+  tension drives the slip zones at the two edges on in turn, each by the amplitude).
+
+Below some amplitude a cycle's traction changes by less than the solver's rounding allowance
+(`fretting.models.solver.ROUNDING` of the largest term of the traction, ``|G| |slip|`` of the
+locked-in slip) and the cycle dissipates nothing.
+
+Run:  python benchmarks/small_loops.py
+"""
+
+import warnings
+
+import numpy as np
+
+import fretting as fr
+from fretting.physics.contact import plane_strain_modulus
+
+AMPLITUDES = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
+
+
+def hertz():
+    """R = 50 mm, E = 210 GPa, nu = 0.3, f = 0.6, P = 100 N/mm (the tests' contact)."""
+    return fr.Contact(fr.Hertz(0.05), plane_strain_modulus(210e9, 0.3), 0.6, 1e5)
+
+
+def reversal(contact, A):
+    """``(W_mesh / W_exact - 1, nodes)`` of one unloading increment of ``A f P`` from ``0.5 f P``."""
+    history = fr.History.piecewise_linear(np.array([0, 0.5, 0.5 - A]) * contact.f * contact.P, None, [4, 1])
+    exact = fr.simulate(contact, history).dissipation.values[-1]
+    mesh = fr.simulate(contact, history, rtol=fr.DEFAULT_RTOL)
+    return mesh.dissipation.values[-1] / exact - 1, mesh.sizes["x"]
+
+
+def second_cycle(contact, A, moving, rtol=fr.DEFAULT_RTOL):
+    """Energy [J/m] of the second of two cycles of amplitude `A` of `moving` (``"Q"`` or ``"sigma"``)
+    about ``(0.3 f P, 0.2 f p0)``, and the nodes of the mesh adapted to `rtol`."""
+    Q0, sigma0 = 0.3 * contact.f * contact.P, 0.2 * contact.f * contact.p0
+    swing = np.array([1, -1, 1, -1, 1]) * A
+    Q = [0, Q0, *(Q0 + swing * contact.f * contact.P if moving == "Q" else [Q0] * 5)]
+    sigma = [0, sigma0, *(sigma0 + swing * contact.f * contact.p0 if moving == "sigma" else [sigma0] * 5)]
+    history = fr.History.piecewise_linear(Q, sigma, 8)
+    result = fr.simulate(contact, history, rtol=rtol)
+    return result.dissipation.values[history.vertex_step[4] + 1 :].sum(), result.sizes["x"]
+
+
+#: The rtol of the finer runs the defaults are compared with.
+FINE_RTOL = 2e-5
+
+
+def main():
+    warnings.simplefilter("ignore", fr.ModelFallbackWarning)
+    contact = hertz()
+    print("A     | reversal W/W_exact-1 | Q cycles W/A^3 [J/m]: default, fine, diff. | sigma cycles W/A: same")
+    for A in AMPLITUDES:
+        row = [f"{A:5.0e} | {reversal(contact, A)[0]:+10.2e}          "]
+        for moving, power in (("Q", 3), ("sigma", 1)):
+            default = second_cycle(contact, A, moving)[0] / A**power
+            fine = second_cycle(contact, A, moving, FINE_RTOL)[0] / A**power
+            row.append(f"{default:.5e}, {fine:.5e}, {default / fine - 1 if fine else float('nan'):+.1e}")
+        print(" | ".join(row), flush=True)
+
+
+if __name__ == "__main__":
+    main()
