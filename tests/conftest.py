@@ -14,9 +14,17 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+from hypothesis import settings  # noqa: E402
 
 import fretting as fr  # noqa: E402
 from fretting.physics.contact import plane_strain_modulus  # noqa: E402
+
+# Under CI the property tests draw one fixed sequence of examples, so that `CI=true pytest`
+# reproduces a red CI. Recent Hypothesis does this by itself; the lowest version the project
+# supports (pyproject.toml) draws new examples on every run.
+if os.environ.get("CI"):
+    settings.register_profile("fixed-examples", derandomize=True, database=None)
+    settings.load_profile("fixed-examples")
 
 E_SI, NU_SI = 210e9, 0.3
 

@@ -196,3 +196,13 @@ def test_the_ratio_is_read_block_by_block(monkeypatch):
         assert proportional_ratio(fr.History(Q, sigma, [0])) is None
     assert proportional_ratio(fr.History(np.zeros(9), np.zeros(9), [0])) == 0.0
     assert proportional_ratio(fr.History(np.zeros(9), np.eye(9)[6], [0])) is None
+
+
+def test_a_ratio_past_the_largest_float_is_not_in_phase():
+    """``Q`` of 4e-301 N/m with ``sigma`` of 1e8 Pa: ``sigma / Q`` is no float, so the history is not
+    in phase; the default says so and takes method 4's mesh (no invalid arithmetic on the way)."""
+    contact = hertz_si()
+    history = fr.History.piecewise_linear([0.0, 4.1e-301], [0.0, 1e8], 1)
+    assert proportional_ratio(history) is None
+    assert "not proportional" in InPhase().holds_for(contact, history)
+    assert fr.choose_model(contact, history).name == "mesh"

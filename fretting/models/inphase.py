@@ -68,11 +68,12 @@ def proportional_ratio(history: History) -> float | None:
     """``k = sigma / Q`` [1/m] of a history whose every step has ``sigma = k Q`` (to `PROPORTIONAL_RTOL`), else None.
 
     ``k`` is read at the step of the largest ``|Q|`` (the first such step); a history without ``Q``
-    is in phase only without ``sigma`` (``k = 0``).
+    is in phase only without ``sigma`` (``k = 0``), and one whose ``sigma / Q`` there passes the
+    largest float (``Q`` of a few 1e-300 N/m) has no ratio.
     """
     Q, sigma = _peak(history)
     ratio = float(sigma / Q) if Q else 0.0
-    return ratio if on_line(history, ratio) else None
+    return ratio if np.isfinite(ratio) and on_line(history, ratio) else None
 
 
 def on_line(history: History, ratio: float) -> bool:
