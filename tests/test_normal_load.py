@@ -332,10 +332,6 @@ def test_default_stick_ends_follow_a_finer_run_at_every_step(random_walk):
         assert np.nanmax(error) < 1e-3
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 22 test 6, energy: the error of the 512 cells is about 1e-4 (docs/theory/normal-load.md, Accuracy)",
-)
 def test_default_energy_converges_on_a_random_history(random_walk):
     """Issue 22 test 6, energy: the default's total energy within 1e-4 (relative) of the finer run."""
     default, finer = random_walk
