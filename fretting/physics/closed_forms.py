@@ -42,6 +42,10 @@ Piece = tuple[float, float, float, float]
 #: far below rounding.
 SERIES_TERMS = 80
 
+#: Exponents ``n`` from 2 and the ``n (n - 1)`` of `_slip_series`, computed once (it is called per branch).
+_SERIES_N = np.arange(2, 3 + SERIES_TERMS)
+_SERIES_DENOMINATORS = _SERIES_N * (_SERIES_N - 1.0)
+
 #: Below this ``z = sqrt(X^2 - b^2) / b`` `hertz_slip_shape` sums the power series of ``sinh w - w``
 #: (`SHAPE_TERMS` terms: at ``w = 2 arcsinh(1/2)`` the next is ``3e-17`` of the sum); above it its
 #: closed form loses less than a factor 8 to cancellation.
@@ -79,7 +83,7 @@ def cattaneo_mindlin_slip(contact: Contact, Q: float, x: ArrayLike) -> np.ndarra
     return np.sign(Q) * contact.f * contact.p0 / (contact.E_star * contact.a) * hertz_slip_shape(x, b)
 
 
-def hertz_slip_shape(x: ArrayLike, b: float) -> np.ndarray:
+def hertz_slip_shape(x: ArrayLike, b: ArrayLike) -> np.ndarray:
     """``X sqrt(X^2 - b^2) - b^2 arccosh(X / b)`` [m^2] with ``X = max(|x|, b)``, `x` and `b` [m], without cancellation.
 
     The slip of eq (19) integrated from the stick-zone edge ``b`` (`cattaneo_mindlin_slip`), and
@@ -87,10 +91,13 @@ def hertz_slip_shape(x: ArrayLike, b: float) -> np.ndarray:
     ``z = sqrt((X - b)(X + b)) / b`` it is ``b^2 (z sqrt(1 + z^2) - arcsinh z)``, whose two terms
     cancel to ``2 z^3 / 3`` as ``X -> b``; with ``z = sinh(w / 2)`` the bracket is
     ``(sinh w - w) / 2``, summed as its power series below ``z = SHAPE_SERIES_BELOW``, so thin slip
-    zones keep their relative precision.
+    zones keep their relative precision. `b` may be an array (each ``> 0``) that broadcasts with
+    `x`, e.g. ``b[:, None]`` against nodes ``x``: several half-widths in one evaluation, each
+    element computed as it would be alone.
     """
+    b = np.asarray(b, dtype=float)
     X = np.maximum(np.abs(np.asarray(x, dtype=float)), b)
-    if b == 0:
+    if b.ndim == 0 and b == 0:
         return X**2
     z = np.atleast_1d(np.sqrt((X - b) * (X + b)) / b)
     shape = z * np.sqrt(1 + z**2) - np.arcsinh(z)
@@ -169,8 +176,8 @@ def _slip_series(psi: float, first: int) -> float:
     """
     psi = float(psi)
     if psi < 0.25:
-        n = np.arange(first, first + SERIES_TERMS)
-        return float(np.sum(psi**n / (n * (n - 1.0))))
+        terms = slice(first - 2, first - 2 + SERIES_TERMS)
+        return float(np.sum(psi ** _SERIES_N[terms] / _SERIES_DENOMINATORS[terms]))
     two = psi + (1 - psi) * math.log1p(-psi) if psi < 1 else 1.0
     return two if first == 2 else two - psi**2 / 2
 
