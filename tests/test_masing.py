@@ -264,3 +264,17 @@ def test_a_run_prepared_is_the_run_solved_branch_by_branch(hertz):
     prepared, unprepared = (fr.Stepper(hertz, model).run(history) for model in (spec.build(hertz), alone))
     assert np.array_equal(prepared.slip, unprepared.slip) and prepared.memory == unprepared.memory
     assert prepared.dissipated == unprepared.dissipated and np.array_equal(prepared.tally.w, unprepared.tally.w)
+
+
+def test_closed_forms_of_an_array_are_those_of_each_load(hertz):
+    """Mindlin's energy and compliance and the slip shape take arrays (`ExactModel._hertz_branches`):
+    each element is the scalar call's bit for bit, on both sides of the series' switch at psi = 1/4,
+    and at psi = 1 the energy is the closed form's ``pi (f p0 a)^2 / (8 E_star)``."""
+    Q = hertz.f * hertz.P * np.array([1e-6, 0.1, 0.2499, 0.25, 0.7, 1.0])
+    for closed_form in (cf.cattaneo_mindlin_dissipation, cf.cattaneo_mindlin_compliance):
+        assert closed_form(hertz, Q).tolist() == [closed_form(hertz, load) for load in Q.tolist()]
+    ends = hertz.f * hertz.p0 * hertz.a
+    assert cf.cattaneo_mindlin_dissipation(hertz, Q[-1]) == pytest.approx(np.pi * ends**2 / (8 * hertz.E_star), 1e-15)
+    b, x = hertz.a * np.array([0.3, 0.9, 0.999]), np.linspace(-hertz.a, hertz.a, 101)
+    rows = cf.hertz_slip_shape(x, b[:, None])
+    assert all(np.array_equal(row, cf.hertz_slip_shape(x, half_width)) for row, half_width in zip(rows, b, strict=True))

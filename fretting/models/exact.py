@@ -335,15 +335,15 @@ class ExactModel(Model):
         p_c = np.where(inside, profile.pressure(np.where(inside, t, 0.0), c, 0.0, P_c[:, None], E_star), 0.0)
         q = f * (self._p - p_c)
         slip = f * hertz_slip_shape(self.x, c) / (2 * profile.R)
-        branches = []
-        for k, half_width in enumerate(c[:, 0].tolist()):
-            if half_width >= a:  # nothing slips (the shape is zero at every node)
-                branches.append(_Branch(a, q[k], slip[k], 0.0, 0.0))
-                continue
-            Q = f * contact.P * ((a - half_width) * (a + half_width) / a**2)
-            energy = cattaneo_mindlin_dissipation(contact, Q) / f**2
-            branches.append(_Branch(half_width, q[k], slip[k], energy, cattaneo_mindlin_compliance(contact, Q)))
-        return branches
+        c = c[:, 0]
+        Q = f * contact.P * ((a - c) * (a + c) / a**2)
+        energy = cattaneo_mindlin_dissipation(contact, Q) / f**2
+        delta_Q = cattaneo_mindlin_compliance(contact, Q)
+        rows = zip(c.tolist(), energy.tolist(), delta_Q.tolist(), q, slip, strict=True)
+        return [  # where c >= a nothing slips (the shape is zero at every node)
+            _Branch(c_k, q_k, slip_k, energy_k, delta_Q_k) if c_k < a else _Branch(a, q_k, slip_k, 0.0, 0.0)
+            for c_k, energy_k, delta_Q_k, q_k, slip_k in rows
+        ]
 
 
 def _quadrature_slip_zones(contact, c, x):

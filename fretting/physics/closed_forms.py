@@ -100,8 +100,10 @@ def hertz_slip_shape(x: ArrayLike, b: ArrayLike) -> np.ndarray:
     if b.ndim == 0 and b == 0:
         return X**2
     z = np.atleast_1d(np.sqrt((X - b) * (X + b)) / b)
-    shape = z * np.sqrt(1 + z**2) - np.arcsinh(z)
-    small = z < SHAPE_SERIES_BELOW
+    shape = np.zeros(z.shape)  # where z = 0 (inside b) both forms are 0: only the slip zones are evaluated
+    large = z >= SHAPE_SERIES_BELOW
+    shape[large] = z[large] * np.sqrt(1 + z[large] ** 2) - np.arcsinh(z[large])
+    small = (z > 0) & ~large
     if np.any(small):
         w = 2 * np.arcsinh(z[small])
         w2 = w**2
@@ -168,39 +170,46 @@ def ciavarella_jaeger(contact: Contact, Q: float, x: ArrayLike) -> tuple[np.ndar
     return np.sign(Q) * q, corrective
 
 
-def _slip_series(psi: float, first: int) -> float:
+def _slip_series(psi: ArrayLike, first: int) -> np.ndarray:
     """``sum_{n >= first} psi^n / (n (n - 1))`` for ``0 <= psi <= 1`` and `first` 2 or 3, without cancellation.
 
     For ``first = 2`` the sum is ``psi + (1 - psi) ln(1 - psi)``; that form cancels for small
-    ``psi`` (to ``psi^2 / 2``), so below ``psi = 1/4`` the series is summed instead.
+    ``psi`` (to ``psi^2 / 2``), so below ``psi = 1/4`` the series is summed instead. Elementwise
+    over an array `psi` (each element as alone).
     """
-    psi = float(psi)
-    if psi < 0.25:
-        terms = slice(first - 2, first - 2 + SERIES_TERMS)
-        return float(np.sum(psi ** _SERIES_N[terms] / _SERIES_DENOMINATORS[terms]))
-    two = psi + (1 - psi) * math.log1p(-psi) if psi < 1 else 1.0
-    return two if first == 2 else two - psi**2 / 2
+    psi = np.asarray(psi, dtype=float)
+    terms = slice(first - 2, first - 2 + SERIES_TERMS)
+    series = np.sum(psi[..., None] ** _SERIES_N[terms] / _SERIES_DENOMINATORS[terms], axis=-1)
+    below = np.where(psi < 1, psi, 0.0)  # the closed form's log is finite; at 1 the sum is 1
+    two = np.where(psi < 1, below + (1 - below) * np.log1p(-below), 1.0)
+    return np.where(psi < 0.25, series, two if first == 2 else two - psi**2 / 2)
 
 
-def cattaneo_mindlin_compliance(contact: Contact, Q: float) -> float:
+def cattaneo_mindlin_compliance(contact: Contact, Q: ArrayLike) -> float | np.ndarray:
     """Tangential displacement ``delta_Q`` [m] of a Hertz contact under monotonic ``Q`` [N/m] (Mindlin 1949).
 
     The mean slip ``(1/pi) int_0^pi s(a cos th) dth`` of `cattaneo_mindlin_slip`:
     ``delta_Q = (f p0 a / (2 E_star)) (psi + (1 - psi) ln(1 - psi))`` with ``psi = |Q| / (f P)``,
-    signed as ``Q``; ``f p0 a psi^2 / (4 E_star)`` to leading order.
+    signed as ``Q``; ``f p0 a psi^2 / (4 E_star)`` to leading order. Elementwise over an array `Q`.
     """
-    psi = abs(Q) / (contact.f * contact.P)
-    return math.copysign(contact.f * contact.p0 * contact.a / (2 * contact.E_star) * _slip_series(psi, 2), Q)
+    psi = np.abs(Q) / (contact.f * contact.P)
+    return _scalar(np.copysign(contact.f * contact.p0 * contact.a / (2 * contact.E_star) * _slip_series(psi, 2), Q))
 
 
-def cattaneo_mindlin_dissipation(contact: Contact, Q: float) -> float:
+def cattaneo_mindlin_dissipation(contact: Contact, Q: ArrayLike) -> float | np.ndarray:
     """Energy [J/m] that a Hertz contact dissipates as ``Q`` [N/m] rises monotonically from zero.
 
     ``int f p |s| dx`` of `cattaneo_mindlin_slip` (every point slips one way only):
     ``(pi (f p0 a)^2 / (4 E_star)) sum_{n >= 3} psi^n / (n (n - 1))``, ``psi = |Q| / (f P)``.
+    Elementwise over an array `Q`.
     """
-    psi = abs(Q) / (contact.f * contact.P)
-    return math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star) * _slip_series(psi, 3)
+    psi = np.abs(Q) / (contact.f * contact.P)
+    return _scalar(math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star) * _slip_series(psi, 3))
+
+
+def _scalar(values: np.ndarray) -> float | np.ndarray:
+    """`values` as a float where it is a single number (0-d), else the array."""
+    return float(values) if np.ndim(values) == 0 else values
 
 
 def mindlin_deresiewicz_energy(contact: Contact, Q_star: float) -> float:
