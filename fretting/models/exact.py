@@ -193,6 +193,7 @@ class ExactModel(Model):
         self._fp = contact.f * self._p
         self._branches = {}  # P_c -> _Branch
         self._memories = {}  # turning points -> (slip, q, delta_Q) summed over their branches
+        self._walks = {}  # (turning points, Q before, Q after) -> masing_increment of the steps prepared
 
     def traction(self, outcome):
         """The traction [Pa]: the model gives it at the nodes directly."""
@@ -223,7 +224,8 @@ class ExactModel(Model):
         if Q == state.Q:
             slip, q, delta_Q, _ = self._at(state.memory, Q)
             return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
-        turning, pieces = masing_increment(state.memory, state.Q, Q)
+        walk = (state.memory, state.Q, Q)
+        turning, pieces = self._walks.pop(walk) if walk in self._walks else masing_increment(*walk)
         energy = 0.0
         for origin, factor, start, end in pieces:  # each loop that the increment closes, then the branch it ends on
             upper, lower = (self._solution(origin, factor, load).energy for load in (end, start))
@@ -267,16 +269,19 @@ class ExactModel(Model):
         """Solve together the branches that the increments from `state` through the shear forces
         `loads` [N/m], in turn, meet, so that `increment` finds them solved.
 
-        The Masing walk of `loads` is scalar; on Hertz the new branches are then one 2-D evaluation
-        (`_hertz_branches`), whose rows equal those of branches solved one at a time bit for bit,
-        so that what is prepared changes no result, only its cost. Other profiles (quadratures) and
-        a subclass with branches of its own (`fretting.models.inphase`) gain nothing: nothing is done.
+        The Masing walk of `loads` is scalar (kept for `increment`); on Hertz the new branches are
+        then one 2-D evaluation (`_hertz_branches`), whose rows equal those of branches solved one
+        at a time bit for bit, so that what is prepared changes no result, only its cost. Other
+        profiles (quadratures) and a subclass with branches of its own (`fretting.models.inphase`)
+        gain nothing: nothing is done.
         """
         if not (isinstance(self.contact.profile, Hertz) and type(self)._solved is ExactModel._solved):
             return
         turning, before, needed = state.memory, state.Q, {}
+        self._walks.clear()
         for Q in map(float, loads):
-            turning, pieces = masing_increment(turning, before, Q)
+            walk = (turning, before, Q)
+            turning, pieces = self._walks[walk] = masing_increment(*walk)
             for origin, factor, *ends in pieces:
                 needed |= dict.fromkeys(self._corrective(origin, factor, load) for load in ends)
             needed[self._corrective(*masing_origin(turning), Q)] = None
