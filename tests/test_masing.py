@@ -278,3 +278,13 @@ def test_closed_forms_of_an_array_are_those_of_each_load(hertz):
     b, x = hertz.a * np.array([0.3, 0.9, 0.999]), np.linspace(-hertz.a, hertz.a, 101)
     rows = cf.hertz_slip_shape(x, b[:, None])
     assert all(np.array_equal(row, cf.hertz_slip_shape(x, half_width)) for row, half_width in zip(rows, b, strict=True))
+
+
+def test_prepared_loads_past_gross_slip_are_left_to_the_run(hertz):
+    """`prepare` stops its walk at the first load of ``|Q| >= f P`` (no corrective contact there:
+    the run stops with a GrossSlipError naming the step, tests/test_engine.py), having solved the
+    branches before it."""
+    model = masing.Exact(64).resolved_for(hertz, None).build(hertz)
+    with np.errstate(all="raise"):
+        model.prepare(fr.State.virgin(model), hertz.f * hertz.P * np.array([0.5, -1.2, 0.3]))
+    assert list(model._branches) == [hertz.P, hertz.P - 0.5 * hertz.P]  # the branch from Q = 0 to 0.5 f P

@@ -280,6 +280,8 @@ class ExactModel(Model):
         turning, before, needed = state.memory, state.Q, {}
         self._walks.clear()
         for Q in map(float, loads):
+            if abs(Q) >= self.friction_force:  # gross slip: the run stops there
+                break
             walk = (turning, before, Q)
             turning, pieces = self._walks[walk] = masing_increment(*walk)
             for origin, factor, *ends in pieces:
