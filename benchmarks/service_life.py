@@ -90,17 +90,20 @@ def masing_energy(source):
     """Energy [J/m] of each cycle of the Q-alone history file `source` from closed forms: the
     Masing walk of its vertices (`masing_increment`), each branch piece dissipating ``k (E(|Q_end -
     origin| / k) - E(|Q_start - origin| / k))`` with ``E`` the Cattaneo-Mindlin energy of
-    monotonic loading (`cattaneo_mindlin_dissipation`) and ``k`` the branch's factor."""
+    monotonic loading (`cattaneo_mindlin_dissipation`, of all pieces at once) and ``k`` the
+    branch's factor, summed per cycle in the order walked."""
     contact, history = fr.read_history(source)
-    energy = np.zeros(history.cycle_count + 1)
-    turning, before = (), 0.0
+    turning, before, walked = (), 0.0, []  # (cycle, factor, |Q_end - origin|, |Q_start - origin|) of each piece
     for step in history.vertex_step[1:]:
         Q = float(history.Q[step])
         turning, pieces = masing_increment(turning, before, Q)
-        for origin, factor, start, end in pieces:
-            virgin = (cattaneo_mindlin_dissipation(contact, abs(load - origin) / factor) for load in (end, start))
-            energy[history.cycle[step]] += factor * (next(virgin) - next(virgin))
+        cycle = int(history.cycle[step])
+        walked += [(cycle, factor, abs(end - origin), abs(start - origin)) for origin, factor, start, end in pieces]
         before = Q
+    cycle, factor, end, start = np.array(walked).T
+    virgin = (cattaneo_mindlin_dissipation(contact, load / factor) for load in (end, start))
+    energy = np.zeros(history.cycle_count + 1)
+    np.add.at(energy, cycle.astype(np.int64), factor * (next(virgin) - next(virgin)))
     return energy[1:]
 
 

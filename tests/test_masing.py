@@ -44,18 +44,37 @@ def test_gap_of_hertz_is_cattaneo_mindlin(hertz, psi):
 
 @pytest.mark.parametrize("ratio", [1e-6, 1e-4, 1e-2, 0.5, 0.9, 0.999, 1 - 1e-6])
 def test_hertz_closed_forms_are_the_quadrature(hertz, ratio):
-    """On Hertz the exact model's branches are closed forms (`masing._hertz_slip_zones`); the
+    """On Hertz the exact model's branches are closed forms (`ExactModel._hertz_branches`); the
     quadrature of any other symmetric profile (`masing._quadrature_slip_zones`) gives them, from a
-    stick zone of 1e-6 a to a slip zone of 1e-6 a: the slip at every point to 1e-12 of itself, the
-    energy and delta_Q to ``1e-12 + 1e-15 / (1 - (c/a)^2)`` (the quadrature's pressure
-    ``p0 sqrt(1 - (X/a)^2)`` near the edge is known to ``eps / (1 - (X/a)^2)``)."""
+    stick zone of 1e-6 a to a slip zone of 1e-6 a: the slip at every node of the slip zones to 1e-12
+    of itself (zero in the stick zone), the energy and delta_Q to ``1e-12 + 1e-15 / (1 - (c/a)^2)``
+    (the quadrature's pressure ``p0 sqrt(1 - (X/a)^2)`` near the edge is known to ``eps / (1 - (X/a)^2)``)."""
     c = ratio * hertz.a
-    x = np.linspace(c, hertz.a, 301) * np.where(np.arange(301) % 2, 1, -1)
-    closed, quadrature = masing._hertz_slip_zones(hertz, c, x), masing._quadrature_slip_zones(hertz, c, x)
-    np.testing.assert_allclose(closed[0], quadrature[0], rtol=1e-12, atol=0)
+    theta = np.arccos(np.linspace(c, hertz.a, 301) / hertz.a)
+    model = masing.Exact(theta=np.union1d(theta, np.pi - theta)).build(hertz)
+    closed = model._hertz_branches(np.array([hertz.profile.load(c, hertz.E_star)]))[0]
+    outside = np.abs(model.x) >= closed.c
+    slip, energy, delta_Q = masing._quadrature_slip_zones(hertz, closed.c, model.x[outside])
+    np.testing.assert_allclose(closed.slip[outside], slip, rtol=1e-12, atol=0)
+    assert np.all(closed.slip[~outside] == 0)
     rtol = 1e-12 + 1e-15 / (1 - ratio**2)
-    assert closed[1] == pytest.approx(quadrature[1], rel=rtol)
-    assert closed[2] == pytest.approx(quadrature[2], rel=rtol)
+    assert closed.energy == pytest.approx(energy, rel=rtol)
+    assert closed.delta_Q == pytest.approx(delta_Q, rel=rtol)
+
+
+def test_branches_solved_together_are_those_solved_alone(hertz):
+    """`ExactModel.prepare` solves the branches of many steps in one 2-D evaluation: each equals,
+    bit for bit, the branch solved alone (so that where a run is cut changes no result), and a
+    run prepared is the run solved branch by branch, bit for bit."""
+    Q = hertz.f * hertz.P * np.array([0.0, 0.5, -0.2, 0.3, 0.1, 0.45, -0.6, 0.2, 0.9999])
+    spec = masing.Exact(64).resolved_for(hertz, None)
+    together, alone = spec.build(hertz), spec.build(hertz)
+    together.prepare(fr.State.virgin(together), Q[1:])
+    assert len(together._branches) >= len(Q) - 1  # a branch at each load at least
+    for P_c, branch in together._branches.items():
+        single = alone._solved(P_c)
+        assert (branch.c, branch.energy, branch.delta_Q) == (single.c, single.energy, single.delta_Q)
+        assert np.array_equal(branch.slip, single.slip) and np.array_equal(branch.q, single.q)
 
 
 @pytest.mark.parametrize("psi", [0.5, 0.99, 0.999999])
@@ -232,3 +251,40 @@ def test_nodes_hold_thin_slip_zones_and_small_stick_zones(hertz):
         sizes.append(theta.size)
         assert np.count_nonzero(np.abs(np.cos(theta)) < np.sqrt(1 - psi)) >= masing.STICK_NODES
     assert sizes == [480, 496]
+
+
+def test_a_run_prepared_is_the_run_solved_branch_by_branch(hertz):
+    """A random history of Q run with its branches prepared (`fretting.engine.follow.PREPARED_STEPS`
+    steps at a time) and branch by branch ends in the same state bit for bit: slip, tally, energy."""
+    draws = np.random.default_rng(3).uniform(-0.8, 0.8, 40) * hertz.f * hertz.P
+    history = fr.History.piecewise_linear(np.concatenate([[0.0], draws]), None, 3)
+    spec = masing.Exact(64).resolved_for(hertz, history)
+    alone = spec.build(hertz)
+    alone.prepare = lambda state, loads: None  # the stepper then solves each branch as the increment meets it
+    prepared, unprepared = (fr.Stepper(hertz, model).run(history) for model in (spec.build(hertz), alone))
+    assert np.array_equal(prepared.slip, unprepared.slip) and prepared.memory == unprepared.memory
+    assert prepared.dissipated == unprepared.dissipated and np.array_equal(prepared.tally.w, unprepared.tally.w)
+
+
+def test_closed_forms_of_an_array_are_those_of_each_load(hertz):
+    """Mindlin's energy and compliance and the slip shape take arrays (`ExactModel._hertz_branches`):
+    each element is the scalar call's bit for bit, on both sides of the series' switch at psi = 1/4,
+    and at psi = 1 the energy is the closed form's ``pi (f p0 a)^2 / (8 E_star)``."""
+    Q = hertz.f * hertz.P * np.array([1e-6, 0.1, 0.2499, 0.25, 0.7, 1.0])
+    for closed_form in (cf.cattaneo_mindlin_dissipation, cf.cattaneo_mindlin_compliance):
+        assert closed_form(hertz, Q).tolist() == [closed_form(hertz, load) for load in Q.tolist()]
+    ends = hertz.f * hertz.p0 * hertz.a
+    assert cf.cattaneo_mindlin_dissipation(hertz, Q[-1]) == pytest.approx(np.pi * ends**2 / (8 * hertz.E_star), 1e-15)
+    b, x = hertz.a * np.array([0.3, 0.9, 0.999]), np.linspace(-hertz.a, hertz.a, 101)
+    rows = cf.hertz_slip_shape(x, b[:, None])
+    assert all(np.array_equal(row, cf.hertz_slip_shape(x, half_width)) for row, half_width in zip(rows, b, strict=True))
+
+
+def test_prepared_loads_past_gross_slip_are_left_to_the_run(hertz):
+    """`prepare` stops its walk at the first load of ``|Q| >= f P`` (no corrective contact there:
+    the run stops with a GrossSlipError naming the step, tests/test_engine.py), having solved the
+    branches before it."""
+    model = masing.Exact(64).resolved_for(hertz, None).build(hertz)
+    with np.errstate(all="raise"):
+        model.prepare(fr.State.virgin(model), hertz.f * hertz.P * np.array([0.5, -1.2, 0.3]))
+    assert list(model._branches) == [hertz.P, hertz.P - 0.5 * hertz.P]  # the branch from Q = 0 to 0.5 f P

@@ -30,6 +30,10 @@ __all__ = ["STRAIGHT", "advance", "follow", "skippable"]
 #: million steps per turn (a turn of 6e-6 rad a step) does not.
 STRAIGHT = 1e-9
 
+#: Solved steps whose loads a model that prepares (``model.prepare(state, Q)``, the exact model)
+#: is given at once, ahead of solving them: its branches are then solved together.
+PREPARED_STEPS = 512
+
 
 def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=True, stress=True, P=None):
     """(outcome, state after) of the increment of `model` from `state` to `Q` [N/m], `sigma` [Pa], `P` [N/m].
@@ -147,6 +151,8 @@ class _Run:
         else:
             self.skip = skippable(history, recorder.row >= 0, model.contact)
         self.solved = np.flatnonzero(~self.skip)  # the last step is never skipped
+        self.prepare = getattr(model, "prepare", None)
+        self.prepared = 0  # the steps before it are prepared
 
     def follow(self, state):
         """Run from `state`; return the state at the end."""
@@ -174,6 +180,10 @@ class _Run:
                 steps.extend([None] * (after - step))
                 step = after
                 continue
+            if self.prepare is not None and step >= self.prepared:
+                ahead = self.solved[np.searchsorted(self.solved, step) :][:PREPARED_STEPS]
+                self.prepare(state, self.history.Q[ahead])
+                self.prepared = int(ahead[-1]) + 1
             guess = None if self.guess is None else self.guess(step)
             Q, sigma = self.history.Q[step], self.history.sigma[step]
             P = None if self.history.P is None else float(self.history.P[step])

@@ -23,7 +23,7 @@ punch), and the gap at ``X`` is zero once the contact reaches it:
 differences of ``P``, keeps the relative precision in the thinnest slip zones: those of a tiny
 reversal dissipate Masing's energy (tests/test_masing.py::test_tiny_reversal_slips_by_the_cubic_law).
 
-On Hertz a branch is a closed form instead (`_hertz_slip_zones`): the slip is Cattaneo-Mindlin's
+On Hertz a branch is a closed form instead (`ExactModel._hertz_branches`): the slip is Cattaneo-Mindlin's
 in a form without cancellation (`fretting.physics.closed_forms.hertz_slip_shape`), the energy and
 ``delta_Q`` are Mindlin's, so a new branch costs a few operations per node rather than the
 quadratures, which serve every other symmetric profile.
@@ -193,6 +193,7 @@ class ExactModel(Model):
         self._fp = contact.f * self._p
         self._branches = {}  # P_c -> _Branch
         self._memories = {}  # turning points -> (slip, q, delta_Q) summed over their branches
+        self._walks = {}  # (turning points, Q before, Q after) -> masing_increment of the steps prepared
 
     def traction(self, outcome):
         """The traction [Pa]: the model gives it at the nodes directly."""
@@ -223,7 +224,8 @@ class ExactModel(Model):
         if Q == state.Q:
             slip, q, delta_Q, _ = self._at(state.memory, Q)
             return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
-        turning, pieces = masing_increment(state.memory, state.Q, Q)
+        walk = (state.memory, state.Q, Q)
+        turning, pieces = self._walks.pop(walk) if walk in self._walks else masing_increment(*walk)
         energy = 0.0
         for origin, factor, start, end in pieces:  # each loop that the increment closes, then the branch it ends on
             upper, lower = (self._solution(origin, factor, load).energy for load in (end, start))
@@ -263,9 +265,41 @@ class ExactModel(Model):
         """`_Branch` of the last branch of the open `turning` points at `Q` [N/m]."""
         return self._solution(*masing_origin(turning), Q)
 
+    def prepare(self, state, loads):
+        """Solve together the branches that the increments from `state` through the shear forces
+        `loads` [N/m], in turn, meet, so that `increment` finds them solved.
+
+        The Masing walk of `loads` is scalar (kept for `increment`); on Hertz the new branches are
+        then one 2-D evaluation (`_hertz_branches`), whose rows equal those of branches solved one
+        at a time bit for bit, so that what is prepared changes no result, only its cost. Other
+        profiles (quadratures) and a subclass with branches of its own (`fretting.models.inphase`)
+        gain nothing: nothing is done.
+        """
+        if not (isinstance(self.contact.profile, Hertz) and type(self)._solved is ExactModel._solved):
+            return
+        turning, before, needed = state.memory, state.Q, {}
+        self._walks.clear()
+        for Q in map(float, loads):
+            if abs(Q) >= self.friction_force:  # gross slip: the run stops there
+                break
+            walk = (turning, before, Q)
+            turning, pieces = self._walks[walk] = masing_increment(*walk)
+            for origin, factor, *ends in pieces:
+                needed |= dict.fromkeys(self._corrective(origin, factor, load) for load in ends)
+            needed[self._corrective(*masing_origin(turning), Q)] = None
+            before = Q
+        if len(self._branches) + len(needed) > CACHED_BRANCHES:
+            self._branches.clear()
+        new = [P_c for P_c in needed if P_c not in self._branches]
+        self._branches |= zip(new, self._hertz_branches(np.array(new, dtype=float)), strict=True)
+
+    def _corrective(self, origin, factor, Q):
+        """Corrective load ``P_c = P - |Q - origin| / (factor f)`` [N/m] of the branch from `origin` [N/m] at `Q`."""
+        return self.contact.P - abs(Q - origin) / (factor * self.contact.f)
+
     def _solution(self, origin, factor, Q):
         """`_Branch` at `Q` [N/m] of the branch from `origin` [N/m] with `factor`, computed once per ``P_c``."""
-        P_c = self.contact.P - abs(Q - origin) / (factor * self.contact.f)
+        P_c = self._corrective(origin, factor, Q)
         if P_c not in self._branches:
             if len(self._branches) >= CACHED_BRANCHES:
                 self._branches.clear()
@@ -273,8 +307,11 @@ class ExactModel(Model):
         return self._branches[P_c]
 
     def _solved(self, P_c):
-        """`_Branch` of the corrective load `P_c` [N/m]: its contact, traction, slip, energy and delta_Q."""
+        """`_Branch` of the corrective load `P_c` [N/m]: its contact, traction, slip, energy and delta_Q,
+        on Hertz in closed form (`_hertz_branches`), else by quadrature (`_quadrature_slip_zones`)."""
         contact, profile = self.contact, self.contact.profile
+        if isinstance(profile, Hertz):
+            return self._hertz_branches(np.array([P_c]))[0]
         a, f, E_star = contact.a, contact.f, contact.E_star
         c = float(profile.half_width(P_c, E_star)[0])  # a for the sharp flat punch, whose contact does not grow
         lo, hi = bisect.bisect_right(self._x, -c), bisect.bisect_left(self._x, c)  # x[lo:hi] in (-c, c)
@@ -283,31 +320,43 @@ class ExactModel(Model):
         q = f * (self._p - p_c)  # closed_forms.ciavarella_jaeger's, without the Contact (and its p0) it builds
         if c >= a:  # nothing slips
             return _Branch(a, q, slip, 0.0, 0.0)
-        outside = _hertz_slip_zones if isinstance(profile, Hertz) else _quadrature_slip_zones
-        found, energy, delta_Q = outside(contact, c, np.concatenate((self.x[:lo], self.x[hi:])))
+        found, energy, delta_Q = _quadrature_slip_zones(contact, c, np.concatenate((self.x[:lo], self.x[hi:])))
         slip[:lo], slip[hi:] = found[:lo], found[lo:]
         return _Branch(c, q, slip, energy, delta_Q)
 
+    def _hertz_branches(self, P_c):
+        """`_Branch` of each corrective load of the array `P_c` [N/m] of a Hertz contact, in closed form,
+        all nodes of all of them at once as 2-D arrays (each row as alone: elementwise operations only).
 
-def _hertz_slip_zones(contact, c, x):
-    """Slip ``f g_c`` [m] at the points `x` [m] of the slip zones, energy ``int p g_c dx`` [J/m per
-    unit f^2] and ``delta_Q`` [m] of the corrective contact of half-width `c` [m] of a Hertz contact,
-    in closed form.
-
-    ``g_c = hertz_slip_shape(x, c) / (2R)`` is Cattaneo-Mindlin's slip at the load ``Q = f P psi``
-    with ``psi = 1 - (c/a)^2`` (the Ciavarella-Jaeger load ``f (P - P_c)``), and the energy and
-    ``delta_Q`` are `cattaneo_mindlin_dissipation` (over ``f^2``) and `cattaneo_mindlin_compliance`
-    of it. ``psi`` is formed as ``(a - c)(a + c) / a^2``, exact where ``c`` is close to ``a``.
-    """
-    a, f = contact.a, contact.f
-    slip = f * hertz_slip_shape(x, c) / (2 * contact.profile.R)
-    Q = f * contact.P * ((a - c) * (a + c) / a**2)
-    return slip, cattaneo_mindlin_dissipation(contact, Q) / f**2, cattaneo_mindlin_compliance(contact, Q)
+        The slip is ``f g_c = f hertz_slip_shape(x, c) / (2R)``, Cattaneo-Mindlin's at the load
+        ``Q = f P psi`` with ``psi = 1 - (c/a)^2`` (the Ciavarella-Jaeger load ``f (P - P_c)``), and
+        the energy and ``delta_Q`` are `cattaneo_mindlin_dissipation` (over ``f^2``) and
+        `cattaneo_mindlin_compliance` of it. ``psi`` is formed as ``(a - c)(a + c) / a^2``, exact
+        where ``c`` is close to ``a``. Where ``c >= a`` nothing slips.
+        """
+        contact, profile = self.contact, self.contact.profile
+        a, f, E_star = contact.a, contact.f, contact.E_star
+        c = profile.half_width(P_c, E_star)[0][:, None]
+        t = self.x / c
+        inside = np.abs(t) < 1
+        p_c = np.where(inside, profile.pressure(np.where(inside, t, 0.0), c, 0.0, P_c[:, None], E_star), 0.0)
+        q = f * (self._p - p_c)
+        slip = f * hertz_slip_shape(self.x, c) / (2 * profile.R)
+        c = c[:, 0]
+        Q = f * contact.P * ((a - c) * (a + c) / a**2)
+        energy = cattaneo_mindlin_dissipation(contact, Q) / f**2
+        delta_Q = cattaneo_mindlin_compliance(contact, Q)
+        rows = zip(c.tolist(), energy.tolist(), delta_Q.tolist(), q, slip, strict=True)
+        return [  # where c >= a nothing slips (the shape is zero at every node)
+            _Branch(c_k, q_k, slip_k, energy_k, delta_Q_k) if c_k < a else _Branch(a, q_k, slip_k, 0.0, 0.0)
+            for c_k, energy_k, delta_Q_k, q_k, slip_k in rows
+        ]
 
 
 def _quadrature_slip_zones(contact, c, x):
-    """What `_hertz_slip_zones` gives, for any symmetric profile: the slip from `gap`, the energy and
-    ``delta_Q`` by Gauss-Legendre quadrature along the slip zone ``c < X < a``."""
+    """Slip [m] at the points `x` [m] of the slip zones, energy ``int p g_c dx`` [J/m per unit f^2] and
+    ``delta_Q`` [m] of the corrective contact of half-width `c` [m], for any symmetric profile: the
+    slip from `gap`, the energy and ``delta_Q`` by Gauss-Legendre quadrature along ``c < X < a``."""
     a, f, E_star = contact.a, contact.f, contact.E_star
     slip = f * gap(contact.profile, E_star, c, x)
     # X = c + (a - c) sin(phi/2)^2: smooth integrands at both ends (g_c ~ (X - c)^(3/2), p ~ sqrt(a - X))

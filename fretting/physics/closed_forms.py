@@ -42,6 +42,10 @@ Piece = tuple[float, float, float, float]
 #: far below rounding.
 SERIES_TERMS = 80
 
+#: Exponents ``n`` from 2 and the ``n (n - 1)`` of `_slip_series`, computed once (it is called per branch).
+_SERIES_N = np.arange(2, 3 + SERIES_TERMS)
+_SERIES_DENOMINATORS = _SERIES_N * (_SERIES_N - 1.0)
+
 #: Below this ``z = sqrt(X^2 - b^2) / b`` `hertz_slip_shape` sums the power series of ``sinh w - w``
 #: (`SHAPE_TERMS` terms: at ``w = 2 arcsinh(1/2)`` the next is ``3e-17`` of the sum); above it its
 #: closed form loses less than a factor 8 to cancellation.
@@ -79,7 +83,7 @@ def cattaneo_mindlin_slip(contact: Contact, Q: float, x: ArrayLike) -> np.ndarra
     return np.sign(Q) * contact.f * contact.p0 / (contact.E_star * contact.a) * hertz_slip_shape(x, b)
 
 
-def hertz_slip_shape(x: ArrayLike, b: float) -> np.ndarray:
+def hertz_slip_shape(x: ArrayLike, b: ArrayLike) -> np.ndarray:
     """``X sqrt(X^2 - b^2) - b^2 arccosh(X / b)`` [m^2] with ``X = max(|x|, b)``, `x` and `b` [m], without cancellation.
 
     The slip of eq (19) integrated from the stick-zone edge ``b`` (`cattaneo_mindlin_slip`), and
@@ -87,14 +91,19 @@ def hertz_slip_shape(x: ArrayLike, b: float) -> np.ndarray:
     ``z = sqrt((X - b)(X + b)) / b`` it is ``b^2 (z sqrt(1 + z^2) - arcsinh z)``, whose two terms
     cancel to ``2 z^3 / 3`` as ``X -> b``; with ``z = sinh(w / 2)`` the bracket is
     ``(sinh w - w) / 2``, summed as its power series below ``z = SHAPE_SERIES_BELOW``, so thin slip
-    zones keep their relative precision.
+    zones keep their relative precision. `b` may be an array (each ``> 0``) that broadcasts with
+    `x`, e.g. ``b[:, None]`` against nodes ``x``: several half-widths in one evaluation, each
+    element computed as it would be alone.
     """
+    b = np.asarray(b, dtype=float)
     X = np.maximum(np.abs(np.asarray(x, dtype=float)), b)
-    if b == 0:
+    if b.ndim == 0 and b == 0:
         return X**2
     z = np.atleast_1d(np.sqrt((X - b) * (X + b)) / b)
-    shape = z * np.sqrt(1 + z**2) - np.arcsinh(z)
-    small = z < SHAPE_SERIES_BELOW
+    shape = np.zeros(z.shape)  # where z = 0 (inside b) both forms are 0: only the slip zones are evaluated
+    large = z >= SHAPE_SERIES_BELOW
+    shape[large] = z[large] * np.sqrt(1 + z[large] ** 2) - np.arcsinh(z[large])
+    small = (z > 0) & ~large
     if np.any(small):
         w = 2 * np.arcsinh(z[small])
         w2 = w**2
@@ -161,39 +170,46 @@ def ciavarella_jaeger(contact: Contact, Q: float, x: ArrayLike) -> tuple[np.ndar
     return np.sign(Q) * q, corrective
 
 
-def _slip_series(psi: float, first: int) -> float:
+def _slip_series(psi: ArrayLike, first: int) -> np.ndarray:
     """``sum_{n >= first} psi^n / (n (n - 1))`` for ``0 <= psi <= 1`` and `first` 2 or 3, without cancellation.
 
     For ``first = 2`` the sum is ``psi + (1 - psi) ln(1 - psi)``; that form cancels for small
-    ``psi`` (to ``psi^2 / 2``), so below ``psi = 1/4`` the series is summed instead.
+    ``psi`` (to ``psi^2 / 2``), so below ``psi = 1/4`` the series is summed instead. Elementwise
+    over an array `psi` (each element as alone).
     """
-    psi = float(psi)
-    if psi < 0.25:
-        n = np.arange(first, first + SERIES_TERMS)
-        return float(np.sum(psi**n / (n * (n - 1.0))))
-    two = psi + (1 - psi) * math.log1p(-psi) if psi < 1 else 1.0
-    return two if first == 2 else two - psi**2 / 2
+    psi = np.asarray(psi, dtype=float)
+    terms = slice(first - 2, first - 2 + SERIES_TERMS)
+    series = np.sum(psi[..., None] ** _SERIES_N[terms] / _SERIES_DENOMINATORS[terms], axis=-1)
+    below = np.where(psi < 1, psi, 0.0)  # the closed form's log is finite; at 1 the sum is 1
+    two = np.where(psi < 1, below + (1 - below) * np.log1p(-below), 1.0)
+    return np.where(psi < 0.25, series, two if first == 2 else two - psi**2 / 2)
 
 
-def cattaneo_mindlin_compliance(contact: Contact, Q: float) -> float:
+def cattaneo_mindlin_compliance(contact: Contact, Q: ArrayLike) -> float | np.ndarray:
     """Tangential displacement ``delta_Q`` [m] of a Hertz contact under monotonic ``Q`` [N/m] (Mindlin 1949).
 
     The mean slip ``(1/pi) int_0^pi s(a cos th) dth`` of `cattaneo_mindlin_slip`:
     ``delta_Q = (f p0 a / (2 E_star)) (psi + (1 - psi) ln(1 - psi))`` with ``psi = |Q| / (f P)``,
-    signed as ``Q``; ``f p0 a psi^2 / (4 E_star)`` to leading order.
+    signed as ``Q``; ``f p0 a psi^2 / (4 E_star)`` to leading order. Elementwise over an array `Q`.
     """
-    psi = abs(Q) / (contact.f * contact.P)
-    return math.copysign(contact.f * contact.p0 * contact.a / (2 * contact.E_star) * _slip_series(psi, 2), Q)
+    psi = np.abs(Q) / (contact.f * contact.P)
+    return _scalar(np.copysign(contact.f * contact.p0 * contact.a / (2 * contact.E_star) * _slip_series(psi, 2), Q))
 
 
-def cattaneo_mindlin_dissipation(contact: Contact, Q: float) -> float:
+def cattaneo_mindlin_dissipation(contact: Contact, Q: ArrayLike) -> float | np.ndarray:
     """Energy [J/m] that a Hertz contact dissipates as ``Q`` [N/m] rises monotonically from zero.
 
     ``int f p |s| dx`` of `cattaneo_mindlin_slip` (every point slips one way only):
     ``(pi (f p0 a)^2 / (4 E_star)) sum_{n >= 3} psi^n / (n (n - 1))``, ``psi = |Q| / (f P)``.
+    Elementwise over an array `Q`.
     """
-    psi = abs(Q) / (contact.f * contact.P)
-    return math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star) * _slip_series(psi, 3)
+    psi = np.abs(Q) / (contact.f * contact.P)
+    return _scalar(math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star) * _slip_series(psi, 3))
+
+
+def _scalar(values: np.ndarray) -> float | np.ndarray:
+    """`values` as a float where it is a single number (0-d), else the array."""
+    return float(values) if np.ndim(values) == 0 else values
 
 
 def mindlin_deresiewicz_energy(contact: Contact, Q_star: float) -> float:
