@@ -94,12 +94,12 @@ def masing_energy(source):
     contact, history = fr.read_history(source)
     energy = np.zeros(history.cycle_count + 1)
     turning, before = (), 0.0
-    for step in history.vertex_step[1:]:
-        Q = float(history.Q[step])
+    loads, _, cycles, _ = history.at(history.vertex_step[1:])  # the vertices only: a long history forms no more
+    for Q, cycle in zip(loads.tolist(), cycles.tolist(), strict=True):
         turning, pieces = masing_increment(turning, before, Q)
         for origin, factor, start, end in pieces:
             virgin = (cattaneo_mindlin_dissipation(contact, abs(load - origin) / factor) for load in (end, start))
-            energy[history.cycle[step]] += factor * (next(virgin) - next(virgin))
+            energy[cycle] += factor * (next(virgin) - next(virgin))
         before = Q
     return energy[1:]
 
