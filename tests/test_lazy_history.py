@@ -88,7 +88,7 @@ def test_a_file_of_straight_segments_gives_a_PiecewiseLinear_with_the_arrays_of_
 def test_cycle_ends_are_the_last_step_of_each_cycle():
     history = History.sinusoidal(100.0, cycles=3, steps_per_cycle=4, start=(5.0, 0.0), ramp_steps=2)
     np.testing.assert_array_equal(history.cycle_ends()[1:], [6, 10, 14])  # a ramp of 2 steps, then 4 a cycle
-    lazy = PiecewiseLinear.random(3, 100.0, steps_per_segment=2)
+    lazy = History.random_amplitude(3, 100.0, steps_per_segment=2, vertices=True)
     np.testing.assert_array_equal(lazy.cycle_ends()[1:], [4, 8, 12])
 
 

@@ -134,22 +134,27 @@ class History:
     @property
     def normal_start(self):
         """Normal load ``P`` at step 0 [N/m], None where the history does not vary it."""
-        return None if self.P is None else float(self.P[0])
+        return self._loads_at(0)[1]
 
     @property
     def start(self):
         """Loads ``(Q, sigma)`` at step 0 [N/m], [Pa]."""
-        return float(self.Q[0]), float(self.sigma[0])
+        return self._loads_at(0)[0]
 
     @property
     def end(self):
         """Loads ``(Q, sigma)`` at the last step [N/m], [Pa]."""
-        return float(self.Q[-1]), float(self.sigma[-1])
+        return self._loads_at(len(self) - 1)[0]
 
     @property
     def normal_end(self):
         """Normal load ``P`` at the last step [N/m], None where the history does not vary it."""
-        return None if self.P is None else float(self.P[-1])
+        return self._loads_at(len(self) - 1)[1]
+
+    def _loads_at(self, step):
+        """``((Q, sigma), P)`` at `step` as floats, P None where the history does not vary it."""
+        Q, sigma, _, P = self.at([step])
+        return (float(Q[0]), float(sigma[0])), None if P is None else float(P[0])
 
     @property
     def cycle_count(self):
@@ -408,6 +413,7 @@ class History:
         start=(0.0, 0.0),
         P_amplitude=0.0,
         P_mean=None,
+        vertices=False,
     ):
         """Cycles of random amplitude: a straight rise to a peak, then a fall to a valley.
 
@@ -434,19 +440,28 @@ class History:
         P_amplitude, P_mean : float
             A varying normal load [N/m] in phase with Q (the same draws); `P_mean` None: no ``P``
             column (the contact's constant ``P``).
+        vertices : bool
+            Return the history held by its vertices (`PiecewiseLinear`, whose loads are formed
+            when read: memory per vertex, not per step) rather than by the loads of its steps.
         """
-        return PiecewiseLinear.random(
-            cycles,
-            Q_amplitude,
-            sigma_amplitude,
-            Q_mean,
-            sigma_mean,
-            seed,
-            steps_per_segment,
-            start=start,
-            P_amplitude=P_amplitude,
-            P_mean=P_mean,
-        ).explicit()
+        amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
+        count = _count("cycles", cycles)
+        steps = _count("steps_per_segment", steps_per_segment)
+        excursion = (np.random.default_rng(_count("seed", seed, minimum=0)).random((count, 2)) * [1, -1]).ravel()
+        start = _start(start)
+        P = None
+        if P_mean is not None:
+            P_amplitude, P_mean = _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean)
+            P = np.concatenate([[start[2] if len(start) > 2 else P_mean], P_mean + P_amplitude * excursion])
+        path = PiecewiseLinear.through(
+            np.concatenate([[start[0]], mean[0] + amplitude[0] * excursion]),
+            np.concatenate([[start[1]], mean[1] + amplitude[1] * excursion]),
+            steps,
+            P,
+        )
+        cycle = np.arange(2 * count, dtype=np.int64) // 2 + 1  # a rise and a fall each
+        held = PiecewiseLinear(path.vertex_Q, path.vertex_sigma, path.steps, cycle, path.vertex_P)
+        return held if vertices else held.explicit()
 
 
 class PiecewiseLinear(History):
@@ -536,22 +551,6 @@ class PiecewiseLinear(History):
     @property
     def has_cycles(self):
         return self.segment_cycle is not None
-
-    @property
-    def normal_start(self):
-        return None if self.vertex_P is None else float(self.vertex_P[0])
-
-    @property
-    def start(self):
-        return float(self.vertex_Q[0]), float(self.vertex_sigma[0])
-
-    @property
-    def end(self):
-        return float(self.vertex_Q[-1]), float(self.vertex_sigma[-1])
-
-    @property
-    def normal_end(self):
-        return None if self.vertex_P is None else float(self.vertex_P[-1])
 
     @property
     def cycle_count(self):
@@ -661,40 +660,6 @@ class PiecewiseLinear(History):
             if P.shape != Q.shape:
                 raise HistoryError(f"Q and P need one value per vertex, found {Q.size} and {P.size}")
         return cls(Q, sigma, steps, None, P)
-
-    @classmethod
-    def random(
-        cls,
-        cycles,
-        Q_amplitude,
-        sigma_amplitude=0.0,
-        Q_mean=0.0,
-        sigma_mean=0.0,
-        seed=0,
-        steps_per_segment=16,
-        *,
-        start=(0.0, 0.0),
-        P_amplitude=0.0,
-        P_mean=None,
-    ):
-        """`History.random_amplitude`'s history, held by its vertices (the same parameters)."""
-        amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
-        count = _count("cycles", cycles)
-        steps = _count("steps_per_segment", steps_per_segment)
-        excursion = (np.random.default_rng(_count("seed", seed, minimum=0)).random((count, 2)) * [1, -1]).ravel()
-        start = _start(start)
-        P = None
-        if P_mean is not None:
-            P_amplitude, P_mean = _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean)
-            P = np.concatenate([[start[2] if len(start) > 2 else P_mean], P_mean + P_amplitude * excursion])
-        path = cls.through(
-            np.concatenate([[start[0]], mean[0] + amplitude[0] * excursion]),
-            np.concatenate([[start[1]], mean[1] + amplitude[1] * excursion]),
-            steps,
-            P,
-        )
-        cycle = np.arange(2 * count, dtype=np.int64) // 2 + 1  # a rise and a fall each
-        return cls(path.vertex_Q, path.vertex_sigma, path.steps, cycle, path.vertex_P)
 
 
 def _segment_cycles(segment_cycle, steps):

@@ -302,7 +302,7 @@ def _sine(table, start):
 
 
 def _random(table, start):
-    return PiecewiseLinear.random(
+    return History.random_amplitude(
         table.get("cycles", _count),
         table.get("Q_amplitude", _non_negative, 0.0),
         table.get("sigma_amplitude", _non_negative, 0.0),
@@ -313,6 +313,7 @@ def _random(table, start):
         start=start,
         P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
         P_mean=table.get("P_mean", _positive, start[2]),
+        vertices=True,
     )
 
 
