@@ -94,10 +94,9 @@ def masing_energy(source):
     branch's factor, summed per cycle in the order walked."""
     contact, history = fr.read_history(source)
     turning, before, walked = (), 0.0, []  # (cycle, factor, |Q_end - origin|, |Q_start - origin|) of each piece
-    for step in history.vertex_step[1:]:
-        Q = float(history.Q[step])
+    loads, _, cycles, _ = history.at(history.vertex_step[1:])  # the vertices only: a long history forms no more
+    for Q, cycle in zip(loads.tolist(), cycles.tolist(), strict=True):
         turning, pieces = masing_increment(turning, before, Q)
-        cycle = int(history.cycle[step])
         walked += [(cycle, factor, abs(end - origin), abs(start - origin)) for origin, factor, start, end in pieces]
         before = Q
     cycle, factor, end, start = np.array(walked).T

@@ -301,12 +301,12 @@ def _validate(args):
     contact, history = source.contact, source.history
     print(f"{source.path}: {contact.profile!r}, a = {contact.a:.4g} m, p0 = {contact.p0:.4g} Pa")
     print(f"  {len(history) - 1} steps, {history.vertex_step.size} vertices, {history.cycle_count} cycles")
-    print(f"  {_peaks(history.Q, history.sigma, contact.f, contact.P, contact.p0)}")
+    print(f"  {_peaks(*history.largest_loads(), contact.f, contact.P, contact.p0)}")
     fP = contact.f * contact.P
-    sliding = np.flatnonzero(np.abs(history.Q) >= fP)
-    if sliding.size:
-        step = int(sliding[0])
-        raise GrossSlipError(step, float(history.Q[step]), float(history.sigma[step]), fP)
+    step = history.first_step(lambda Q, sigma: np.abs(Q) >= fP)
+    if step is not None:
+        Q, sigma, _, _ = history.at([step])
+        raise GrossSlipError(step, float(Q[0]), float(sigma[0]), fP)
 
 
 def _info(args):

@@ -147,12 +147,13 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
     ``N^2 x increments`` exceed `max_work` (an increment costs about ``N^2``: the products with the
     stiffness of each release of the active set), with the model of the energy stage.
     """
-    sliding = np.flatnonzero(np.abs(history.Q) >= contact.f * contact.P)
-    if sliding.size:  # the run will stop there: adapt to the steps before
-        history = history[: max(sliding[0], 1)]
+    fP = contact.f * contact.P
+    sliding = history.first_step(lambda Q, sigma: np.abs(Q) >= fP)
+    if sliding is not None:  # the run will stop there: adapt to the steps before
+        history = history[: max(sliding, 1)]
     steps = history.turning_steps(MAX_TURN, _units(contact))
     turning = history.turning_points(MAX_TURN, _units(contact))
-    mirrored = contact.profile.SYMMETRIC and not (history.Q.any() and history.sigma.any())
+    mirrored = contact.profile.SYMMETRIC and not all(history.largest_loads())
     adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored, max_work)
     size = min(SAMPLE_TURNS, len(turning))
     model = adapt(turning[:size], initial_theta())
@@ -212,7 +213,7 @@ class _Adaptation:
     def __init__(self, contact, history, rtol, max_nodes, mirrored, max_work=None):
         self.contact, self.history, self.rtol = contact, history, rtol
         self.max_nodes, self.mirrored, self.max_work = max_nodes, mirrored, max_work
-        self.increments = len(history.Q) - 1  # the run's, up to gross slip
+        self.increments = len(history) - 1  # the run's, up to gross slip
 
     def __call__(self, turning, theta):
         """The model whose mesh, refined from `theta` [rad], resolves the increments of `turning`."""
@@ -237,9 +238,7 @@ class _Adaptation:
             try:
                 follow(model, turning, State.virgin(model), observe=observe, guess=guess, tally=False)
             except GrossSlipError as error:  # named by the step of the history whose loads reached it
-                history = self.history
-                step = int(np.flatnonzero((history.Q == error.Q) & (history.sigma == error.sigma))[0])
-                raise GrossSlipError(step, error.Q, error.sigma, error.limit) from None
+                raise GrossSlipError(self._step_at(error.Q, error.sigma), error.Q, error.sigma, error.limit) from None
             refined = self.refined(theta, targets)
             if np.array_equal(refined, theta):
                 return model
@@ -247,6 +246,10 @@ class _Adaptation:
                 raise MeshTooLarge(refined.size, len(turning) - 1, model)
             theta = refined
         raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
+
+    def _step_at(self, Q, sigma):
+        """The first step of the history at the loads `Q` [N/m], `sigma` [Pa]."""
+        return self.history.first_step(lambda loads, tensions: (loads == Q) & (tensions == sigma))
 
     def refined(self, theta, targets):
         """`refine` of `theta` [rad] to `targets`, kept symmetric under Q alone or sigma alone."""

@@ -88,7 +88,7 @@ def follow(model, history, state, recorder=None, observe=None, guess=None, tally
     step solved; ``guess(step)`` gives the slip directions to start the solver from, or None;
     `tally` as for `advance`.
     """
-    return _Run(model, history, recorder, observe, guess, tally).follow(state)
+    return _Run(model, history.explicit(), recorder, observe, guess, tally).follow(state)
 
 
 def skippable(history, recorded, contact):

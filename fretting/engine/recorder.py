@@ -137,17 +137,14 @@ class FieldSelector:
     Parameters
     ----------
     policy : CycleFields
-    cycle : ndarray of int
-        The load cycle of each step of the whole history (``History.cycle``).
+    ends : ndarray of int
+        The last step of each cycle of the whole history, by cycle number (``History.cycle_ends``).
     done : xarray.Dataset, optional
         The result so far of a resumed run (its accumulated fields and ``cycle_dissipation_max``).
     """
 
-    def __init__(self, policy, cycle, done=None):
-        self.policy, self.last = policy, int(cycle.max())
-        changes = np.append(np.flatnonzero(cycle[1:] != cycle[:-1]), cycle.size - 1)
-        self.ends = np.zeros(self.last + 1, dtype=np.int64)
-        self.ends[cycle[changes]] = changes  # the last step of each cycle
+    def __init__(self, policy, ends, done=None):
+        self.policy, self.last, self.ends = policy, ends.size - 1, ends
         self.taken = 0 if done is None else int(np.searchsorted(self.ends[1:], done.attrs["steps"] - 1, "right"))
         self.accumulated = {} if done is None else {name: done[name].values for name in ACCUMULATED if name in done}
         self.peak = -np.inf if done is None else float(np.nan_to_num(done.cycle_dissipation_max, nan=-np.inf))
@@ -216,7 +213,7 @@ class Recorder:
     """
 
     def __init__(self, model, history, steps, skipping=False):
-        self.model, self.history, self.steps, self.skipping = model, history, steps, skipping
+        self.model, self.history, self.steps, self.skipping = model, history.explicit(), steps, skipping
         self.row = np.full(len(history), -1)
         self.row[steps] = np.arange(steps.size)
         N = model.x.size

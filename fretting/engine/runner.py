@@ -290,7 +290,7 @@ def run_file(
         skipping = not every_step and record.size < len(history)  # a recorded step is solved
         attributes = source_attributes(source) | {"cycle_fields": str(policy)}
         start, state, notes, done = _started(checkpoint, source, model, resume, skipping, attributes)
-        if history.cycle is not None and not policy.all:
+        if history.has_cycles and not policy.all:
             notes.append(
                 f"per-cycle fields (w, slip_amplitude, the peaks) are stored for the cycles {policy} only "
                 "(field_cycle); w_total and the *_max fields add up every cycle (--cycle-fields all stores each)"
@@ -309,7 +309,7 @@ def run_file(
                 notes.append(str(warning.message))
             else:
                 warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
-        selector = None if history.cycle is None or policy.all else FieldSelector(policy, history.cycle, done)
+        selector = None if not history.has_cycles or policy.all else FieldSelector(policy, history.cycle_ends(), done)
         part, written = Joiner(), time.monotonic()
         try:
             for chunk in _chunks(stepper, history, record, start, skipping):
@@ -396,8 +396,9 @@ def _cut(history, record, start, stop, contact, skipping):
     `_chunk_cycles` cycles and, when `skipping`, ends at a step that the whole run solves too (not
     `fretting.engine.follow.skippable` in the whole history), so that cutting keeps the run bit
     for bit; a straight stretch longer than the chunk is cut at its end."""
-    if history.cycle is not None:
-        begins = np.flatnonzero(np.diff(history.cycle[start : stop + 1])) + start + 1  # steps that begin a stretch
+    if history.has_cycles:
+        cycle = history[start : stop + 1].cycle  # the chunk's: a long history's loads are formed per chunk
+        begins = np.flatnonzero(np.diff(cycle)) + start + 1  # steps that begin a stretch
         most = _chunk_cycles()
         stop = stop if begins.size < most else int(begins[most - 1])
     if not skipping:
@@ -459,7 +460,7 @@ def _resumable(checkpoint, source, model, skipping, attributes):
         )
     history, steps = source.history, done.step.values
     same = done.attrs["steps"] <= len(history) and all(
-        np.array_equal(done[name].values, getattr(history, name)[steps]) for name in ("Q", "sigma")
+        np.array_equal(done[name].values, loads) for name, loads in zip(("Q", "sigma"), history.at(steps), strict=False)
     )
     if not same:
         raise ResultError(f"{checkpoint}: found loads that {source.path} no longer gives (NumPy's random draws?)")

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 from fretting._validate import finite, finite_array, positive
 from fretting.errors import HistoryError
 
-__all__ = ["History", "RAMP_STEPS"]
+__all__ = ["History", "PiecewiseLinear", "RAMP_STEPS"]
 
 #: Steps of the straight ramp that reaches the first point of a sinusoid: a quarter of the
 #: default 64 steps per cycle, the steps a sinusoid takes to rise from its mean to its peak.
@@ -85,7 +85,8 @@ class History:
         """Contiguous steps ``history[start:stop]``, renumbered from 0, with their vertices and cycles.
 
         Cycle numbers are kept, so that a run continued from step ``k`` with ``history[k:]``
-        numbers its cycles as the whole run does.
+        numbers its cycles as the whole run does. The slice holds its loads (views of this
+        history's arrays, or those formed for it by a `PiecewiseLinear`).
         """
         if not isinstance(steps, slice) or steps.step not in (None, 1):
             raise TypeError(f"a History takes contiguous slices of steps, e.g. history[k:], found {steps!r}")
@@ -93,29 +94,67 @@ class History:
         if stop <= start:
             raise HistoryError(f"steps {start}:{stop} of a {len(self)}-step history are empty")
         inside = slice(*np.searchsorted(self.vertex_step, [start, stop]))  # vertex_step is sorted
+        Q, sigma, cycle, P = self._steps(start, stop)
+        return History(Q, sigma, self.vertex_step[inside] - start, cycle, P)
+
+    def _steps(self, start, stop):
+        """``(Q, sigma, cycle, P)`` of the steps ``start .. stop - 1`` (views; cycle and P may be None)."""
         cycle = None if self.cycle is None else self.cycle[start:stop]
         P = None if self.P is None else self.P[start:stop]
-        return History(self.Q[start:stop], self.sigma[start:stop], self.vertex_step[inside] - start, cycle, P)
+        return self.Q[start:stop], self.sigma[start:stop], cycle, P
+
+    def at(self, steps):
+        """``(Q, sigma, cycle, P)`` at the steps `steps` (array of int): loads [N/m], [Pa], [N/m]
+        and cycle numbers; cycle and P None where the history has none."""
+        cycle = None if self.cycle is None else self.cycle[steps]
+        P = None if self.P is None else self.P[steps]
+        return self.Q[steps], self.sigma[steps], cycle, P
+
+    def explicit(self):
+        """This history with the loads of every step held in arrays: itself."""
+        return self
+
+    @property
+    def has_cycles(self):
+        """True if the history counts load cycles (`cycle` is not None)."""
+        return self.cycle is not None
+
+    def cycle_ends(self):
+        """Last step of each cycle, indexed by the cycle's number (1 .. `cycle_count`; entry 0 is unused)."""
+        cycle = _cycles(self)
+        runs = np.append(np.flatnonzero(cycle[1:] != cycle[:-1]), cycle.size - 1)  # the last step of each run
+        return _last_steps(cycle[runs], runs, self.cycle_count)
+
+    def without_P(self, P):
+        """The history without its normal loads where they are `P` [N/m] at every step, else itself."""
+        if self.P is None or not np.all(self.P == P):
+            return self
+        return History(self.Q, self.sigma, self.vertex_step, self.cycle)
 
     @property
     def normal_start(self):
         """Normal load ``P`` at step 0 [N/m], None where the history does not vary it."""
-        return None if self.P is None else float(self.P[0])
+        return self._loads_at(0)[1]
 
     @property
     def start(self):
         """Loads ``(Q, sigma)`` at step 0 [N/m], [Pa]."""
-        return float(self.Q[0]), float(self.sigma[0])
+        return self._loads_at(0)[0]
 
     @property
     def end(self):
         """Loads ``(Q, sigma)`` at the last step [N/m], [Pa]."""
-        return float(self.Q[-1]), float(self.sigma[-1])
+        return self._loads_at(len(self) - 1)[0]
 
     @property
     def normal_end(self):
         """Normal load ``P`` at the last step [N/m], None where the history does not vary it."""
-        return None if self.P is None else float(self.P[-1])
+        return self._loads_at(len(self) - 1)[1]
+
+    def _loads_at(self, step):
+        """``((Q, sigma), P)`` at `step` as floats, P None where the history does not vary it."""
+        Q, sigma, _, P = self.at([step])
+        return (float(Q[0]), float(sigma[0])), None if P is None else float(P[0])
 
     @property
     def cycle_count(self):
@@ -133,14 +172,33 @@ class History:
             largest = max(largest, float(loads.max(where=loads < bound, initial=0.0)))
         return largest
 
+    def largest_loads(self):
+        """``(max |Q|, max |sigma|)`` [N/m], [Pa] over every step, taken `BLOCK_STEPS` steps at a time."""
+        largest = np.zeros(2)
+        for block in self.blocks():
+            np.maximum(largest, [np.abs(load).max() for load in block], out=largest)
+        return float(largest[0]), float(largest[1])
+
+    def first_step(self, condition):
+        """First step where ``condition(Q, sigma)`` (a boolean array of the loads of a block) holds; None if none.
+
+        Taken `BLOCK_STEPS` steps at a time, with no temporary array of the whole history.
+        """
+        for start, (Q, sigma) in zip(range(0, len(self), BLOCK_STEPS), self.blocks(), strict=True):
+            found = np.flatnonzero(condition(Q, sigma))
+            if found.size:
+                return start + int(found[0])
+        return None
+
     def blocks(self):
-        """``(Q, sigma)`` [N/m], [Pa] of `BLOCK_STEPS` steps at a time, in order (views, not copies).
+        """``(Q, sigma)`` [N/m], [Pa] of `BLOCK_STEPS` steps at a time, in order (views of an explicit
+        history's arrays, formed for the block by a `PiecewiseLinear`).
 
         A pass over a long history block by block makes temporary arrays of one block, not of
         the whole history.
         """
         for start in range(0, len(self), BLOCK_STEPS):
-            yield self.Q[start : start + BLOCK_STEPS], self.sigma[start : start + BLOCK_STEPS]
+            yield self._steps(start, min(start + BLOCK_STEPS, len(self)))[:2]
 
     def turning_steps(self, max_turn=None, units=(1.0, 1.0)):
         """Steps of the path's turning points, ascending: the first and last steps, the vertices, the
@@ -179,9 +237,8 @@ class History:
         """The path through its turning points only (`turning_steps`): vertices, cycles and loads
         are kept; steps are renumbered."""
         steps = self.turning_steps(max_turn, units)
-        cycle = None if self.cycle is None else self.cycle[steps]
-        P = None if self.P is None else self.P[steps]
-        return History(self.Q[steps], self.sigma[steps], np.searchsorted(steps, self.vertex_step), cycle, P)
+        Q, sigma, cycle, P = self.at(steps)
+        return History(Q, sigma, np.searchsorted(steps, self.vertex_step), cycle, P)
 
     def as_cycle(self):
         """The same path counted as one load cycle: every step after the first belongs to cycle 1."""
@@ -210,19 +267,21 @@ class History:
             raise HistoryError("no histories to concatenate")
         if len(histories) == 1:  # not copied: its arrays may be large, and they cannot change
             return histories[0]
-        first = histories[0]
-        varies = {history.P is not None for history in histories}
-        if len(varies) > 1:
+        if len({history.normal_start is None for history in histories}) > 1:
             raise HistoryError("histories with a normal load P and without one cannot be concatenated")
-        Q, sigma, vertex_step, cycle = [first.Q], [first.sigma], [first.vertex_step], [_cycles(first)]
-        P = [first.P] if first.P is not None else None
-        end, last_vertex, counted = len(first) - 1, first.vertex_step.max(initial=-1), first.cycle_count
         for number, (previous, history) in enumerate(itertools.pairwise(histories), start=2):
             if (history.start, history.normal_start) != (previous.end, previous.normal_end):
                 raise HistoryError(
                     f"history {number} starts at (Q, sigma) = {history.start}, P = {history.normal_start}, "
                     f"expected the end of the previous one, {previous.end}, P = {previous.normal_end}"
                 )
+        if all(isinstance(history, PiecewiseLinear) for history in histories):
+            return PiecewiseLinear.joined(histories)
+        first = histories[0]
+        Q, sigma, vertex_step, cycle = [first.Q], [first.sigma], [first.vertex_step], [_cycles(first)]
+        P = [first.P] if first.P is not None else None
+        end, last_vertex, counted = len(first) - 1, first.vertex_step.max(initial=-1), first.cycle_count
+        for history in histories[1:]:
             vertices = history.vertex_step[history.vertex_step > 0] if last_vertex == end else history.vertex_step
             later = _cycles(history)[1:]
             Q.append(history.Q[1:])
@@ -233,10 +292,9 @@ class History:
             cycle.append(np.where(later > 0, later + counted, 0))
             last_vertex = vertices[-1] + end if vertices.size else last_vertex
             end, counted = end + len(history) - 1, counted + history.cycle_count
-        has_cycles = any(history.cycle is not None for history in histories)
         return cls(
             *map(np.concatenate, (Q, sigma, vertex_step)),
-            np.concatenate(cycle) if has_cycles else None,
+            np.concatenate(cycle) if any(history.has_cycles for history in histories) else None,
             None if P is None else np.concatenate(P),
         )
 
@@ -268,19 +326,7 @@ class History:
         >>> len(history), history.vertex_step.tolist(), history.Q[:3].tolist()
         (9, [0, 4, 8], [0.0, 25.0, 50.0])
         """
-        Q = _loads("Q", Q)
-        sigma = np.zeros_like(Q) if sigma is None else _loads("sigma", sigma)
-        if Q.shape != sigma.shape:
-            raise HistoryError(f"Q and sigma need one value per vertex, found {Q.size} and {sigma.size}")
-        steps = np.broadcast_to(np.asarray(steps_per_segment), (Q.size - 1,))
-        if steps.size and (not np.issubdtype(steps.dtype, np.integer) or np.any(steps < 1)):
-            raise HistoryError(f"steps_per_segment must be integers >= 1, found {steps_per_segment!r}")
-        if P is not None:
-            P = _loads("P", P)
-            if P.shape != Q.shape:
-                raise HistoryError(f"Q and P need one value per vertex, found {Q.size} and {P.size}")
-            P = _segments(P, steps)
-        return cls(_segments(Q, steps), _segments(sigma, steps), np.concatenate([[0], np.cumsum(steps)]), None, P)
+        return PiecewiseLinear.through(Q, sigma, steps_per_segment, P).explicit()
 
     @classmethod
     def sinusoidal(
@@ -367,6 +413,7 @@ class History:
         start=(0.0, 0.0),
         P_amplitude=0.0,
         P_mean=None,
+        vertices=False,
     ):
         """Cycles of random amplitude: a straight rise to a peak, then a fall to a valley.
 
@@ -393,6 +440,9 @@ class History:
         P_amplitude, P_mean : float
             A varying normal load [N/m] in phase with Q (the same draws); `P_mean` None: no ``P``
             column (the contact's constant ``P``).
+        vertices : bool
+            Return the history held by its vertices (`PiecewiseLinear`, whose loads are formed
+            when read: memory per vertex, not per step) rather than by the loads of its steps.
         """
         amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
         count = _count("cycles", cycles)
@@ -403,13 +453,233 @@ class History:
         if P_mean is not None:
             P_amplitude, P_mean = _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean)
             P = np.concatenate([[start[2] if len(start) > 2 else P_mean], P_mean + P_amplitude * excursion])
-        path = cls.piecewise_linear(
+        path = PiecewiseLinear.through(
             np.concatenate([[start[0]], mean[0] + amplitude[0] * excursion]),
             np.concatenate([[start[1]], mean[1] + amplitude[1] * excursion]),
             steps,
             P,
         )
-        return cls(path.Q, path.sigma, path.vertex_step, _cycle_numbers(len(path), 2 * steps), path.P)
+        cycle = np.arange(2 * count, dtype=np.int64) // 2 + 1  # a rise and a fall each
+        held = PiecewiseLinear(path.vertex_Q, path.vertex_sigma, path.steps, cycle, path.vertex_P)
+        return held if vertices else held.explicit()
+
+
+class PiecewiseLinear(History):
+    """A history of straight segments between vertices, held by its vertices: the loads of any
+    steps are formed when they are read.
+
+    The loads of segment ``i`` at its steps ``k = 1 .. n_i`` are ``v_i + (v_(i+1) - v_i) (k / n_i)``,
+    the last exactly ``v_(i+1)`` (an increment of one unit in the last place is a load change,
+    which the exact model of Q alone slips under), and a load whose vertices are all equal is that
+    number at every step. Every step, a slice (`__getitem__`), the steps `at` and the `blocks` are
+    formed by this one formula, so they are bit for bit the loads of `explicit`, and a long
+    history costs memory per vertex (about 40 bytes) and per block read, not per step.
+
+    Reading `Q`, `sigma`, `cycle` or `P` forms the array of every step anew: a pass over a long
+    history reads it by `blocks`, slices or `at`.
+
+    Parameters
+    ----------
+    vertex_Q, vertex_sigma : array_like, shape (n_vertices,)
+        Loads at the vertices [N/m], [Pa]; the first is step 0.
+    steps : array_like of int, shape (n_vertices - 1,)
+        Equal increments of each segment, >= 1.
+    segment_cycle : array_like of int, shape (n_vertices - 1,), optional
+        Load cycle of the steps of each segment (0: none), non-zero ones non-decreasing; step 0
+        belongs to no cycle. None for a history without cycles.
+    vertex_P : array_like, shape (n_vertices,), optional
+        Normal loads at the vertices [N/m], positive. None: the contact's constant ``P``.
+    """
+
+    def __init__(self, vertex_Q, vertex_sigma, steps, segment_cycle=None, vertex_P=None):
+        arrays = {"vertex_Q": _loads("Q", vertex_Q), "vertex_sigma": _loads("sigma", vertex_sigma)}
+        arrays["steps"] = np.asarray(steps, dtype=np.int64)
+        if arrays["vertex_sigma"].shape != arrays["vertex_Q"].shape or arrays["steps"].shape != (
+            arrays["vertex_Q"].size - 1,
+        ):
+            raise HistoryError("vertex_Q and vertex_sigma need one value per vertex and steps one per segment")
+        if np.any(arrays["steps"] < 1):
+            raise HistoryError("steps must be integers >= 1, one per segment")
+        arrays["vertex_step"] = np.concatenate([[0], np.cumsum(arrays["steps"])])
+        arrays["segment_cycle"] = None if segment_cycle is None else _segment_cycles(segment_cycle, arrays["steps"])
+        arrays["vertex_P"] = None if vertex_P is None else _loads("P", vertex_P)
+        if arrays["vertex_P"] is not None and arrays["vertex_P"].shape != arrays["vertex_Q"].shape:
+            raise HistoryError("vertex_P needs one value per vertex")
+        for name, value in arrays.items():
+            if value is not None:
+                value.setflags(write=False)
+            object.__setattr__(self, name, value)
+        if self.vertex_P is not None and np.any(self.vertex_P <= 0):  # first reached inside the segment before
+            vertex = int(np.flatnonzero(self.vertex_P <= 0)[0])
+            steps = np.arange(self.vertex_step[max(vertex - 1, 0)], self.vertex_step[vertex] + 1)
+            P = self._formed(self.vertex_P, steps)
+            lifted = np.flatnonzero(P <= 0)[0]
+            raise _lift_off(P[lifted], steps[lifted])
+
+    def __repr__(self):
+        return f"PiecewiseLinear({len(self)} steps, {self.vertex_Q.size} vertices, {self.cycle_count} cycles)"
+
+    def __len__(self):
+        return int(self.vertex_step[-1]) + 1
+
+    @property
+    def Q(self):
+        """Shear force at every step [N/m], formed anew."""
+        return self._whole(self.vertex_Q)
+
+    @property
+    def sigma(self):
+        """Bulk tension at every step [Pa], formed anew."""
+        return self._whole(self.vertex_sigma)
+
+    @property
+    def P(self):
+        """Normal load at every step [N/m], formed anew; None: the contact's constant ``P``."""
+        return None if self.vertex_P is None else self._whole(self.vertex_P)
+
+    @property
+    def cycle(self):
+        """Cycle number (int32) of every step, formed anew; None for a history without cycles."""
+        if self.segment_cycle is None:
+            return None
+        cycle = np.empty(len(self), dtype=np.int32)
+        for start in range(0, len(self), BLOCK_STEPS):
+            steps = np.arange(start, min(start + BLOCK_STEPS, len(self)))
+            cycle[steps] = self._cycles_at(steps)
+        return cycle
+
+    @property
+    def has_cycles(self):
+        return self.segment_cycle is not None
+
+    @property
+    def cycle_count(self):
+        return 0 if self.segment_cycle is None else int(self.segment_cycle.max(initial=0))
+
+    def _steps(self, start, stop):
+        return self.at(np.arange(start, stop))
+
+    def at(self, steps):
+        steps = np.asarray(steps, dtype=np.int64)
+        cycle = None if self.segment_cycle is None else self._cycles_at(steps)
+        P = None if self.vertex_P is None else self._formed(self.vertex_P, steps)
+        return self._formed(self.vertex_Q, steps), self._formed(self.vertex_sigma, steps), cycle, P
+
+    def explicit(self):
+        """The same history as a `History` whose arrays hold the loads of every step."""
+        return History(self.Q, self.sigma, self.vertex_step, self.cycle, self.P)
+
+    def cycle_ends(self):
+        return _last_steps(self.segment_cycle, self.vertex_step[1:], self.cycle_count)
+
+    def without_P(self, P):
+        if self.vertex_P is None or not np.all(self.vertex_P == P):
+            return self
+        return PiecewiseLinear(self.vertex_Q, self.vertex_sigma, self.steps, self.segment_cycle)
+
+    def as_cycle(self):
+        return PiecewiseLinear(
+            self.vertex_Q, self.vertex_sigma, self.steps, np.ones(self.steps.size, dtype=np.int32), self.vertex_P
+        )
+
+    def turning_steps(self, max_turn=None, units=(1.0, 1.0)):
+        """`History.turning_steps`, taken over slices of about `BLOCK_STEPS` steps from vertex to vertex.
+
+        Every vertex is a turning step, and whether a step inside a slice turns depends on the
+        steps of its stretch (from one turning step to the next) only, all inside the slice: the
+        slices' turning steps are the whole history's.
+        """
+        if max_turn is not None:
+            positive("max_turn", max_turn)
+        last = len(self) - 1
+        cuts = self.vertex_step[np.searchsorted(self.vertex_step, np.arange(BLOCK_STEPS, last, BLOCK_STEPS))]
+        cuts = np.unique(np.concatenate([[0], cuts, [last]]))
+        parts = [self[a : b + 1].turning_steps(max_turn, units) + a for a, b in itertools.pairwise(cuts)]
+        return np.unique(np.concatenate([[0], *parts]))
+
+    def _whole(self, vertices):
+        """The loads of every step of one load's `vertices`, formed `BLOCK_STEPS` steps at a time."""
+        if np.all(vertices == vertices[0]):
+            return np.broadcast_to(vertices[0], (len(self),))
+        values = np.empty(len(self))
+        for start in range(0, len(self), BLOCK_STEPS):
+            steps = np.arange(start, min(start + BLOCK_STEPS, len(self)))
+            values[steps] = self._formed(vertices, steps)
+        return values
+
+    def _formed(self, vertices, steps):
+        """Loads of one load's `vertices` at `steps` (array of int): the class's formula."""
+        if np.all(vertices == vertices[0]):
+            return np.full(steps.shape, vertices[0])
+        segment = np.maximum(np.searchsorted(self.vertex_step, steps) - 1, 0)  # the segment that ends at or after
+        k, n = steps - self.vertex_step[segment], self.steps[segment]
+        values = vertices[segment + 1] - vertices[segment]
+        values *= k / n
+        values += vertices[segment]
+        np.copyto(values, vertices[segment + 1], where=k == n)  # each segment ends exactly on its vertex
+        np.copyto(values, vertices[0], where=steps == 0)
+        return values
+
+    def _cycles_at(self, steps):
+        """Cycle numbers (int32) at `steps` (array of int): their segment's, 0 at step 0."""
+        segment = np.maximum(np.searchsorted(self.vertex_step, steps) - 1, 0)
+        return np.where(steps > 0, self.segment_cycle[segment], 0).astype(np.int32)
+
+    @classmethod
+    def joined(cls, histories):
+        """`History.concatenate` of piecewise-linear `histories`, already checked to follow one another."""
+        first, later = histories[0], histories[1:]
+        loads = [
+            np.concatenate([getattr(first, name), *(getattr(history, name)[1:] for history in later)])
+            for name in ("vertex_Q", "vertex_sigma")
+        ]
+        P = None
+        if first.vertex_P is not None:
+            P = np.concatenate([first.vertex_P, *(history.vertex_P[1:] for history in later)])
+        cycles, counted = [], 0
+        for history in histories:
+            own = np.zeros(history.steps.size, np.int64) if history.segment_cycle is None else history.segment_cycle
+            cycles.append(np.where(own > 0, own + counted, 0))
+            counted += history.cycle_count
+        has_cycles = any(history.has_cycles for history in histories)
+        steps = np.concatenate([history.steps for history in histories])
+        return cls(*loads, steps, np.concatenate(cycles) if has_cycles else None, P)
+
+    @classmethod
+    def through(cls, Q, sigma=None, steps_per_segment=16, P=None):
+        """`History.piecewise_linear`'s history, held by its vertices (the same parameters)."""
+        Q = _loads("Q", Q)
+        sigma = np.zeros_like(Q) if sigma is None else _loads("sigma", sigma)
+        if Q.shape != sigma.shape:
+            raise HistoryError(f"Q and sigma need one value per vertex, found {Q.size} and {sigma.size}")
+        steps = np.broadcast_to(np.asarray(steps_per_segment), (Q.size - 1,))
+        if steps.size and (not np.issubdtype(steps.dtype, np.integer) or np.any(steps < 1)):
+            raise HistoryError(f"steps_per_segment must be integers >= 1, found {steps_per_segment!r}")
+        if P is not None:
+            P = _loads("P", P)
+            if P.shape != Q.shape:
+                raise HistoryError(f"Q and P need one value per vertex, found {Q.size} and {P.size}")
+        return cls(Q, sigma, steps, None, P)
+
+
+def _segment_cycles(segment_cycle, steps):
+    """`segment_cycle` checked (>= 0, at most `CYCLE_LIMIT`, non-zero ones non-decreasing) as int32."""
+    cycle = np.asarray(segment_cycle)
+    if cycle.shape != steps.shape or not np.issubdtype(cycle.dtype, np.integer) or np.any(cycle < 0):
+        raise HistoryError("segment_cycle must give a cycle number >= 0 for every segment")
+    if cycle.size and cycle.max() > CYCLE_LIMIT:
+        raise HistoryError(f"cycle numbers must be at most {CYCLE_LIMIT}, found {cycle.max()}")
+    cycle = cycle.astype(np.int32)
+    if _positives_decrease(cycle):
+        raise HistoryError("segment_cycle must give cycle numbers >= 0, non-zero ones non-decreasing")
+    return cycle
+
+
+def _last_steps(numbers, steps, count):
+    """Last step of each cycle ``0 .. count`` among `steps` (the last of runs or segments of cycle `numbers`)."""
+    ends = np.zeros(count + 1, dtype=np.int64)
+    np.maximum.at(ends, numbers, steps)
+    return ends
 
 
 def _cycle_numbers(n, steps):
@@ -480,35 +750,6 @@ def _wave(theta, amplitude, mean):
     return values
 
 
-def _segments(vertices, steps):
-    """Values along straight segments between `vertices`, ``steps[i]`` equal increments on segment ``i``.
-
-    Each segment ends exactly on its vertex, and a segment between equal vertices holds that value
-    exactly (an increment of one unit in the last place is a load change, which the exact model
-    of Q alone slips under). The values of segment ``i`` are ``v_i + (v_(i+1) - v_i) (k / n)``,
-    ``k = 1 .. n``, formed for all segments of one ``n`` at once in the output, so a history of
-    millions of segments needs no array per segment; where all vertices are equal the values are
-    one number broadcast to every step (`numpy.broadcast_to`, read-only), which takes no memory
-    per step.
-    """
-    count = int(np.sum(steps)) + 1
-    if np.all(vertices == vertices[0]):
-        return np.broadcast_to(vertices[0], (count,))
-    values = np.empty(count)
-    values[0] = vertices[0]
-    ends = np.cumsum(steps)
-    for n in np.unique(steps):
-        segment = np.flatnonzero(steps == n)
-        uniform = segment.size == steps.size  # the output itself, one row per segment
-        block = values[1:].reshape(-1, n) if uniform else np.empty((segment.size, n))
-        np.multiply((vertices[segment + 1] - vertices[segment])[:, None], np.arange(1, n + 1) / n, out=block)
-        block += vertices[segment, None]
-        block[:, -1] = vertices[segment + 1]
-        if not uniform:
-            values[(ends[segment] - n)[:, None] + np.arange(1, n + 1)] = block
-    return values
-
-
 def _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean):
     """Validated amplitudes (>= 0) and means, each as a pair ``(Q, sigma)``."""
     amplitude = (_number("Q_amplitude", Q_amplitude, minimum=0.0), _number("sigma_amplitude", sigma_amplitude, 0.0))
@@ -546,9 +787,13 @@ def _normal_loads(P, n):
         raise HistoryError(f"P must give one normal load per step, found {P.size} for {n} steps")
     lifted = np.flatnonzero(P <= 0)
     if lifted.size:
-        step = int(lifted[0])
-        raise HistoryError(f"P must stay positive (the contact lifts off): P = {float(P[step])!r} at step {step}")
+        raise _lift_off(P[lifted[0]], lifted[0])
     return P
+
+
+def _lift_off(P, step):
+    """The error of a normal load `P` [N/m] <= 0 at `step`."""
+    return HistoryError(f"P must stay positive (the contact lifts off): P = {float(P)!r} at step {int(step)}")
 
 
 def _loads(name, values):

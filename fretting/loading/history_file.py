@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from fretting.errors import HistoryError
-from fretting.loading.history import RAMP_STEPS, History
+from fretting.loading.history import RAMP_STEPS, History, PiecewiseLinear
 from fretting.physics.contact import POISSON_RANGE, SPECIMEN, Contact, plane_strain_modulus
 from fretting.physics.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 
@@ -149,9 +149,7 @@ class _Document:
         if "loading" not in self.data:
             raise self.error((), "found no [[loading]] blocks, expected at least one")
         history = _sequence(top.tables("loading"), start=(0.0, 0.0, contact.P))
-        if np.all(history.P == contact.P):  # the contact's constant P: the history of Q and sigma alone
-            history = History(history.Q, history.sigma, history.vertex_step, history.cycle)
-        return contact, history
+        return contact, history.without_P(contact.P)  # the contact's constant P: the history of Q and sigma alone
 
     def error(self, path, problem):
         """`HistoryFileError` at the key `path` (a tuple of names and indices)."""
@@ -282,7 +280,7 @@ def _polyline(table, loads, start, default_steps):
     steps = table.get("steps_per_segment", _counts, default_steps)
     if np.ndim(steps) and len(steps) != n:
         raise table.error("steps_per_segment", f"found {len(steps)} values, expected one for each of the {n} vertices")
-    history = History.piecewise_linear(*vertices[:2], steps, vertices[2])
+    history = PiecewiseLinear.through(*vertices[:2], steps, vertices[2])
     return history.as_cycle() if table.get("cycle", _boolean, False) else history
 
 
@@ -315,6 +313,7 @@ def _random(table, start):
         start=start,
         P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
         P_mean=table.get("P_mean", _positive, start[2]),
+        vertices=True,
     )
 
 
