@@ -63,7 +63,7 @@ def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=
     if stress:
         surface, shear = specimen_surface(model, outcome, sigma)
     else:
-        surface, shear = np.full(model.x.size, np.nan), np.abs(model.traction(outcome))
+        surface, shear = None, np.abs(model.traction(outcome))
     return outcome, state.advance(outcome, Q, sigma, model.energy_density(outcome), surface, shear, P)
 
 

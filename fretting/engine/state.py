@@ -5,7 +5,8 @@ everything an increment depends on (`State.repeats` is the test of that), and th
 computed with (`State.model`, a resolved `fretting.models.base.ModelSpec`).
 """
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 
@@ -58,16 +59,25 @@ class Tally:
 
     def add(self, dissipation, w, slip, stress, shear):
         """The tally after an increment that dissipated `dissipation` [J/m], `w` [J/m^2] and left `slip` [m],
-        the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]."""
+        the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa].
+
+        `stress` None: not known (a run that skips steps), so the two peaks of ``sigma_xx`` are
+        NaN, as the maximum with a NaN row would make them, without forming that row.
+        """
+        if stress is None:
+            sigma_xx_peak = sigma_xx_q_peak = _unknown(slip.size)
+        else:
+            sigma_xx_peak = np.maximum(self.sigma_xx_peak, stress)
+            sigma_xx_q_peak = np.maximum(self.sigma_xx_q_peak, stress * shear)
         return Tally(
             self.number,
             self.dissipation + dissipation,
             self.w + w,
             np.minimum(self.slip_min, slip),
             np.maximum(self.slip_max, slip),
-            np.maximum(self.sigma_xx_peak, stress),
+            sigma_xx_peak,
             np.maximum(self.q_peak, shear),
-            np.maximum(self.sigma_xx_q_peak, stress * shear),
+            sigma_xx_q_peak,
         )
 
     @property
@@ -124,24 +134,17 @@ class State:
     def advance(self, outcome, Q, sigma, w, stress, shear, P=None):
         """The state after the increment `outcome` to the loads `Q`, `sigma`, `P`, which dissipated `w` [J/m^2]
         and left the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]
-        (the three None where nothing is tallied: outside a load cycle, or where only the slip
-        matters)."""
-        slip, ds = outcome.slip, outcome.ds
-        episode = self.slip - self.episode_start
-        reversed_ = np.sign(ds) * np.sign(episode) < 0
-        episode_start = np.where(ds == 0, slip, np.where(reversed_, self.slip, self.episode_start))
+        (`w` None where nothing is tallied: outside a load cycle, or where only the slip matters;
+        `stress` None where it is not known, `Tally.add`).
+
+        A node's episode begins again where it sticks (at its slip) or reverses (at its slip before).
+        """
+        slip, ds, before = outcome.slip, outcome.ds, self.slip
+        episode_start = np.where(np.sign(ds) * np.sign(before - self.episode_start) < 0, before, self.episode_start)
+        np.copyto(episode_start, slip, where=ds == 0)
         tally = self.tally if w is None else self.tally.add(outcome.dissipation, w, slip, stress, shear)
-        return replace(
-            self,
-            Q=Q,
-            sigma=sigma,
-            slip=slip,
-            episode_start=episode_start,
-            tally=tally,
-            dissipated=self.dissipated + outcome.dissipation,
-            memory=outcome.memory,
-            P=P,
-        )
+        dissipated = self.dissipated + outcome.dissipation
+        return State(Q, sigma, slip, episode_start, tally, self.model, dissipated, outcome.memory, P)
 
     def repeats(self, other):
         """True if this state is `other`'s memory bit for bit: the same loads, slip fields and model memory."""
@@ -178,3 +181,11 @@ class State:
         P = contact.P if self.P is None else self.P
         if abs(self.Q) >= contact.f * P:
             raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")
+
+
+@cache
+def _unknown(N):
+    """A read-only row of `N` NaN: a peak not known, shared by the tallies that do not know it."""
+    row = np.full(N, np.nan)
+    row.flags.writeable = False
+    return row

@@ -225,14 +225,14 @@ class ExactModel(Model):
             slip, q, delta_Q, _ = self._at(state.memory, Q)
             return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
         walk = (state.memory, state.Q, Q)
-        turning, pieces = self._walks.pop(walk) if walk in self._walks else masing_increment(*walk)
-        energy = 0.0
+        prepared = self._walks.pop(walk, None)
+        turning, pieces = masing_increment(*walk) if prepared is None else prepared
+        energy, solution = 0.0, self._solution
         for origin, factor, start, end in pieces:  # each loop that the increment closes, then the branch it ends on
-            upper, lower = (self._solution(origin, factor, load).energy for load in (end, start))
-            energy += factor * (upper - lower)
+            energy += factor * (solution(origin, factor, end).energy - solution(origin, factor, start).energy)
         slip, q, delta_Q, c = self._at(turning, Q)
-        zones = [(-c / self.contact.a, c / self.contact.a)]
-        return Outcome(q, slip - state.slip, slip, self.contact.f**2 * energy, turning, zones, delta_Q)
+        a = self.contact.a
+        return Outcome(q, slip - state.slip, slip, self.contact.f**2 * energy, turning, [(-c / a, c / a)], delta_Q)
 
     def _at(self, turning, Q):
         """Slip [m], traction [Pa] at the nodes, ``delta_Q`` [m] and the stick half-width [m] at `Q`
@@ -241,29 +241,29 @@ class ExactModel(Model):
         Summed branch by branch from the first, so a state reached again repeats bit for bit,
         and where the last branch sticks its terms are exact zeros: ``ds == 0`` exactly there.
         """
-        last = self._branch(turning, Q)
-        return *_added(self._memory(tuple(turning)), last, _signed(turning, Q)), last.c
+        origin, factor = masing_origin(turning)
+        last = self._solution(origin, factor, Q)
+        return *_added(self._memory(tuple(turning)), last, _signed(origin, factor, Q)), last.c
 
     def _memory(self, turning):
         """Slip, traction and ``delta_Q`` at the last of the `turning` points, summed over their
         branches from the longest of its beginnings already summed (a loop, not a recursion: the
         open turning points of a decaying history can number thousands)."""
+        summed = self._memories.get(turning)
+        if summed is not None:
+            return summed
         known = len(turning)
         while known and turning[:known] not in self._memories:
             known -= 1
         zero = np.zeros(self.x.size)
         summed = self._memories[turning[:known]] if known else (zero, zero, 0.0)
         for k in range(known, len(turning)):
-            before = turning[:k]
-            summed = _added(summed, self._branch(before, turning[k]), _signed(before, turning[k]))
+            origin, factor = masing_origin(turning[:k])
+            summed = _added(summed, self._solution(origin, factor, turning[k]), _signed(origin, factor, turning[k]))
             if len(self._memories) >= CACHED_BRANCHES:
                 self._memories.clear()
             self._memories[turning[: k + 1]] = summed
         return summed
-
-    def _branch(self, turning, Q):
-        """`_Branch` of the last branch of the open `turning` points at `Q` [N/m]."""
-        return self._solution(*masing_origin(turning), Q)
 
     def prepare(self, state, loads):
         """Solve together the branches that the increments from `state` through the shear forces
@@ -277,16 +277,16 @@ class ExactModel(Model):
         """
         if not (isinstance(self.contact.profile, Hertz) and type(self)._solved is ExactModel._solved):
             return
-        turning, before, needed = state.memory, state.Q, {}
+        turning, before, needed, corrective = state.memory, state.Q, {}, self._corrective
         self._walks.clear()
-        for Q in map(float, loads):
+        for Q in np.asarray(loads, dtype=float).tolist():
             if abs(Q) >= self.friction_force:  # gross slip: the run stops there
                 break
             walk = (turning, before, Q)
             turning, pieces = self._walks[walk] = masing_increment(*walk)
-            for origin, factor, *ends in pieces:
-                needed |= dict.fromkeys(self._corrective(origin, factor, load) for load in ends)
-            needed[self._corrective(*masing_origin(turning), Q)] = None
+            for origin, factor, start, end in pieces:  # the branch at each end, in that order
+                needed[corrective(origin, factor, start)] = needed[corrective(origin, factor, end)] = None
+            needed[corrective(*masing_origin(turning), Q)] = None
             before = Q
         if len(self._branches) + len(needed) > CACHED_BRANCHES:
             self._branches.clear()
@@ -376,15 +376,18 @@ def _to_breakpoint(profile, c):
     return min(inside, default=np.inf)
 
 
-def _signed(turning, Q):
-    """Factor of the last branch at `Q`, signed as its change of load."""
-    origin, factor = masing_origin(turning)
-    return np.sign(Q - origin) * factor
+def _signed(origin, factor, Q):
+    """`factor` of the branch from `origin` [N/m], signed as its change of load to `Q` [N/m] (zero if none)."""
+    return factor if Q > origin else -factor if Q < origin else 0.0
 
 
 def _added(summed, branch, factor):
-    """`summed` (slip, traction, delta_Q) plus `factor` times the `_Branch`."""
-    return summed[0] + factor * branch.slip, summed[1] + factor * branch.q, summed[2] + factor * branch.delta_Q
+    """`summed` (slip, traction, delta_Q) plus `factor` times the `_Branch`, each field formed in place
+    (``factor x + y``, the same bits as a sum of temporaries)."""
+    slip, q = branch.slip * factor, branch.q * factor
+    slip += summed[0]
+    q += summed[1]
+    return slip, q, summed[2] + factor * branch.delta_Q
 
 
 def gap(profile, E_star, c, X):
