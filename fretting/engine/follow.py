@@ -159,9 +159,11 @@ class _Run:
         previous = None  # the last cycle solved whole in this run: the one a repeating cycle copies
         before, steps = None, []  # state before the cycle in progress (if it began here), its increments
         repeated = False  # the cycle in progress is a copy
-        step = 0
-        while step < len(self.history):
-            number = int(self.cycle[step])
+        step, solved = 0, 0  # solved: index in self.solved of the first solved step from `step`
+        history, cycle, skip, recorder = self.history, self.cycle, self.skip, self.recorder
+        contact_P = self.model.contact.P
+        while step < len(history):
+            number = int(cycle[step])
             if number != state.tally.number:  # the increment to `step` begins a new stretch
                 if state.tally.number:
                     self._cycle(state.tally.number, state.tally, repeated)
@@ -173,29 +175,31 @@ class _Run:
                 if copies:
                     state = self._copy(previous, step, copies)
                     step += copies * len(previous.steps)
+                    solved = int(np.searchsorted(self.solved, step))
                     repeated = True
                     continue
-            if self.skip[step]:  # a straight stretch: on to its next solved step, in the same cycle
-                after = int(self.solved[np.searchsorted(self.solved, step)])
+            if skip[step]:  # a straight stretch: on to its next solved step, in the same cycle
+                after = int(self.solved[solved])
                 steps.extend([None] * (after - step))
                 step = after
                 continue
             if self.prepare is not None and step >= self.prepared:
-                ahead = self.solved[np.searchsorted(self.solved, step) :][:PREPARED_STEPS]
-                self.prepare(state, self.history.Q[ahead])
+                ahead = self.solved[solved : solved + PREPARED_STEPS]
+                self.prepare(state, history.Q[ahead])
                 self.prepared = int(ahead[-1]) + 1
             guess = None if self.guess is None else self.guess(step)
-            Q, sigma = self.history.Q[step], self.history.sigma[step]
-            P = None if self.history.P is None else float(self.history.P[step])
-            P = None if P == self.model.contact.P else P  # None: the contact's, which every model runs
+            Q, sigma = history.Q[step], history.sigma[step]
+            P = None if history.P is None else float(history.P[step])
+            P = None if P == contact_P else P  # None: the contact's, which every model runs
             at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma) and P in (None, _load(self.model, state))
             outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally, self.stress, P)
             if self.observe is not None and not at_rest:
                 self.observe(step, outcome.ds)
             steps.append((outcome, state))
-            if self.recorder is not None:
-                self.recorder.step(step, outcome, state)
+            if recorder is not None:
+                recorder.step(step, outcome, state)
             step += 1
+            solved += 1
         if state.tally.number:
             self._cycle(state.tally.number, state.tally, repeated)
         return state

@@ -140,7 +140,8 @@ class State:
         A node's episode begins again where it sticks (at its slip) or reverses (at its slip before).
         """
         slip, ds, before = outcome.slip, outcome.ds, self.slip
-        episode_start = np.where(np.sign(ds) * np.sign(before - self.episode_start) < 0, before, self.episode_start)
+        # reversed where ds and the episode so far have strictly opposite signs (sign(ds) times it: exact)
+        episode_start = np.where(np.sign(ds) * (before - self.episode_start) < 0, before, self.episode_start)
         np.copyto(episode_start, slip, where=ds == 0)
         tally = self.tally if w is None else self.tally.add(outcome.dissipation, w, slip, stress, shear)
         dissipated = self.dissipated + outcome.dissipation
