@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 from fretting._validate import finite, finite_array, positive
 from fretting.errors import HistoryError
 
-__all__ = ["History", "PiecewiseLinear", "RAMP_STEPS"]
+__all__ = ["Formed", "History", "Joined", "Periodic", "PiecewiseLinear", "RAMP_STEPS"]
 
 #: Steps of the straight ramp that reaches the first point of a sinusoid: a quarter of the
 #: default 64 steps per cycle, the steps a sinusoid takes to rise from its mean to its peak.
@@ -86,7 +86,7 @@ class History:
 
         Cycle numbers are kept, so that a run continued from step ``k`` with ``history[k:]``
         numbers its cycles as the whole run does. The slice holds its loads (views of this
-        history's arrays, or those formed for it by a `PiecewiseLinear`).
+        history's arrays, or those formed for it by a `Formed` history).
         """
         if not isinstance(steps, slice) or steps.step not in (None, 1):
             raise TypeError(f"a History takes contiguous slices of steps, e.g. history[k:], found {steps!r}")
@@ -192,7 +192,7 @@ class History:
 
     def blocks(self):
         """``(Q, sigma)`` [N/m], [Pa] of `BLOCK_STEPS` steps at a time, in order (views of an explicit
-        history's arrays, formed for the block by a `PiecewiseLinear`).
+        history's arrays, formed for the block by a `Formed` history).
 
         A pass over a long history block by block makes temporary arrays of one block, not of
         the whole history.
@@ -277,26 +277,8 @@ class History:
                 )
         if all(isinstance(history, PiecewiseLinear) for history in histories):
             return PiecewiseLinear.joined(histories)
-        first = histories[0]
-        Q, sigma, vertex_step, cycle = [first.Q], [first.sigma], [first.vertex_step], [_cycles(first)]
-        P = [first.P] if first.P is not None else None
-        end, last_vertex, counted = len(first) - 1, first.vertex_step.max(initial=-1), first.cycle_count
-        for history in histories[1:]:
-            vertices = history.vertex_step[history.vertex_step > 0] if last_vertex == end else history.vertex_step
-            later = _cycles(history)[1:]
-            Q.append(history.Q[1:])
-            sigma.append(history.sigma[1:])
-            if P is not None:
-                P.append(history.P[1:])
-            vertex_step.append(vertices + end)
-            cycle.append(np.where(later > 0, later + counted, 0))
-            last_vertex = vertices[-1] + end if vertices.size else last_vertex
-            end, counted = end + len(history) - 1, counted + history.cycle_count
-        return cls(
-            *map(np.concatenate, (Q, sigma, vertex_step)),
-            np.concatenate(cycle) if any(history.has_cycles for history in histories) else None,
-            None if P is None else np.concatenate(P),
-        )
+        joined = Joined(histories)
+        return joined if any(isinstance(history, Formed) for history in histories) else joined.explicit()
 
     @classmethod
     def piecewise_linear(
@@ -344,6 +326,7 @@ class History:
         P_amplitude: float = 0.0,
         P_mean: float | None = None,
         P_phase_deg: float = 0.0,
+        by_cycle: bool = False,
     ) -> History:
         """Sinusoidal load cycles, reached from `start` by a straight ramp when they start elsewhere.
 
@@ -371,6 +354,9 @@ class History:
         P_amplitude, P_mean, P_phase_deg : float
             A varying normal load ``P = P_mean + P_amplitude sin(theta + P_phase)`` [N/m], ``P_phase``
             [deg] by which it leads Q; `P_mean` None: no ``P`` column (the contact's constant ``P``).
+        by_cycle : bool
+            Return the history held by one cycle (`Periodic`, after its ramp: loads formed when
+            read, memory of one cycle whatever the count) rather than by the loads of its steps.
 
         Examples
         --------
@@ -383,11 +369,9 @@ class History:
         amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
         phase = np.radians(_number("phase_deg", phase_deg))
         steps = _count("steps_per_cycle", steps_per_cycle, minimum=4)
-        count = _count("cycles", cycles)
-        n = count * steps + 1
-        theta = np.remainder(np.arange(n, dtype=float), steps)
+        theta = np.remainder(np.arange(steps + 1, dtype=float), steps)
         theta *= 2 * np.pi
-        theta /= steps  # 2 pi (k mod steps) / steps: exactly 0 again at each cycle end
+        theta /= steps  # 2 pi (k mod steps) / steps: exactly 0 again at the cycle's end
         Q = _wave(theta, amplitude[0], mean[0])
         theta += phase
         sigma = _wave(theta, amplitude[1], mean[1])
@@ -395,9 +379,9 @@ class History:
         if P_mean is not None:
             theta += np.radians(_number("P_phase_deg", P_phase_deg)) - phase
             P = _wave(theta, _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean))
-        del theta  # arrays of a long history are large (51 MB each for 10^5 cycles of 64 steps)
-        waves = cls(Q, sigma, np.arange(0, n, steps), _cycle_numbers(n, steps), P)
-        return _reached_from(start, waves, _count("ramp_steps", ramp_steps))
+        waves = Periodic(History(Q, sigma, [0, steps], None, P), _count("cycles", cycles))
+        history = _reached_from(start, waves, _count("ramp_steps", ramp_steps))
+        return history if by_cycle else history.explicit()
 
     @classmethod
     def random_amplitude(
@@ -464,19 +448,80 @@ class History:
         return held if vertices else held.explicit()
 
 
-class PiecewiseLinear(History):
+class Formed(History):
+    """A history held by a compact description, whose loads are formed when they are read.
+
+    A subclass gives `__len__`, `at`, `vertex_step`, `has_cycles`, `cycle_count` and
+    `cycle_ends`; every step, slice (`__getitem__`), block and whole array of it is then formed
+    by its `at`, so they are bit for bit the loads of `explicit`, and a long history costs
+    memory by its description and by the block read, not by its steps.
+
+    Reading `Q`, `sigma`, `cycle` or `P` forms the array of every step anew: a pass over a long
+    history reads it by `blocks`, slices or `at`.
+    """
+
+    @property
+    def Q(self):
+        """Shear force at every step [N/m], formed anew."""
+        return self._whole(0)
+
+    @property
+    def sigma(self):
+        """Bulk tension at every step [Pa], formed anew."""
+        return self._whole(1)
+
+    @property
+    def cycle(self):
+        """Cycle number (int32) of every step, formed anew; None for a history without cycles."""
+        return self._whole(2) if self.has_cycles else None
+
+    @property
+    def P(self):
+        """Normal load at every step [N/m], formed anew; None: the contact's constant ``P``."""
+        return None if self.normal_start is None else self._whole(3)
+
+    def _whole(self, index):
+        """Item `index` of `at` (0 Q, 1 sigma, 2 cycle, 3 P) at every step, formed `BLOCK_STEPS` steps at a time."""
+        values = None
+        for start in range(0, len(self), BLOCK_STEPS):
+            steps = np.arange(start, min(start + BLOCK_STEPS, len(self)))
+            block = self.at(steps)[index]
+            if values is None:
+                values = np.empty(len(self), dtype=block.dtype)
+            values[steps] = block
+        return values
+
+    def _steps(self, start, stop):
+        return self.at(np.arange(start, stop))
+
+    def explicit(self):
+        """The same history as a `History` whose arrays hold the loads of every step."""
+        return History(self.Q, self.sigma, self.vertex_step, self.cycle, self.P)
+
+    def turning_steps(self, max_turn=None, units=(1.0, 1.0)):
+        """`History.turning_steps`, taken over slices of about `BLOCK_STEPS` steps from vertex to vertex.
+
+        Every vertex is a turning step, and whether a step inside a slice turns depends on the
+        steps of its stretch (from one turning step to the next) only, all inside the slice: the
+        slices' turning steps are the whole history's.
+        """
+        if max_turn is not None:
+            positive("max_turn", max_turn)
+        last = len(self) - 1
+        cuts = self.vertex_step[np.searchsorted(self.vertex_step, np.arange(BLOCK_STEPS, last, BLOCK_STEPS))]
+        cuts = np.unique(np.concatenate([[0], cuts, [last]]))
+        parts = [self[a : b + 1].turning_steps(max_turn, units) + a for a, b in itertools.pairwise(cuts)]
+        return np.unique(np.concatenate([[0], *parts]))
+
+
+class PiecewiseLinear(Formed):
     """A history of straight segments between vertices, held by its vertices: the loads of any
-    steps are formed when they are read.
+    steps are formed when they are read (`Formed`).
 
     The loads of segment ``i`` at its steps ``k = 1 .. n_i`` are ``v_i + (v_(i+1) - v_i) (k / n_i)``,
     the last exactly ``v_(i+1)`` (an increment of one unit in the last place is a load change,
     which the exact model of Q alone slips under), and a load whose vertices are all equal is that
-    number at every step. Every step, a slice (`__getitem__`), the steps `at` and the `blocks` are
-    formed by this one formula, so they are bit for bit the loads of `explicit`, and a long
-    history costs memory per vertex (about 40 bytes) and per block read, not per step.
-
-    Reading `Q`, `sigma`, `cycle` or `P` forms the array of every step anew: a pass over a long
-    history reads it by `blocks`, slices or `at`.
+    number at every step. A long history costs memory per vertex (about 40 bytes).
 
     Parameters
     ----------
@@ -523,32 +568,6 @@ class PiecewiseLinear(History):
         return int(self.vertex_step[-1]) + 1
 
     @property
-    def Q(self):
-        """Shear force at every step [N/m], formed anew."""
-        return self._whole(self.vertex_Q)
-
-    @property
-    def sigma(self):
-        """Bulk tension at every step [Pa], formed anew."""
-        return self._whole(self.vertex_sigma)
-
-    @property
-    def P(self):
-        """Normal load at every step [N/m], formed anew; None: the contact's constant ``P``."""
-        return None if self.vertex_P is None else self._whole(self.vertex_P)
-
-    @property
-    def cycle(self):
-        """Cycle number (int32) of every step, formed anew; None for a history without cycles."""
-        if self.segment_cycle is None:
-            return None
-        cycle = np.empty(len(self), dtype=np.int32)
-        for start in range(0, len(self), BLOCK_STEPS):
-            steps = np.arange(start, min(start + BLOCK_STEPS, len(self)))
-            cycle[steps] = self._cycles_at(steps)
-        return cycle
-
-    @property
     def has_cycles(self):
         return self.segment_cycle is not None
 
@@ -556,18 +575,11 @@ class PiecewiseLinear(History):
     def cycle_count(self):
         return 0 if self.segment_cycle is None else int(self.segment_cycle.max(initial=0))
 
-    def _steps(self, start, stop):
-        return self.at(np.arange(start, stop))
-
     def at(self, steps):
         steps = np.asarray(steps, dtype=np.int64)
         cycle = None if self.segment_cycle is None else self._cycles_at(steps)
         P = None if self.vertex_P is None else self._formed(self.vertex_P, steps)
         return self._formed(self.vertex_Q, steps), self._formed(self.vertex_sigma, steps), cycle, P
-
-    def explicit(self):
-        """The same history as a `History` whose arrays hold the loads of every step."""
-        return History(self.Q, self.sigma, self.vertex_step, self.cycle, self.P)
 
     def cycle_ends(self):
         return _last_steps(self.segment_cycle, self.vertex_step[1:], self.cycle_count)
@@ -582,30 +594,12 @@ class PiecewiseLinear(History):
             self.vertex_Q, self.vertex_sigma, self.steps, np.ones(self.steps.size, dtype=np.int32), self.vertex_P
         )
 
-    def turning_steps(self, max_turn=None, units=(1.0, 1.0)):
-        """`History.turning_steps`, taken over slices of about `BLOCK_STEPS` steps from vertex to vertex.
-
-        Every vertex is a turning step, and whether a step inside a slice turns depends on the
-        steps of its stretch (from one turning step to the next) only, all inside the slice: the
-        slices' turning steps are the whole history's.
-        """
-        if max_turn is not None:
-            positive("max_turn", max_turn)
-        last = len(self) - 1
-        cuts = self.vertex_step[np.searchsorted(self.vertex_step, np.arange(BLOCK_STEPS, last, BLOCK_STEPS))]
-        cuts = np.unique(np.concatenate([[0], cuts, [last]]))
-        parts = [self[a : b + 1].turning_steps(max_turn, units) + a for a, b in itertools.pairwise(cuts)]
-        return np.unique(np.concatenate([[0], *parts]))
-
-    def _whole(self, vertices):
-        """The loads of every step of one load's `vertices`, formed `BLOCK_STEPS` steps at a time."""
-        if np.all(vertices == vertices[0]):
+    def _whole(self, index):
+        """`Formed._whole`, without an array where a load's vertices are all equal (a read-only broadcast)."""
+        vertices = (self.vertex_Q, self.vertex_sigma, None, self.vertex_P)[index]
+        if vertices is not None and np.all(vertices == vertices[0]):
             return np.broadcast_to(vertices[0], (len(self),))
-        values = np.empty(len(self))
-        for start in range(0, len(self), BLOCK_STEPS):
-            steps = np.arange(start, min(start + BLOCK_STEPS, len(self)))
-            values[steps] = self._formed(vertices, steps)
-        return values
+        return super()._whole(index)
 
     def _formed(self, vertices, steps):
         """Loads of one load's `vertices` at `steps` (array of int): the class's formula."""
@@ -662,6 +656,139 @@ class PiecewiseLinear(History):
         return cls(Q, sigma, steps, None, P)
 
 
+class Periodic(Formed):
+    """`count` repetitions of one load cycle, held by that cycle's loads (`Formed`): memory per
+    step of one cycle, whatever the count.
+
+    Step ``k >= 1`` has the loads of the cycle's step ``(k - 1) mod n + 1`` (``n`` its
+    increments) and belongs to cycle ``(k - 1) // n + 1``; step 0 has the cycle's first loads,
+    which its last ones repeat (the path is closed). The vertices are the cycles' ends.
+
+    Parameters
+    ----------
+    cycle : History
+        One cycle, its step 0 the loads it starts and ends at; its own vertices and cycle
+        numbers are not used.
+    count : int
+        Number of cycles, >= 1.
+    """
+
+    def __init__(self, cycle, count):
+        if (cycle.start, cycle.normal_start) != (cycle.end, cycle.normal_end) or len(cycle) < 2:
+            raise HistoryError(f"a periodic history repeats a closed cycle, not one from {cycle.start} to {cycle.end}")
+        object.__setattr__(self, "one", cycle)
+        object.__setattr__(self, "count", _count("count", count))
+        object.__setattr__(self, "period", len(cycle) - 1)
+        object.__setattr__(self, "vertex_step", np.arange(0, self.count * self.period + 1, self.period))
+
+    def __repr__(self):
+        return f"Periodic({self.count} cycles of {self.period} steps)"
+
+    def __len__(self):
+        return self.count * self.period + 1
+
+    has_cycles = True
+
+    @property
+    def cycle_count(self):
+        return self.count
+
+    def at(self, steps):
+        steps = np.asarray(steps, dtype=np.int64)
+        cycle, phase = np.divmod(np.maximum(steps - 1, 0), self.period)
+        cycle += 1
+        phase += 1
+        cycle[steps == 0] = phase[steps == 0] = 0
+        Q, sigma, _, P = self.one.at(phase)
+        return Q, sigma, cycle.astype(np.int32), P
+
+    def cycle_ends(self):
+        return self.vertex_step
+
+    def without_P(self, P):
+        one = self.one.without_P(P)
+        return self if one is self.one else Periodic(one, self.count)
+
+
+class Joined(Formed):
+    """Histories one after the other (`History.concatenate`), held by them (`Formed`).
+
+    Parameters
+    ----------
+    histories : sequence of History
+        Each starting exactly where the previous one ends (checked by `History.concatenate`);
+        the step 0 of each after the first, which repeats that point, is dropped. Cycles are
+        counted on: those of each history are numbered after the previous ones.
+    """
+
+    def __init__(self, histories):
+        parts = tuple(histories)
+        ends = np.cumsum([len(parts[0]) - 1] + [len(history) - 1 for history in parts[1:]])
+        object.__setattr__(self, "parts", parts)
+        object.__setattr__(self, "ends", ends)  # the last step of each part
+        object.__setattr__(self, "starts", np.concatenate([[0], ends[:-1]]))  # the step each part starts at
+        object.__setattr__(self, "counted", np.cumsum([0] + [history.cycle_count for history in parts[:-1]]))
+        object.__setattr__(self, "vertex_step", _joined_vertices(parts, ends))
+        object.__setattr__(self, "varies_P", parts[0].normal_start is not None)
+        object.__setattr__(self, "cycled", any(history.has_cycles for history in parts))
+
+    def __repr__(self):
+        return f"Joined({len(self)} steps, {len(self.parts)} histories, {self.cycle_count} cycles)"
+
+    def __len__(self):
+        return int(self.ends[-1]) + 1
+
+    @property
+    def has_cycles(self):
+        return self.cycled
+
+    @property
+    def cycle_count(self):
+        return int(self.counted[-1]) + self.parts[-1].cycle_count
+
+    def at(self, steps):
+        steps = np.asarray(steps, dtype=np.int64)
+        part = np.searchsorted(self.ends, steps)  # the first part that ends at or after each step
+        first, last = (int(part.min()), int(part.max())) if part.size else (0, 0)
+        if first == last:
+            return self._part_at(first, steps)
+        loads = (np.empty(steps.shape), np.empty(steps.shape), np.empty(steps.shape, np.int32), np.empty(steps.shape))
+        for index in range(first, last + 1):
+            here = part == index
+            for whole, piece in zip(loads, self._part_at(index, steps[here]), strict=True):
+                if piece is not None:
+                    whole[here] = piece
+        return loads[0], loads[1], loads[2] if self.cycled else None, loads[3] if self.varies_P else None
+
+    def _part_at(self, index, steps):
+        """`at` of `steps` of this history that all lie in part `index`, its cycles counted on."""
+        Q, sigma, own, P = self.parts[index].at(steps - self.starts[index])
+        if not self.cycled:
+            return Q, sigma, None, P
+        cycle = np.zeros(steps.shape, np.int32) if own is None else own
+        np.add(cycle, self.counted[index], out=cycle, where=cycle > 0)
+        return Q, sigma, cycle, P
+
+    def cycle_ends(self):
+        parts = zip(self.parts, self.starts, strict=True)
+        return np.concatenate([[0], *(part.cycle_ends()[1:] + start for part, start in parts if part.has_cycles)])
+
+    def without_P(self, P):
+        parts = [history.without_P(P) for history in self.parts]
+        return self if any(part.normal_start is not None for part in parts) else Joined(parts)
+
+
+def _joined_vertices(histories, ends):
+    """Vertex steps of `histories` one after the other, each ending at `ends`: a vertex at a
+    history's step 0 is dropped where the previous one ends on a vertex."""
+    vertex_step, last_vertex = [histories[0].vertex_step], histories[0].vertex_step.max(initial=-1)
+    for end, history in zip(ends[:-1], histories[1:], strict=True):  # each part starts where the one before ends
+        vertices = history.vertex_step[history.vertex_step > 0] if last_vertex == end else history.vertex_step
+        vertex_step.append(vertices + end)
+        last_vertex = vertices[-1] + end if vertices.size else last_vertex
+    return np.concatenate(vertex_step)
+
+
 def _segment_cycles(segment_cycle, steps):
     """`segment_cycle` checked (>= 0, at most `CYCLE_LIMIT`, non-zero ones non-decreasing) as int32."""
     cycle = np.asarray(segment_cycle)
@@ -682,25 +809,14 @@ def _last_steps(numbers, steps, count):
     return ends
 
 
-def _cycle_numbers(n, steps):
-    """Cycle numbers of `n` steps: 0 for step 0, then each cycle's number over its `steps` steps.
-
-    Formed in place in 32 bits where ``n + steps`` fits (the History's own type), so a long
-    history holds no 64-bit copy.
-    """
-    cycle = np.arange(n, dtype=np.int32 if n + steps <= CYCLE_LIMIT else np.int64)
-    cycle += steps - 1
-    cycle //= steps
-    return cycle
-
-
 def _reached_from(start, history, ramp_steps):
     """`history`, preceded by a straight ramp of `ramp_steps` steps from `start` if it starts elsewhere.
 
     A history of ``P`` starts from ``start[2]``, or at its own first ``P`` where `start` is a pair.
     """
     start = _start(start)
-    P = None if history.P is None else (start[2] if len(start) > 2 else history.normal_start, history.normal_start)
+    first = history.normal_start
+    P = None if first is None else (start[2] if len(start) > 2 else first, first)
     if history.start == start[:2] and (P is None or P[0] == P[1]):
         return history
     ramp = History.piecewise_linear(*zip(start[:2], history.start, strict=True), ramp_steps, P)

@@ -298,6 +298,7 @@ def _sine(table, start):
         P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
         P_mean=table.get("P_mean", _positive, start[2]),
         P_phase_deg=table.get("P_phase_deg", _number, 0.0),
+        by_cycle=True,
     )
 
 
