@@ -557,7 +557,7 @@ class PiecewiseLinear(Formed):
         if self.vertex_P is not None and np.any(self.vertex_P <= 0):  # first reached inside the segment before
             vertex = int(np.flatnonzero(self.vertex_P <= 0)[0])
             steps = np.arange(self.vertex_step[max(vertex - 1, 0)], self.vertex_step[vertex] + 1)
-            P = self._formed(self.vertex_P, steps)
+            P = self._formed(self.vertex_P, steps, self._segments(steps))
             lifted = np.flatnonzero(P <= 0)[0]
             raise _lift_off(P[lifted], steps[lifted])
 
@@ -577,9 +577,12 @@ class PiecewiseLinear(Formed):
 
     def at(self, steps):
         steps = np.asarray(steps, dtype=np.int64)
-        cycle = None if self.segment_cycle is None else self._cycles_at(steps)
-        P = None if self.vertex_P is None else self._formed(self.vertex_P, steps)
-        return self._formed(self.vertex_Q, steps), self._formed(self.vertex_sigma, steps), cycle, P
+        segment = self._segments(steps)
+        cycle = (
+            None if self.segment_cycle is None else np.where(steps > 0, self.segment_cycle[segment], 0).astype(np.int32)
+        )
+        P = None if self.vertex_P is None else self._formed(self.vertex_P, steps, segment)
+        return self._formed(self.vertex_Q, steps, segment), self._formed(self.vertex_sigma, steps, segment), cycle, P
 
     def cycle_ends(self):
         return _last_steps(self.segment_cycle, self.vertex_step[1:], self.cycle_count)
@@ -601,11 +604,21 @@ class PiecewiseLinear(Formed):
             return np.broadcast_to(vertices[0], (len(self),))
         return super()._whole(index)
 
-    def _formed(self, vertices, steps):
-        """Loads of one load's `vertices` at `steps` (array of int): the class's formula."""
+    def _segments(self, steps):
+        """The segment of each of `steps` (array of int): the one that ends at or after it (0 at step 0).
+
+        Searched among the vertices from the first step's to the last step's only: a chunk of a long
+        history lies among a few of its vertices.
+        """
+        if steps.size == 0:
+            return np.zeros(0, dtype=np.int64)
+        low, high = np.searchsorted(self.vertex_step, [steps.min(), steps.max()])
+        return np.maximum(np.searchsorted(self.vertex_step[low : high + 1], steps) + (low - 1), 0)
+
+    def _formed(self, vertices, steps, segment):
+        """Loads of one load's `vertices` at `steps` (array of int) in their `segment`s: the class's formula."""
         if np.all(vertices == vertices[0]):
             return np.full(steps.shape, vertices[0])
-        segment = np.maximum(np.searchsorted(self.vertex_step, steps) - 1, 0)  # the segment that ends at or after
         k, n = steps - self.vertex_step[segment], self.steps[segment]
         values = vertices[segment + 1] - vertices[segment]
         values *= k / n
@@ -613,11 +626,6 @@ class PiecewiseLinear(Formed):
         np.copyto(values, vertices[segment + 1], where=k == n)  # each segment ends exactly on its vertex
         np.copyto(values, vertices[0], where=steps == 0)
         return values
-
-    def _cycles_at(self, steps):
-        """Cycle numbers (int32) at `steps` (array of int): their segment's, 0 at step 0."""
-        segment = np.maximum(np.searchsorted(self.vertex_step, steps) - 1, 0)
-        return np.where(steps > 0, self.segment_cycle[segment], 0).astype(np.int32)
 
     @classmethod
     def joined(cls, histories):
