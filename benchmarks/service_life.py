@@ -16,7 +16,11 @@ in a fresh process, on one BLAS thread:
   the Mindlin-Deresiewicz closed form over every cycle (`masing_energy`);
 - peak memory of each at 10 times fewer cycles, to show that it grows with the cycles only by the
   history's loads (histories past 625 cycles record the same 8192 steps);
-- 10^6 cycles: run with ``--million``, else the CPU time extrapolated.
+- 10^6 cycles: run with ``--million``, else the CPU time extrapolated;
+- in-phase sinusoids (a `sine` block, `SINE_STEPS` steps a cycle, the amplitudes above): their
+  cycles repeat and are copied, so the rows show the memory of the history itself (held by one
+  cycle), at 10^4 cycles and 10^5 (10^6 with ``--million``); the energy of the last cycle against
+  that of the 10^4 run's.
 
 The table ends each row with the issue's target and whether it is met ("?" where the row does not
 give that figure).
@@ -55,6 +59,9 @@ GRID = 384
 #: Cycles of the reference run that solves every step: a prefix of the same draws.
 PREFIX = 200
 
+#: Steps a cycle of the periodic rows (a `sine` block, whose cycles repeat and are copied).
+SINE_STEPS = 64
+
 #: A child that runs `fretting run` with the arguments given and prints its CPU time and peak memory.
 WRAPPER = """
 import json, resource, subprocess, sys
@@ -66,19 +73,24 @@ print(json.dumps({"cpu": usage.ru_utime + usage.ru_stime, "peak": usage.ru_maxrs
 ONE_THREAD = {name: "1" for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")}
 
 
-def history_text(cycles, sigma):
-    """The example's contact under `cycles` random cycles (with bulk tension if `sigma`), as a history file."""
+def history_text(cycles, sigma, kind="random"):
+    """The example's contact under `cycles` random cycles (with bulk tension if `sigma`), as a history
+    file; `kind` "sine": in-phase sinusoids of the same amplitudes, `SINE_STEPS` steps a cycle."""
     contact = tomllib.loads(EXAMPLE.read_text())["contact"]
     lines = ["[contact]", *(f"{key} = {value!r}" for key, value in contact.items()), "", "[[loading]]"]
-    lines += ['kind = "random"', f"cycles = {cycles}", f"Q_amplitude = {Q_AMPLITUDE}", f"seed = {SEED}"]
-    lines += [f"steps_per_segment = {STEPS_PER_SEGMENT}"] + ([f"sigma_amplitude = {SIGMA_AMPLITUDE}"] if sigma else [])
+    lines += [f"kind = {kind!r}", f"cycles = {cycles}", f"Q_amplitude = {Q_AMPLITUDE}"]
+    if kind == "random":
+        lines += [f"seed = {SEED}", f"steps_per_segment = {STEPS_PER_SEGMENT}"]
+    else:
+        lines += [f"steps_per_cycle = {SINE_STEPS}"]
+    lines += [f"sigma_amplitude = {SIGMA_AMPLITUDE}"] if sigma else []
     return "\n".join([*lines, ""])
 
 
-def run(folder, cycles, sigma, *options):
-    """``(result file, cpu seconds, peak bytes)`` of `fretting run` on `cycles` random cycles."""
-    source = folder / f"{'in_phase' if sigma else 'Q_alone'}_{cycles}{'_'.join(['', *options])}.toml"
-    source.write_text(history_text(cycles, sigma))
+def run(folder, cycles, sigma, *options, kind="random"):
+    """``(result file, cpu seconds, peak bytes)`` of `fretting run` on `cycles` cycles of `kind` (`history_text`)."""
+    source = folder / f"{kind}_{'in_phase' if sigma else 'Q_alone'}_{cycles}{'_'.join(['', *options])}.toml"
+    source.write_text(history_text(cycles, sigma, kind))
     output = source.with_suffix(".h5")
     command = [sys.executable, "-c", WRAPPER, str(source), "-o", str(output), *options]
     found = subprocess.run(command, check=True, capture_output=True, text=True, env=os.environ | ONE_THREAD)
@@ -155,7 +167,7 @@ def _met(target, row):
 
 def table(rows):
     """The rows as a Markdown table with the issue's targets, and what each energy error is against."""
-    print("| history (random amplitudes) | model | cycles | CPU | peak memory | energy error | target |")
+    print("| history | model | cycles | CPU | peak memory | energy error | target |")
     print("| --- | --- | ---: | ---: | ---: | ---: | --- |")
     for row in rows:
         print(row.line())
@@ -197,6 +209,20 @@ def Q_alone_rows(folder, cycles, million):
     return rows
 
 
+def periodic_rows(folder, million):
+    """In-phase sinusoids (their cycles copied): CPU time and peak memory at 10^4 cycles and at 10^6
+    if `million`, else 10^5, with the energy of the last cycle against the 10^4 run's."""
+    rows, last = [], None
+    for count in (10**4, 10**6 if million else 10**5):
+        output, seconds, peak = run(folder, count, True, kind="sine")
+        energy = fr.load(output).cycle_dissipation.values[-1]
+        error = None if last is None else abs(energy / last - 1)
+        against = "" if last is None else "the last cycle of the 10^4-cycle run"
+        rows.append(Row("sine in phase", _nodes(output), count, seconds, peak, error, against))
+        last = energy
+    return rows
+
+
 def _extrapolated(row, cycles):
     """`row` at `cycles`, its CPU time linear in the cycles; memory and error not known."""
     return Row(row.history, row.model, cycles, row.seconds / row.cycles * cycles, None, None, measured=False)
@@ -206,7 +232,7 @@ def main(short=False, Q_only=False, million=False):
     in_phase, Q_alone = (10**3, 10**4) if short else (10**4, 10**5)
     with tempfile.TemporaryDirectory() as directory:
         folder = Path(directory)
-        rows = [] if Q_only else in_phase_rows(folder, in_phase, million)
+        rows = [] if Q_only else in_phase_rows(folder, in_phase, million) + periodic_rows(folder, million)
         table(rows + Q_alone_rows(folder, Q_alone, million))
 
 
