@@ -51,10 +51,15 @@ history that shakes down repeats its cycles bit for bit.
 
 Stick ends. An end between a stuck and a slipping node is placed by the square-root kink of the
 traction, from the friction deficit of the one and the slip of the other (`kink_end`); slip zones one
-cell wide are common here, as an edge recedes. A stick zone that reaches the outermost node in
-contact ends at the edge, unless that edge slips in the increment (`NormalModel.edges_slip`: it
-recedes, or grows under more shear than Jaeger's rule carries); its slip zone is then narrower than
-a cell, and `edge_end` extrapolates the deficit to it.
+cell wide are common here, as an edge recedes. The deficit is taken against the limit of the slip
+zone's direction, ``f p - s q`` with ``s f p`` the slip zone's traction: a receding edge often slips
+against the traction locked in beside it, and ``f p - |q|`` would then read a stuck node near the
+opposite limit as one near the slip zone's. A slip zone that has reached a former edge of the
+contact ends there (`pinned`), and its end is extrapolated from the slip alone. A stick zone that
+reaches the outermost node in contact ends at the edge, unless that edge slips in the increment
+(`NormalModel.edges_slip`: it recedes, or grows under more shear than Jaeger's rule carries); its
+slip zone is then narrower than a cell, and `edge_end` extrapolates the deficit to it, against the
+limit of the sign of the outermost node's traction.
 """
 
 from __future__ import annotations
@@ -378,23 +383,27 @@ class NormalModel(Model):
         m = self.pairs(outcome.P)
         nodes, a = self.cells(m), self.half_width(outcome.P)
         t = (self.x[nodes] - self.contact.centre) / a
-        limit = self.contact.f * self.force(outcome.P, m)[nodes]
-        deficit = (limit - np.abs(outcome.g[nodes])) / self.h
+        limit, g = self.contact.f * self.force(outcome.P, m)[nodes], outcome.g[nodes]
         locked = np.divide(outcome.locked[nodes], limit, out=np.zeros(t.size), where=limit > 0)
+
+        def deficit(node):
+            """``f p - q`` [Pa] against the limit of the sign of the traction at `node` (the slip zone's)."""
+            return (limit - np.sign(g[node]) * g) / self.h
 
         def located(position, d, slipping, beyond):
             stuck = 2 * slipping - beyond
-            if pinned(np.sign(outcome.g[nodes][slipping]) * locked, stuck, slipping, beyond):
+            if pinned(np.sign(g[slipping]) * locked, stuck, slipping, beyond):
                 end = extrapolated_end(position, d, slipping, beyond)
                 if end is not None:
                     return end
-            return kink_end(position * a, d, deficit, stuck, slipping, self.contact.E_star) / a
+            return kink_end(position * a, d, deficit(slipping), stuck, slipping, self.contact.E_star) / a
 
         zones = stick_zones(t, (outcome.slip - state.episode_start)[nodes], located)
+        outer = (0, t.size - 1)
         zones = [
             tuple(
-                edge_end(t, deficit, side) if bound == side and slips else bound
-                for bound, side, slips in zip(zone, (-1.0, 1.0), outcome.edges, strict=True)
+                edge_end(t, deficit(node), side) if bound == side and slips else bound
+                for bound, side, slips, node in zip(zone, (-1.0, 1.0), outcome.edges, outer, strict=True)
             )
             for zone in zones
         ]
@@ -432,7 +441,8 @@ def kink_end(x, slip, deficit, stuck, slipping, E_star):
     """Stick/slip boundary [m] between the stuck node `stuck` and its neighbour `slipping` (positions `x` [m]).
 
     Near a boundary ``c`` the traction of the stick zone falls short of its limit by ``K sqrt(|x - c|)``
-    (`deficit`, ``f p - |q|`` [Pa]: the square-root kink), and the slip since the episode began grows in
+    (`deficit`, ``f p - s q`` [Pa] with ``s = +/-1`` the sign of the slip zone's traction ``s f p``: the
+    square-root kink), and the slip since the episode began grows in
     the slip zone as ``(4 K / (3 E_star)) |x - c|^(3/2)``: the slip gradient of the kink is
     ``(2 / (pi E_star))`` times its Hilbert transform, ``-pi K sqrt(|x - c|)`` (eq 19 for
     Cattaneo-Mindlin). The deficit of one node and the slip `slip` [m] of the other eliminate ``K``:
@@ -472,7 +482,8 @@ def edge_end(t, deficit, side):
     where that edge slips in the increment (`NormalModel.edges_slip`).
 
     Its slip zone then lies between that node and the contact edge ``t = side``, narrower than a cell
-    (as a receding edge leaves it), with no slipping node: ``deficit^2`` (`kink_end`) is extrapolated
+    (as a receding edge leaves it), with no slipping node: ``deficit^2`` (`kink_end`; against the limit
+    of the sign of the outermost node's traction, which leans towards the edge's slip zone) is extrapolated
     linearly to zero from the two outermost nodes, within ``[t_outer, side]``. Where the deficit does
     not fall outwards (a step that moves the edge by several cells leaves the outermost node far
     from its limit) nothing places the end: it is the middle of ``[t_outer, side]``, as
