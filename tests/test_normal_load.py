@@ -375,3 +375,26 @@ def test_slip_to_traction_is_the_dense_one_and_symmetric(n):
     assert np.max(np.abs(G.sum(axis=1))) < 1e-12 * scale
     with pytest.raises(ValueError, match="even number"):
         slip_to_traction(column[:-1], np.ones(n - 1) / (n - 1))
+
+
+@pytest.mark.parametrize("shift", [1.001, 1.002])
+def test_slip_zone_stops_at_a_former_edge(shift):
+    """A slip zone that advances onto a former edge of the contact ends there (`fretting.models.normal.pinned`).
+
+    A random (P, Q, sigma) walk on a Hertz contact, f = 0.6: the contact grows from step 96 under another
+    ratio of shear to normal load than before it, then recedes; at step 124 the slip zone at the left edge
+    reaches the edge of step 96, where the locked-in traction has its trough, and stops there. Its end
+    is that edge, ``-a(P_96)``, within 1e-3 a, with the cells over the largest contact widened by `shift`
+    (two positions of the cells against that edge).
+    """
+    formed = fr.Contact(fr.Hertz(0.05), E_STAR, 0.6, 1e5)
+    rng = np.random.default_rng(1)
+    P = np.concatenate([[1.0], rng.uniform(0.7, 1.3, 10)]) * formed.P
+    Q = np.concatenate([[0.0], rng.uniform(-0.4, 0.4, 10)]) * formed.f * formed.P
+    sigma = np.concatenate([[0.0], rng.uniform(-0.4, 0.4, 10)]) * formed.f * formed.p0
+    history = History.piecewise_linear(Q, sigma, 16, P=P)
+    largest = Varying().resolved_for(formed, history).half_width
+    result = fr.simulate(formed, history[:125], model=Varying(half_width=shift * largest))
+    former = formed.profile.half_width(history.P[96], E_STAR)[0]
+    a = result.a.values[124]
+    assert abs(result.stick_start.values[124, 0] + former) < 1e-3 * a

@@ -51,10 +51,15 @@ history that shakes down repeats its cycles bit for bit.
 
 Stick ends. An end between a stuck and a slipping node is placed by the square-root kink of the
 traction, from the friction deficit of the one and the slip of the other (`kink_end`); slip zones one
-cell wide are common here, as an edge recedes. A stick zone that reaches the outermost node in
-contact ends at the edge, unless that edge slips in the increment (`NormalModel.edges_slip`: it
-recedes, or grows under more shear than Jaeger's rule carries); its slip zone is then narrower than
-a cell, and `edge_end` extrapolates the deficit to it.
+cell wide are common here, as an edge recedes. The deficit is taken against the limit of the slip
+zone's direction, ``f p - s q`` with ``s f p`` the slip zone's traction: a receding edge often slips
+against the traction locked in beside it, and ``f p - |q|`` would then read a stuck node near the
+opposite limit as one near the slip zone's. A slip zone that has reached a former edge of the
+contact ends there (`pinned`), and its end is extrapolated from the slip alone. A stick zone that
+reaches the outermost node in contact ends at the edge, unless that edge slips in the increment
+(`NormalModel.edges_slip`: it recedes, or grows under more shear than Jaeger's rule carries); its
+slip zone is then narrower than a cell, and `edge_end` extrapolates the deficit to it, against the
+limit of the sign of the outermost node's traction.
 """
 
 from __future__ import annotations
@@ -67,7 +72,7 @@ import numpy as np
 from scipy import linalg, optimize
 
 from fretting.models.base import Model, ModelSpec, Outcome
-from fretting.models.method4 import stick_zones
+from fretting.models.method4 import extrapolated_end, stick_zones
 from fretting.models.solver import Stiffness, solve_increment
 
 if TYPE_CHECKING:
@@ -187,12 +192,14 @@ def flexibility(N, h, E_star):
 @dataclass(frozen=True, eq=False)
 class NormalOutcome(Outcome):
     """An `Outcome` of `NormalModel`: also the normal load ``P`` [N/m] after the increment, its energy
-    density [J/m^2] (the pressure changes within the increment), and whether each contact edge (``x < 0``,
-    ``x > 0``) slips in it (`NormalModel.edges_slip`)."""
+    density [J/m^2] (the pressure changes within the increment), whether each contact edge (``x < 0``,
+    ``x > 0``) slips in it (`NormalModel.edges_slip`), and the nodal forces [N/m] locked in before it
+    (`locked`: the stick ends read former edges from them, `pinned`)."""
 
     P: float = np.nan
     edges: tuple = (False, False)
     density: np.ndarray | None = None
+    locked: np.ndarray | None = None
 
 
 class NormalModel(Model):
@@ -307,7 +314,7 @@ class NormalModel(Model):
     def at_rest(self, state):
         P = self.load(state)
         g = self.forces(state.slip, state.Q, state.sigma, P)
-        return NormalOutcome(g, np.zeros(self.x.size), state.slip, 0.0, P=P, density=np.zeros(self.x.size))
+        return NormalOutcome(g, np.zeros(self.x.size), state.slip, 0.0, P=P, density=np.zeros(self.x.size), locked=g)
 
     def increment(self, state, Q, sigma, guess=None, P=None):
         """The increment to `Q`, `sigma`, `P` [N/m], solved in parts at the loads where cells enter or leave
@@ -317,6 +324,7 @@ class NormalModel(Model):
         if guess is None:
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
         loads = (state.Q, state.sigma, self.load(state))
+        locked = self.forces(state.slip, *loads)
         slip, ds, density = state.slip, np.zeros(self.x.size), np.zeros(self.x.size)
         g, dissipation, P_begin = None, 0.0, loads[2]
         for fraction, m in self.parts(loads[2], P):
@@ -336,7 +344,7 @@ class NormalModel(Model):
             P_begin = P_
             slip = self.free_surface(slip, g, sigma_, m)
         edges = self.edges_slip(loads, (Q, sigma, P))
-        return NormalOutcome(g, ds, slip, dissipation, P=P, density=density, edges=edges)
+        return NormalOutcome(g, ds, slip, dissipation, P=P, density=density, edges=edges, locked=locked)
 
     def edges_slip(self, before, after):
         """Whether each edge of the contact (``x = -a``, ``x = a``) slips in the increment from the loads
@@ -369,20 +377,33 @@ class NormalModel(Model):
     def stick_zones(self, outcome, state):
         """Stick intervals in ``t = (x - centre) / a`` of the contact formed, within the contact of the
         increment's load. An end between a stuck and a slipping node is `kink_end`, from the traction
-        deficit of one and the slip of the other; an end at the outermost node in contact is `edge_end`."""
+        deficit of one and the slip of the other, unless the slip zone has reached a former edge
+        (`pinned`): there it is extrapolated from the slip of two slipping nodes
+        (`fretting.models.method4.extrapolated_end`). An end at the outermost node in contact is `edge_end`."""
         m = self.pairs(outcome.P)
         nodes, a = self.cells(m), self.half_width(outcome.P)
         t = (self.x[nodes] - self.contact.centre) / a
-        deficit = (self.contact.f * self.force(outcome.P, m)[nodes] - np.abs(outcome.g[nodes])) / self.h
+        limit, g = self.contact.f * self.force(outcome.P, m)[nodes], outcome.g[nodes]
+        locked = np.divide(outcome.locked[nodes], limit, out=np.zeros(t.size), where=limit > 0)
+
+        def deficit(node):
+            """``f p - q`` [Pa] against the limit of the sign of the traction at `node` (the slip zone's)."""
+            return (limit - np.sign(g[node]) * g) / self.h
 
         def located(position, d, slipping, beyond):
-            return kink_end(position * a, d, deficit, 2 * slipping - beyond, slipping, self.contact.E_star) / a
+            stuck = 2 * slipping - beyond
+            if pinned(np.sign(g[slipping]) * locked, stuck, slipping, beyond):
+                end = extrapolated_end(position, d, slipping, beyond)
+                if end is not None:
+                    return end
+            return kink_end(position * a, d, deficit(slipping), stuck, slipping, self.contact.E_star) / a
 
         zones = stick_zones(t, (outcome.slip - state.episode_start)[nodes], located)
+        outer = (0, t.size - 1)
         zones = [
             tuple(
-                edge_end(t, deficit, side) if bound == side and slips else bound
-                for bound, side, slips in zip(zone, (-1.0, 1.0), outcome.edges, strict=True)
+                edge_end(t, deficit(node), side) if bound == side and slips else bound
+                for bound, side, slips, node in zip(zone, (-1.0, 1.0), outcome.edges, outer, strict=True)
             )
             for zone in zones
         ]
@@ -420,7 +441,8 @@ def kink_end(x, slip, deficit, stuck, slipping, E_star):
     """Stick/slip boundary [m] between the stuck node `stuck` and its neighbour `slipping` (positions `x` [m]).
 
     Near a boundary ``c`` the traction of the stick zone falls short of its limit by ``K sqrt(|x - c|)``
-    (`deficit`, ``f p - |q|`` [Pa]: the square-root kink), and the slip since the episode began grows in
+    (`deficit`, ``f p - s q`` [Pa] with ``s = +/-1`` the sign of the slip zone's traction ``s f p``: the
+    square-root kink), and the slip since the episode began grows in
     the slip zone as ``(4 K / (3 E_star)) |x - c|^(3/2)``: the slip gradient of the kink is
     ``(2 / (pi E_star))`` times its Hilbert transform, ``-pi K sqrt(|x - c|)`` (eq 19 for
     Cattaneo-Mindlin). The deficit of one node and the slip `slip` [m] of the other eliminate ``K``:
@@ -436,12 +458,32 @@ def kink_end(x, slip, deficit, stuck, slipping, E_star):
     return float(x[stuck] + w * h)
 
 
+def pinned(locked, stuck, slipping, beyond):
+    """Whether the slip zone that ends between the nodes `stuck` and `slipping` has reached a former edge.
+
+    `locked` is the traction locked in before the increment over the limit ``f p`` of the
+    increment's load, signed so that the slip zone's traction is +1. A former edge of the contact
+    (the contact receded to it, or grew on from it under another ratio of shear to normal load)
+    leaves a trough in it: outside, the traction of the band that entered after, from zero;
+    inside, the limit traction of the edge then, rising as the pressure did,
+    ``sqrt(|x - x_edge|)``. The trough lies at the slipping node, ``locked`` rising both into
+    the slip zone (`beyond`) and into the stick zone (`stuck`). Its steep inner rise is carried
+    over into the stick zone's traction, so the stuck node's deficit is not the kink's
+    ``K sqrt(|x - c|)`` that `kink_end` reads; the slip, zero on the stuck side whatever was
+    locked in, still grows from the end by its own law (`NormalModel.stick_zones`).
+    """
+    if not 0 <= beyond < locked.size:
+        return False
+    return bool(locked[beyond] > locked[slipping] < locked[stuck])
+
+
 def edge_end(t, deficit, side):
     """End on `side` (-1 or +1) of a stick zone that reaches the outermost node in contact, in ``t = x / a``,
     where that edge slips in the increment (`NormalModel.edges_slip`).
 
     Its slip zone then lies between that node and the contact edge ``t = side``, narrower than a cell
-    (as a receding edge leaves it), with no slipping node: ``deficit^2`` (`kink_end`) is extrapolated
+    (as a receding edge leaves it), with no slipping node: ``deficit^2`` (`kink_end`; against the limit
+    of the sign of the outermost node's traction, which leans towards the edge's slip zone) is extrapolated
     linearly to zero from the two outermost nodes, within ``[t_outer, side]``. Where the deficit does
     not fall outwards (a step that moves the edge by several cells leaves the outermost node far
     from its limit) nothing places the end: it is the middle of ``[t_outer, side]``, as
