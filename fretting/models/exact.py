@@ -224,15 +224,62 @@ class ExactModel(Model):
         if Q == state.Q:
             slip, q, delta_Q, _ = self._at(state.memory, Q)
             return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
-        walk = (state.memory, state.Q, Q)
+        turning, dissipation = self._walked(state.memory, state.Q, Q)
+        slip, q, delta_Q, c = self._at(turning, Q)
+        a = self.contact.a
+        return Outcome(q, slip - state.slip, slip, dissipation, turning, [(-c / a, c / a)], delta_Q)
+
+    def _walked(self, turning, before, Q):
+        """(open turning points, energy dissipated [J/m]) of the change of the shear force from `before`
+        to `Q` [N/m] with the open `turning` points: the Masing walk (prepared, else walked here) and
+        each loop that it closes, then the branch it ends on, summed in that order."""
+        walk = (turning, before, Q)
         prepared = self._walks.pop(walk, None)
         turning, pieces = masing_increment(*walk) if prepared is None else prepared
         energy, solution = 0.0, self._solution
-        for origin, factor, start, end in pieces:  # each loop that the increment closes, then the branch it ends on
+        for origin, factor, start, end in pieces:
             energy += factor * (solution(origin, factor, end).energy - solution(origin, factor, start).energy)
-        slip, q, delta_Q, c = self._at(turning, Q)
-        a = self.contact.a
-        return Outcome(q, slip - state.slip, slip, self.contact.f**2 * energy, turning, [(-c / a, c / a)], delta_Q)
+        return turning, self.contact.f**2 * energy
+
+    @property
+    def windows(self):
+        """True if `window` gives this model's increments: those of `ExactModel.increment`, not a subclass's."""
+        return type(self).increment is ExactModel.increment
+
+    def window(self, state, loads):
+        """The increments from `state` through the shear forces `loads` [N/m] in turn, as rows.
+
+        Row ``k`` is what `increment` gives for the ``k``-th load from the state the ``k - 1`` before
+        it leave, bit for bit (the same sums in the same order, elementwise over the rows).
+
+        Returns
+        -------
+        slip, q : ndarray, shape (len(loads), N)
+            Slip [m] and traction [Pa] at the nodes after each increment.
+        dissipation : list of float
+            Energy dissipated by each increment [J/m].
+        memory : list of tuple
+            Open turning points [N/m] after each increment.
+        still : ndarray of bool, shape (len(loads),)
+            The increments that leave ``Q`` as it was (their ``ds`` is zero, `increment`).
+        """
+        self.prepare(state, loads)
+        turning, before = state.memory, state.Q
+        dissipation, memory, branches, sums, factors = [], [], [], [], []
+        still = np.asarray(loads) == np.append(before, loads[:-1])
+        for Q in np.asarray(loads, dtype=float).tolist():
+            turning, energy = (turning, 0.0) if Q == before else self._walked(turning, before, Q)
+            origin, factor = masing_origin(turning)
+            branches.append(self._solution(origin, factor, Q))
+            sums.append(self._memory(tuple(turning)))
+            factors.append(_signed(origin, factor, Q))
+            dissipation.append(energy)
+            memory.append(turning)
+            before = Q
+        factors = np.array(factors)[:, None]  # factor x + y as `_added` forms it
+        slip = np.array([branch.slip for branch in branches]) * factors + np.array([summed[0] for summed in sums])
+        q = np.array([branch.q for branch in branches]) * factors + np.array([summed[1] for summed in sums])
+        return slip, q, dissipation, memory, still
 
     def _at(self, turning, Q):
         """Slip [m], traction [Pa] at the nodes, ``delta_Q`` [m] and the stick half-width [m] at `Q`
