@@ -267,13 +267,22 @@ class _Run:
         nodes = np.arange(slip.shape[1])
         start = np.where(stuck[last, nodes], slips[last + 1, nodes], slips[last, nodes])
         episode_start = np.where(begins[last, nodes], start, state.episode_start)
-        tally = self._tallies(state, self.cycle[ahead], slips, model.dissipation_density(ds), np.abs(q[:K]), dissipation)
+        tally = self._tallies(
+            state, self.cycle[ahead], slips, model.dissipation_density(ds), np.abs(q[:K]), dissipation
+        )
         dissipated = state.dissipated
         for energy in dissipation[:K]:  # in order, as step by step
             dissipated += energy
         step = ahead[-1]
         after = State(
-            history.Q[step], history.sigma[step], slips[-1], episode_start, tally, state.model, dissipated, memory[K - 1]
+            history.Q[step],
+            history.sigma[step],
+            slips[-1],
+            episode_start,
+            tally,
+            state.model,
+            dissipated,
+            memory[K - 1],
         )
         return after, solved + K
 
