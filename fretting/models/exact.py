@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import bisect
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
 import numpy as np
 
@@ -154,13 +154,13 @@ def nodes_theta(contact, history, N, offset=0.0):
     return theta
 
 
-@dataclass(frozen=True, eq=False)
-class _Branch:
+class _Branch(NamedTuple):
     """The monotonic solution of one corrective load ``P_c``, per unit of the branch's factor.
 
     Attributes: ``c`` the stick half-width [m]; ``q`` the traction ``f (p - p_c)`` [Pa] and
     ``slip`` ``f g_c`` [m] at the nodes; ``energy`` ``int p g_c dx`` [J/m per unit f^2];
-    ``delta_Q`` ``int f g_c / (pi sqrt(a^2 - x^2)) dx`` [m].
+    ``delta_Q`` ``int f g_c / (pi sqrt(a^2 - x^2)) dx`` [m]. A named tuple: a window of the exact
+    model makes hundreds of them at once (`ExactModel._hertz_branches`).
     """
 
     c: float
@@ -231,15 +231,27 @@ class ExactModel(Model):
 
     def _walked(self, turning, before, Q):
         """(open turning points, energy dissipated [J/m]) of the change of the shear force from `before`
-        to `Q` [N/m] with the open `turning` points: the Masing walk (prepared, else walked here) and
-        each loop that it closes, then the branch it ends on, summed in that order."""
+        to `Q` [N/m] with the open `turning` points: the Masing walk (prepared, else walked here)."""
         walk = (turning, before, Q)
         prepared = self._walks.pop(walk, None)
         turning, pieces = masing_increment(*walk) if prepared is None else prepared
-        energy, solution = 0.0, self._solution
-        for origin, factor, start, end in pieces:
-            energy += factor * (solution(origin, factor, end).energy - solution(origin, factor, start).energy)
-        return turning, self.contact.f**2 * energy
+        return turning, self._dissipated(self._ends(pieces), self._branch)
+
+    def _ends(self, pieces):
+        """``(factor, P_c at the start, P_c at the end)`` [N/m] of each of the Masing walk's `pieces`, in order."""
+        corrective = self._corrective
+        return [
+            (factor, corrective(origin, factor, start), corrective(origin, factor, end))
+            for origin, factor, start, end in pieces
+        ]
+
+    def _dissipated(self, ends, branch):
+        """Energy [J/m] dissipated along the pieces whose `ends` (`_ends`) are given: each loop that the
+        walk closes, then the branch it ends on, summed in that order; ``branch(P_c)`` is the `_Branch`."""
+        energy = 0.0
+        for factor, start, end in ends:
+            energy += factor * (branch(end).energy - branch(start).energy)
+        return self.contact.f**2 * energy
 
     @property
     def windows(self):
@@ -263,19 +275,17 @@ class ExactModel(Model):
         still : ndarray of bool, shape (len(loads),)
             The increments that leave ``Q`` as it was (their ``ds`` is zero, `increment`).
         """
-        self.prepare(state, loads)
-        turning, before = state.memory, state.Q
+        loads = np.asarray(loads, dtype=float)
+        walked, needed = self._walk(state, loads)
+        branch = self._solve(needed).__getitem__
         dissipation, memory, branches, sums, factors = [], [], [], [], []
-        still = np.asarray(loads) == np.append(before, loads[:-1])
-        for Q in np.asarray(loads, dtype=float).tolist():
-            turning, energy = (turning, 0.0) if Q == before else self._walked(turning, before, Q)
-            origin, factor = masing_origin(turning)
-            branches.append(self._solution(origin, factor, Q))
-            sums.append(self._memory(tuple(turning)))
-            factors.append(_signed(origin, factor, Q))
-            dissipation.append(energy)
+        for _, (turning, _), ends, end, factor in walked:
+            dissipation.append(self._dissipated(ends, branch))
             memory.append(turning)
-            before = Q
+            branches.append(branch(end))
+            sums.append(self._memory(turning))
+            factors.append(factor)
+        still = loads == np.append(state.Q, loads[:-1])
         factors = np.array(factors)[:, None]  # factor x + y as `_added` forms it
         slip = np.array([branch.slip for branch in branches]) * factors + np.array([summed[0] for summed in sums])
         q = np.array([branch.q for branch in branches]) * factors + np.array([summed[1] for summed in sums])
@@ -316,42 +326,80 @@ class ExactModel(Model):
         """Solve together the branches that the increments from `state` through the shear forces
         `loads` [N/m], in turn, meet, so that `increment` finds them solved.
 
-        The Masing walk of `loads` is scalar (kept for `increment`); on Hertz the new branches are
-        then one 2-D evaluation (`_hertz_branches`), whose rows equal those of branches solved one
-        at a time bit for bit, so that what is prepared changes no result, only its cost. Other
-        profiles (quadratures) and a subclass with branches of its own (`fretting.models.inphase`)
-        gain nothing: nothing is done.
+        The Masing walk of `loads` is scalar (kept for `increment`), up to the first load of gross
+        slip (``|Q| >= f P``, where the run stops); on Hertz the new branches are then one 2-D
+        evaluation (`_hertz_branches`), whose rows equal those of branches solved one at a time bit
+        for bit, so that what is prepared changes no result, only its cost. Other profiles
+        (quadratures) and a subclass with branches of its own (`fretting.models.inphase`) gain
+        nothing: nothing is done.
         """
-        if not (isinstance(self.contact.profile, Hertz) and type(self)._solved is ExactModel._solved):
+        if not self._together:
             return
-        turning, before, needed, corrective = state.memory, state.Q, {}, self._corrective
-        self._walks.clear()
-        for Q in np.asarray(loads, dtype=float).tolist():
-            if abs(Q) >= self.friction_force:  # gross slip: the run stops there
-                break
+        loads = np.asarray(loads, dtype=float)
+        beyond = np.flatnonzero(np.abs(loads) >= self.friction_force)
+        walked, needed = self._walk(state, loads[: beyond[0]] if beyond.size else loads)
+        self._walks = {walk: after for walk, after, *_ in walked}
+        self._solve(needed)
+
+    @property
+    def _together(self):
+        """True if the branches are solved together: on Hertz, with this class's `_solved`."""
+        return isinstance(self.contact.profile, Hertz) and type(self)._solved is ExactModel._solved
+
+    def _walk(self, state, loads):
+        """The Masing walk from `state` through the shear forces `loads` [N/m] in turn, and the branches it meets.
+
+        Returns
+        -------
+        walked : list of tuple
+            Per load: the walk ``(turning points before, Q before, Q)``, what `masing_increment` gives
+            for it (open turning points after, pieces), the pieces' ends (`_ends`), the corrective
+            load [N/m] of the branch it ends on and that branch's signed factor (`_signed`).
+        needed : dict
+            The corrective loads met [N/m] (keys, values None): the ends of each piece, then the
+            branch each load ends on, in that order.
+        """
+        turning, before, walked, needed = state.memory, state.Q, [], {}
+        for Q in loads.tolist():
             walk = (turning, before, Q)
-            turning, pieces = self._walks[walk] = masing_increment(*walk)
-            for origin, factor, start, end in pieces:  # the branch at each end, in that order
-                needed[corrective(origin, factor, start)] = needed[corrective(origin, factor, end)] = None
-            needed[corrective(*masing_origin(turning), Q)] = None
+            turning, pieces = after = masing_increment(*walk)
+            ends = self._ends(pieces)
+            for _, start, end in ends:
+                needed[start] = needed[end] = None
+            origin, factor = masing_origin(turning)
+            end = self._corrective(origin, factor, Q)
+            needed[end] = None
+            walked.append((walk, after, ends, end, _signed(origin, factor, Q)))
             before = Q
+        return walked, needed
+
+    def _solve(self, needed):
+        """The cache of branches, with the corrective loads `needed` [N/m] solved: on Hertz the new ones
+        together (`_hertz_branches`), else one at a time (`_solved`); a dict ``P_c -> _Branch``."""
+        if not self._together:
+            return {P_c: self._branch(P_c) for P_c in needed}
         if len(self._branches) + len(needed) > CACHED_BRANCHES:
             self._branches.clear()
         new = [P_c for P_c in needed if P_c not in self._branches]
         self._branches |= zip(new, self._hertz_branches(np.array(new, dtype=float)), strict=True)
+        return self._branches
 
     def _corrective(self, origin, factor, Q):
         """Corrective load ``P_c = P - |Q - origin| / (factor f)`` [N/m] of the branch from `origin` [N/m] at `Q`."""
         return self.contact.P - abs(Q - origin) / (factor * self.contact.f)
 
     def _solution(self, origin, factor, Q):
-        """`_Branch` at `Q` [N/m] of the branch from `origin` [N/m] with `factor`, computed once per ``P_c``."""
-        P_c = self._corrective(origin, factor, Q)
-        if P_c not in self._branches:
+        """`_Branch` at `Q` [N/m] of the branch from `origin` [N/m] with `factor` (`_branch`)."""
+        return self._branch(self._corrective(origin, factor, Q))
+
+    def _branch(self, P_c):
+        """`_Branch` of the corrective load `P_c` [N/m], computed once per ``P_c`` (while cached)."""
+        branch = self._branches.get(P_c)
+        if branch is None:
             if len(self._branches) >= CACHED_BRANCHES:
                 self._branches.clear()
-            self._branches[P_c] = self._solved(P_c)
-        return self._branches[P_c]
+            branch = self._branches[P_c] = self._solved(P_c)
+        return branch
 
     def _solved(self, P_c):
         """`_Branch` of the corrective load `P_c` [N/m]: its contact, traction, slip, energy and delta_Q,
@@ -393,11 +441,9 @@ class ExactModel(Model):
         Q = f * contact.P * ((a - c) * (a + c) / a**2)
         energy = cattaneo_mindlin_dissipation(contact, Q) / f**2
         delta_Q = cattaneo_mindlin_compliance(contact, Q)
-        rows = zip(c.tolist(), energy.tolist(), delta_Q.tolist(), q, slip, strict=True)
-        return [  # where c >= a nothing slips (the shape is zero at every node)
-            _Branch(c_k, q_k, slip_k, energy_k, delta_Q_k) if c_k < a else _Branch(a, q_k, slip_k, 0.0, 0.0)
-            for c_k, energy_k, delta_Q_k, q_k, slip_k in rows
-        ]
+        slips = c < a  # elsewhere nothing slips (the shape is zero at every node)
+        c, energy, delta_Q = np.where(slips, c, a), np.where(slips, energy, 0.0), np.where(slips, delta_Q, 0.0)
+        return list(map(_Branch, c.tolist(), q, slip, energy.tolist(), delta_Q.tolist()))
 
 
 def _quadrature_slip_zones(contact, c, x):
