@@ -170,6 +170,24 @@ class _Branch(NamedTuple):
     delta_Q: float
 
 
+class _Walk(NamedTuple):
+    """Masing's rule over several increments (`ExactModel._walk`), one entry per increment in each of
+    ``walks`` (turning points before, ``Q`` before, ``Q`` after [N/m]), ``memory`` (open turning
+    points after), ``first`` (its first entry of ``corrective``), ``pieces`` (number of branch pieces
+    walked) and ``signed`` (the signed factor of the branch it ends on, `_signed`); per entry of
+    ``factor`` and ``corrective``: the start and end of each piece in turn, then the load reached on
+    the branch it ends on, with the branch's factor and its corrective load [N/m].
+    """
+
+    walks: list
+    memory: list
+    first: list
+    pieces: list
+    signed: list
+    factor: list
+    corrective: list
+
+
 class ExactModel(Model):
     """The exact model of a contact on the nodes of a resolved `Exact` spec.
 
@@ -193,7 +211,7 @@ class ExactModel(Model):
         self._fp = contact.f * self._p
         self._branches = {}  # P_c -> _Branch
         self._memories = {}  # turning points -> (slip, q, delta_Q) summed over their branches
-        self._walks = {}  # (turning points, Q before, Q after) -> masing_increment of the steps prepared
+        self._walks = {}  # (turning points, Q before, Q after) -> (turning points after, energy) of the steps prepared
 
     def traction(self, outcome):
         """The traction [Pa]: the model gives it at the nodes directly."""
@@ -231,26 +249,24 @@ class ExactModel(Model):
 
     def _walked(self, turning, before, Q):
         """(open turning points, energy dissipated [J/m]) of the change of the shear force from `before`
-        to `Q` [N/m] with the open `turning` points: the Masing walk (prepared, else walked here)."""
-        walk = (turning, before, Q)
-        prepared = self._walks.pop(walk, None)
-        turning, pieces = masing_increment(*walk) if prepared is None else prepared
-        return turning, self._dissipated(self._ends(pieces), self._branch)
+        to `Q` [N/m] with the open `turning` points: prepared (`prepare`), else walked here (`_walk`)."""
+        prepared = self._walks.pop((turning, before, Q), None)
+        if prepared is not None:
+            return prepared
+        walk = self._walk(turning, before, [Q])
+        return walk.memory[0], self._dissipated(walk, self._solve(walk.corrective)).tolist()[0]
 
-    def _ends(self, pieces):
-        """``(factor, P_c at the start, P_c at the end)`` [N/m] of each of the Masing walk's `pieces`, in order."""
-        corrective = self._corrective
-        return [
-            (factor, corrective(origin, factor, start), corrective(origin, factor, end))
-            for origin, factor, start, end in pieces
-        ]
-
-    def _dissipated(self, ends, branch):
-        """Energy [J/m] dissipated along the pieces whose `ends` (`_ends`) are given: each loop that the
-        walk closes, then the branch it ends on, summed in that order; ``branch(P_c)`` is the `_Branch`."""
-        energy = 0.0
-        for factor, start, end in ends:
-            energy += factor * (branch(end).energy - branch(start).energy)
+    def _dissipated(self, walk, branches):
+        """Energy [J/m] dissipated by each increment of `walk` (`_Walk`), with `branches` (a dict ``P_c ->
+        _Branch`` holding those it meets): per increment, each loop that it closes, then the branch it
+        ends on, ``factor (E(P_c end) - E(P_c start))`` summed in that order from 0, times ``f^2``."""
+        energy_at = np.array([branches[P_c].energy for P_c in walk.corrective])
+        factor, first, pieces = np.array(walk.factor), np.array(walk.first, dtype=int), np.array(walk.pieces)
+        energy = np.zeros(len(walk.memory))
+        for k in range(max(walk.pieces, default=0)):  # the k-th piece of each increment that has one
+            live = pieces > k
+            start = first[live] + 2 * k
+            energy[live] += factor[start] * (energy_at[start + 1] - energy_at[start])
         return self.contact.f**2 * energy
 
     @property
@@ -276,20 +292,17 @@ class ExactModel(Model):
             The increments that leave ``Q`` as it was (their ``ds`` is zero, `increment`).
         """
         loads = np.asarray(loads, dtype=float)
-        walked, needed = self._walk(state, loads)
-        branch = self._solve(needed).__getitem__
-        dissipation, memory, branches, sums, factors = [], [], [], [], []
-        for _, (turning, _), ends, end, factor in walked:
-            dissipation.append(self._dissipated(ends, branch))
-            memory.append(turning)
-            branches.append(branch(end))
-            sums.append(self._memory(turning))
-            factors.append(factor)
+        walk = self._walk(state.memory, state.Q, loads.tolist())
+        branches = self._solve(walk.corrective)
+        ends = [
+            branches[walk.corrective[first + 2 * pieces]] for first, pieces in zip(walk.first, walk.pieces, strict=True)
+        ]
+        sums = [self._memory(turning) for turning in walk.memory]
         still = loads == np.append(state.Q, loads[:-1])
-        factors = np.array(factors)[:, None]  # factor x + y as `_added` forms it
-        slip = np.array([branch.slip for branch in branches]) * factors + np.array([summed[0] for summed in sums])
-        q = np.array([branch.q for branch in branches]) * factors + np.array([summed[1] for summed in sums])
-        return slip, q, dissipation, memory, still
+        factors = np.array(walk.signed)[:, None]  # factor x + y as `_added` forms it
+        slip = np.array([branch.slip for branch in ends]) * factors + np.array([summed[0] for summed in sums])
+        q = np.array([branch.q for branch in ends]) * factors + np.array([summed[1] for summed in sums])
+        return slip, q, self._dissipated(walk, branches).tolist(), walk.memory, still
 
     def _at(self, turning, Q):
         """Slip [m], traction [Pa] at the nodes, ``delta_Q`` [m] and the stick half-width [m] at `Q`
@@ -337,45 +350,44 @@ class ExactModel(Model):
             return
         loads = np.asarray(loads, dtype=float)
         beyond = np.flatnonzero(np.abs(loads) >= self.friction_force)
-        walked, needed = self._walk(state, loads[: beyond[0]] if beyond.size else loads)
-        self._walks = {walk: after for walk, after, *_ in walked}
-        self._solve(needed)
+        walk = self._walk(state.memory, state.Q, (loads[: beyond[0]] if beyond.size else loads).tolist())
+        energy = self._dissipated(walk, self._solve(walk.corrective)).tolist()
+        self._walks = dict(zip(walk.walks, zip(walk.memory, energy, strict=True), strict=True))
 
     @property
     def _together(self):
         """True if the branches are solved together: on Hertz, with this class's `_solved`."""
         return isinstance(self.contact.profile, Hertz) and type(self)._solved is ExactModel._solved
 
-    def _walk(self, state, loads):
-        """The Masing walk from `state` through the shear forces `loads` [N/m] in turn, and the branches it meets.
-
-        Returns
-        -------
-        walked : list of tuple
-            Per load: the walk ``(turning points before, Q before, Q)``, what `masing_increment` gives
-            for it (open turning points after, pieces), the pieces' ends (`_ends`), the corrective
-            load [N/m] of the branch it ends on and that branch's signed factor (`_signed`).
-        needed : dict
-            The corrective loads met [N/m] (keys, values None): the ends of each piece, then the
-            branch each load ends on, in that order.
-        """
-        turning, before, walked, needed = state.memory, state.Q, [], {}
-        for Q in loads.tolist():
-            walk = (turning, before, Q)
-            turning, pieces = after = masing_increment(*walk)
-            ends = self._ends(pieces)
-            for _, start, end in ends:
-                needed[start] = needed[end] = None
+    def _walk(self, turning, before, loads):
+        """`_Walk` of Masing's rule from the open `turning` points and the shear force `before` through
+        the shear forces `loads` [N/m] (a list) in turn: `masing_increment` of each, and the corrective
+        loads of the branches met, all at once (`_corrective` of arrays, elementwise as of scalars)."""
+        walks, memory, first, pieces, signed, origins, factors, ends = [], [], [], [], [], [], [], []
+        for Q in loads:
+            walks.append((turning, before, Q))
+            turning, walked = masing_increment(turning, before, Q)
+            first.append(len(ends))
+            for origin, factor, start, end in walked:
+                origins += (origin, origin)
+                factors += (factor, factor)
+                ends += (start, end)
             origin, factor = masing_origin(turning)
-            end = self._corrective(origin, factor, Q)
-            needed[end] = None
-            walked.append((walk, after, ends, end, _signed(origin, factor, Q)))
+            origins.append(origin)
+            factors.append(factor)
+            ends.append(Q)
+            memory.append(turning)
+            pieces.append(len(walked))
+            signed.append(_signed(origin, factor, Q))
             before = Q
-        return walked, needed
+        corrective = self._corrective(np.array(origins), np.array(factors), np.array(ends)).tolist()
+        return _Walk(walks, memory, first, pieces, signed, factors, corrective)
 
-    def _solve(self, needed):
-        """The cache of branches, with the corrective loads `needed` [N/m] solved: on Hertz the new ones
-        together (`_hertz_branches`), else one at a time (`_solved`); a dict ``P_c -> _Branch``."""
+    def _solve(self, corrective):
+        """A dict ``P_c -> _Branch`` holding the corrective loads `corrective` [N/m] (a list), solved in
+        that order: on Hertz the new ones together (`_hertz_branches`), else one at a time (`_solved`);
+        cached."""
+        needed = dict.fromkeys(corrective)
         if not self._together:
             return {P_c: self._branch(P_c) for P_c in needed}
         if len(self._branches) + len(needed) > CACHED_BRANCHES:
@@ -385,7 +397,8 @@ class ExactModel(Model):
         return self._branches
 
     def _corrective(self, origin, factor, Q):
-        """Corrective load ``P_c = P - |Q - origin| / (factor f)`` [N/m] of the branch from `origin` [N/m] at `Q`."""
+        """Corrective load ``P_c = P - |Q - origin| / (factor f)`` [N/m] of the branch from `origin` [N/m]
+        at `Q`; of arrays elementwise."""
         return self.contact.P - abs(Q - origin) / (factor * self.contact.f)
 
     def _solution(self, origin, factor, Q):
