@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from fretting.engine.state import State, Tally
+from fretting.engine.state import State, Tally, _unknown
 from fretting.errors import GrossSlipError, SolverError
 from fretting.physics.surface import bulk_stress
 
@@ -153,6 +153,12 @@ class _Run:
         self.solved = np.flatnonzero(~self.skip)  # the last step is never skipped
         self.prepare = getattr(model, "prepare", None)
         self.prepared = 0  # the steps before it are prepared
+        windows = getattr(model, "windows", False) and not self.stress and tally and observe is None and guess is None
+        if windows and history.P is None:
+            self.windowed = ~self.skip & (recorder.row < 0) & ~self._copyable()
+            self.windowed[0] = False  # it may be the state at rest
+        else:
+            self.windowed = np.zeros(len(history), dtype=bool)
 
     def follow(self, state):
         """Run from `state`; return the state at the end."""
@@ -183,6 +189,13 @@ class _Run:
                 steps.extend([None] * (after - step))
                 step = after
                 continue
+            if self.windowed[step]:
+                windowed = self._window(state, solved)
+                if windowed is not None:
+                    state, solved = windowed
+                    step = int(self.solved[solved - 1]) + 1
+                    before = previous = None  # no copies of cycles solved in a window (`_copyable`)
+                    continue
             if self.prepare is not None and step >= self.prepared:
                 ahead = self.solved[solved : solved + PREPARED_STEPS]
                 self.prepare(state, history.Q[ahead])
@@ -203,6 +216,112 @@ class _Run:
         if state.tally.number:
             self._cycle(state.tally.number, state.tally, repeated)
         return state
+
+    def _copyable(self):
+        """Steps of the stretches (load cycles, or the steps outside them) that the stretch after might
+        copy (`_repeats`): it has their length, loads and skipped steps. They are solved step by step,
+        so that a copy has the increments of each."""
+        history, n = self.history, len(self.history)
+        bounds = np.concatenate([[0], np.flatnonzero(np.diff(self.cycle)) + 1, [n]])
+        length = np.diff(bounds)
+        behind = np.repeat(np.append(0, length[:-1]), length)  # the length of the stretch before each step's
+        earlier = np.arange(n) - behind
+        same = (history.Q == history.Q[earlier]) & (history.sigma == history.sigma[earlier])
+        same &= self.skip == self.skip[earlier]
+        copies = np.logical_and.reduceat(same, bounds[:-1]) & (length == np.append(0, length[:-1]))
+        return np.repeat(np.append(copies[1:], False), length)
+
+    def _window(self, state, solved):
+        """(state, index in `self.solved` of the next step) after the solved steps from `solved` on that
+        are windowed (`self.windowed`, at most `PREPARED_STEPS`), all at once: the model's rows
+        (`ExactModel.window`), the cycles they complete told to the recorder. None where the first of
+        them is not a sound increment (gross slip, negative energy), for `advance` to raise.
+
+        The results are those of `advance` step by step, bit for bit: the tallies add the rows of
+        each cycle in order (`_folded`), and each node's episode begins again at the last step where it
+        sticks or reverses. Along the steps ``ds`` is the difference of consecutive slips, so a node
+        reverses where the sign of ``ds`` flips (the sign of the episode so far is that of the ``ds``
+        before, or zero where it stuck): the test of `State.advance`, but on the first step.
+        """
+        history, model = self.history, self.model
+        ahead = self.solved[solved : solved + PREPARED_STEPS]
+        sliding = min(model.friction_force, model.contact.f * model.contact.P)
+        ahead = ahead[: _leading(self.windowed[ahead] & (np.abs(history.Q[ahead]) < sliding))]
+        if ahead.size == 0:
+            return None
+        slip, q, dissipation, memory, still = model.window(state, history.Q[ahead])
+        ahead = ahead[: _leading(np.array(dissipation) >= 0)]
+        K = ahead.size
+        if K == 0:
+            return None
+        slips = np.vstack([state.slip, slip[:K]])  # the slip before each step, then after the last
+        ds = slips[1:] - slips[:-1]
+        ds[still[:K]] = 0.0
+        stuck = ds == 0
+        sign = np.sign(ds)
+        turned = np.empty_like(stuck)
+        turned[0] = sign[0] * (state.slip - state.episode_start) < 0
+        turned[1:] = sign[1:] * sign[:-1] < 0
+        begins = stuck | turned
+        last = K - 1 - np.argmax(begins[::-1], axis=0)
+        nodes = np.arange(slip.shape[1])
+        start = np.where(stuck[last, nodes], slips[last + 1, nodes], slips[last, nodes])
+        episode_start = np.where(begins[last, nodes], start, state.episode_start)
+        tally = self._tallies(
+            state, self.cycle[ahead], slips, model.dissipation_density(ds), np.abs(q[:K]), dissipation
+        )
+        dissipated = state.dissipated
+        for energy in dissipation[:K]:  # in order, as step by step
+            dissipated += energy
+        step = ahead[-1]
+        after = State(
+            history.Q[step],
+            history.sigma[step],
+            slips[-1],
+            episode_start,
+            tally,
+            state.model,
+            dissipated,
+            memory[K - 1],
+        )
+        return after, solved + K
+
+    def _tallies(self, state, numbers, slips, w, shear, dissipation):
+        """The tally of the cycle in progress after the rows of a window (`_window`) whose steps are in
+        the cycles `numbers`; the cycles they complete are told to the recorder."""
+        bounds = np.concatenate([[0], np.flatnonzero(np.diff(numbers)) + 1, [numbers.size]])
+        first, length, number = bounds[:-1], np.diff(bounds), numbers[bounds[:-1]]
+        tally = state.tally
+        begun = slips[first[1:]]  # the slip at the start of each later stretch
+        fields = {
+            "w": (np.vstack([tally.w, np.zeros_like(begun)]), w, np.add),
+            "slip_min": (np.vstack([tally.slip_min, begun]), slips[1:], np.minimum),
+            "slip_max": (np.vstack([tally.slip_max, begun]), slips[1:], np.maximum),
+            "q_peak": (np.vstack([tally.q_peak, np.full_like(begun, -np.inf)]), shear, np.maximum),
+        }
+        folded = {name: _folded(op, held, rows, first, length) for name, (held, rows, op) in fields.items()}
+        N = slips.shape[1]
+        for k, (n, start, stop) in enumerate(zip(number.tolist(), first.tolist(), bounds[1:].tolist(), strict=True)):
+            if k:
+                if tally.number:
+                    self._cycle(tally.number, tally, False)
+                tally = Tally.begin(n, slips[start])
+            if n:
+                energy = tally.dissipation
+                for row in range(start, stop):
+                    energy += dissipation[row]
+                unknown = _unknown(N)
+                tally = Tally(
+                    n,
+                    energy,
+                    folded["w"][k],
+                    folded["slip_min"][k],
+                    folded["slip_max"][k],
+                    unknown,
+                    folded["q_peak"][k],
+                    unknown,
+                )
+        return tally
 
     def _cycle(self, number, tally, repeated):
         if self.recorder is not None:
@@ -250,3 +369,22 @@ class _Run:
         # summed step by step, in order, as solving the cycles would: np.cumsum adds sequentially
         dissipated = np.cumsum(np.concatenate([[last.dissipated], np.tile(per_step, copies)]))[-1]
         return replace(last, tally=replace(last.tally, number=first + copies - 1), dissipated=float(dissipated))
+
+
+def _leading(mask):
+    """Number of leading True in the boolean array `mask`."""
+    return mask.size if mask.all() else int(np.argmin(mask))
+
+
+def _folded(op, held, rows, first, length):
+    """``op`` of each stretch's `held` row with its `rows` (the `length` rows from `first`), applied
+    row after row in order as step by step (a reduction along the rows might add them in another
+    order), one stretch per row of the result."""
+    folded = held.copy()
+    for k in range(int(length.max())):
+        live = length > k
+        if live.all():
+            folded = op(folded, rows[first + k])
+        else:
+            folded[live] = op(folded[live], rows[first[live] + k])
+    return folded

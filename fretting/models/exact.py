@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import bisect
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
 import numpy as np
 
@@ -154,13 +154,13 @@ def nodes_theta(contact, history, N, offset=0.0):
     return theta
 
 
-@dataclass(frozen=True, eq=False)
-class _Branch:
+class _Branch(NamedTuple):
     """The monotonic solution of one corrective load ``P_c``, per unit of the branch's factor.
 
     Attributes: ``c`` the stick half-width [m]; ``q`` the traction ``f (p - p_c)`` [Pa] and
     ``slip`` ``f g_c`` [m] at the nodes; ``energy`` ``int p g_c dx`` [J/m per unit f^2];
-    ``delta_Q`` ``int f g_c / (pi sqrt(a^2 - x^2)) dx`` [m].
+    ``delta_Q`` ``int f g_c / (pi sqrt(a^2 - x^2)) dx`` [m]. A named tuple: a window of the exact
+    model makes hundreds of them at once (`ExactModel._hertz_branches`).
     """
 
     c: float
@@ -168,6 +168,24 @@ class _Branch:
     slip: np.ndarray
     energy: float
     delta_Q: float
+
+
+class _Walk(NamedTuple):
+    """Masing's rule over several increments (`ExactModel._walk`), one entry per increment in each of
+    ``walks`` (turning points before, ``Q`` before, ``Q`` after [N/m]), ``memory`` (open turning
+    points after), ``first`` (its first entry of ``corrective``), ``pieces`` (number of branch pieces
+    walked) and ``signed`` (the signed factor of the branch it ends on, `_signed`); per entry of
+    ``factor`` and ``corrective``: the start and end of each piece in turn, then the load reached on
+    the branch it ends on, with the branch's factor and its corrective load [N/m].
+    """
+
+    walks: list
+    memory: list
+    first: list
+    pieces: list
+    signed: list
+    factor: list
+    corrective: list
 
 
 class ExactModel(Model):
@@ -193,7 +211,7 @@ class ExactModel(Model):
         self._fp = contact.f * self._p
         self._branches = {}  # P_c -> _Branch
         self._memories = {}  # turning points -> (slip, q, delta_Q) summed over their branches
-        self._walks = {}  # (turning points, Q before, Q after) -> masing_increment of the steps prepared
+        self._walks = {}  # (turning points, Q before, Q after) -> (turning points after, energy) of the steps prepared
 
     def traction(self, outcome):
         """The traction [Pa]: the model gives it at the nodes directly."""
@@ -224,15 +242,67 @@ class ExactModel(Model):
         if Q == state.Q:
             slip, q, delta_Q, _ = self._at(state.memory, Q)
             return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
-        walk = (state.memory, state.Q, Q)
-        prepared = self._walks.pop(walk, None)
-        turning, pieces = masing_increment(*walk) if prepared is None else prepared
-        energy, solution = 0.0, self._solution
-        for origin, factor, start, end in pieces:  # each loop that the increment closes, then the branch it ends on
-            energy += factor * (solution(origin, factor, end).energy - solution(origin, factor, start).energy)
+        turning, dissipation = self._walked(state.memory, state.Q, Q)
         slip, q, delta_Q, c = self._at(turning, Q)
         a = self.contact.a
-        return Outcome(q, slip - state.slip, slip, self.contact.f**2 * energy, turning, [(-c / a, c / a)], delta_Q)
+        return Outcome(q, slip - state.slip, slip, dissipation, turning, [(-c / a, c / a)], delta_Q)
+
+    def _walked(self, turning, before, Q):
+        """(open turning points, energy dissipated [J/m]) of the change of the shear force from `before`
+        to `Q` [N/m] with the open `turning` points: prepared (`prepare`), else walked here (`_walk`)."""
+        prepared = self._walks.pop((turning, before, Q), None)
+        if prepared is not None:
+            return prepared
+        walk = self._walk(turning, before, [Q])
+        return walk.memory[0], self._dissipated(walk, self._solve(walk.corrective)).tolist()[0]
+
+    def _dissipated(self, walk, branches):
+        """Energy [J/m] dissipated by each increment of `walk` (`_Walk`), with `branches` (a dict ``P_c ->
+        _Branch`` holding those it meets): per increment, each loop that it closes, then the branch it
+        ends on, ``factor (E(P_c end) - E(P_c start))`` summed in that order from 0, times ``f^2``."""
+        energy_at = np.array([branches[P_c].energy for P_c in walk.corrective])
+        factor, first, pieces = np.array(walk.factor), np.array(walk.first, dtype=int), np.array(walk.pieces)
+        energy = np.zeros(len(walk.memory))
+        for k in range(max(walk.pieces, default=0)):  # the k-th piece of each increment that has one
+            live = pieces > k
+            start = first[live] + 2 * k
+            energy[live] += factor[start] * (energy_at[start + 1] - energy_at[start])
+        return self.contact.f**2 * energy
+
+    @property
+    def windows(self):
+        """True if `window` gives this model's increments: those of `ExactModel.increment`, not a subclass's."""
+        return type(self).increment is ExactModel.increment
+
+    def window(self, state, loads):
+        """The increments from `state` through the shear forces `loads` [N/m] in turn, as rows.
+
+        Row ``k`` is what `increment` gives for the ``k``-th load from the state the ``k - 1`` before
+        it leave, bit for bit (the same sums in the same order, elementwise over the rows).
+
+        Returns
+        -------
+        slip, q : ndarray, shape (len(loads), N)
+            Slip [m] and traction [Pa] at the nodes after each increment.
+        dissipation : list of float
+            Energy dissipated by each increment [J/m].
+        memory : list of tuple
+            Open turning points [N/m] after each increment.
+        still : ndarray of bool, shape (len(loads),)
+            The increments that leave ``Q`` as it was (their ``ds`` is zero, `increment`).
+        """
+        loads = np.asarray(loads, dtype=float)
+        walk = self._walk(state.memory, state.Q, loads.tolist())
+        branches = self._solve(walk.corrective)
+        ends = [
+            branches[walk.corrective[first + 2 * pieces]] for first, pieces in zip(walk.first, walk.pieces, strict=True)
+        ]
+        sums = [self._memory(turning) for turning in walk.memory]
+        still = loads == np.append(state.Q, loads[:-1])
+        factors = np.array(walk.signed)[:, None]  # factor x + y as `_added` forms it
+        slip = np.array([branch.slip for branch in ends]) * factors + np.array([summed[0] for summed in sums])
+        q = np.array([branch.q for branch in ends]) * factors + np.array([summed[1] for summed in sums])
+        return slip, q, self._dissipated(walk, branches).tolist(), walk.memory, still
 
     def _at(self, turning, Q):
         """Slip [m], traction [Pa] at the nodes, ``delta_Q`` [m] and the stick half-width [m] at `Q`
@@ -269,42 +339,80 @@ class ExactModel(Model):
         """Solve together the branches that the increments from `state` through the shear forces
         `loads` [N/m], in turn, meet, so that `increment` finds them solved.
 
-        The Masing walk of `loads` is scalar (kept for `increment`); on Hertz the new branches are
-        then one 2-D evaluation (`_hertz_branches`), whose rows equal those of branches solved one
-        at a time bit for bit, so that what is prepared changes no result, only its cost. Other
-        profiles (quadratures) and a subclass with branches of its own (`fretting.models.inphase`)
-        gain nothing: nothing is done.
+        The Masing walk of `loads` is scalar (kept for `increment`), up to the first load of gross
+        slip (``|Q| >= f P``, where the run stops); on Hertz the new branches are then one 2-D
+        evaluation (`_hertz_branches`), whose rows equal those of branches solved one at a time bit
+        for bit, so that what is prepared changes no result, only its cost. Other profiles
+        (quadratures) and a subclass with branches of its own (`fretting.models.inphase`) gain
+        nothing: nothing is done.
         """
-        if not (isinstance(self.contact.profile, Hertz) and type(self)._solved is ExactModel._solved):
+        if not self._together:
             return
-        turning, before, needed, corrective = state.memory, state.Q, {}, self._corrective
-        self._walks.clear()
-        for Q in np.asarray(loads, dtype=float).tolist():
-            if abs(Q) >= self.friction_force:  # gross slip: the run stops there
-                break
-            walk = (turning, before, Q)
-            turning, pieces = self._walks[walk] = masing_increment(*walk)
-            for origin, factor, start, end in pieces:  # the branch at each end, in that order
-                needed[corrective(origin, factor, start)] = needed[corrective(origin, factor, end)] = None
-            needed[corrective(*masing_origin(turning), Q)] = None
+        loads = np.asarray(loads, dtype=float)
+        beyond = np.flatnonzero(np.abs(loads) >= self.friction_force)
+        walk = self._walk(state.memory, state.Q, (loads[: beyond[0]] if beyond.size else loads).tolist())
+        energy = self._dissipated(walk, self._solve(walk.corrective)).tolist()
+        self._walks = dict(zip(walk.walks, zip(walk.memory, energy, strict=True), strict=True))
+
+    @property
+    def _together(self):
+        """True if the branches are solved together: on Hertz, with this class's `_solved`."""
+        return isinstance(self.contact.profile, Hertz) and type(self)._solved is ExactModel._solved
+
+    def _walk(self, turning, before, loads):
+        """`_Walk` of Masing's rule from the open `turning` points and the shear force `before` through
+        the shear forces `loads` [N/m] (a list) in turn: `masing_increment` of each, and the corrective
+        loads of the branches met, all at once (`_corrective` of arrays, elementwise as of scalars)."""
+        walks, memory, first, pieces, signed, origins, factors, ends = [], [], [], [], [], [], [], []
+        for Q in loads:
+            walks.append((turning, before, Q))
+            turning, walked = masing_increment(turning, before, Q)
+            first.append(len(ends))
+            for origin, factor, start, end in walked:
+                origins += (origin, origin)
+                factors += (factor, factor)
+                ends += (start, end)
+            origin, factor = masing_origin(turning)
+            origins.append(origin)
+            factors.append(factor)
+            ends.append(Q)
+            memory.append(turning)
+            pieces.append(len(walked))
+            signed.append(_signed(origin, factor, Q))
             before = Q
+        corrective = self._corrective(np.array(origins), np.array(factors), np.array(ends)).tolist()
+        return _Walk(walks, memory, first, pieces, signed, factors, corrective)
+
+    def _solve(self, corrective):
+        """A dict ``P_c -> _Branch`` holding the corrective loads `corrective` [N/m] (a list), solved in
+        that order: on Hertz the new ones together (`_hertz_branches`), else one at a time (`_solved`);
+        cached."""
+        needed = dict.fromkeys(corrective)
+        if not self._together:
+            return {P_c: self._branch(P_c) for P_c in needed}
         if len(self._branches) + len(needed) > CACHED_BRANCHES:
             self._branches.clear()
         new = [P_c for P_c in needed if P_c not in self._branches]
         self._branches |= zip(new, self._hertz_branches(np.array(new, dtype=float)), strict=True)
+        return self._branches
 
     def _corrective(self, origin, factor, Q):
-        """Corrective load ``P_c = P - |Q - origin| / (factor f)`` [N/m] of the branch from `origin` [N/m] at `Q`."""
+        """Corrective load ``P_c = P - |Q - origin| / (factor f)`` [N/m] of the branch from `origin` [N/m]
+        at `Q`; of arrays elementwise."""
         return self.contact.P - abs(Q - origin) / (factor * self.contact.f)
 
     def _solution(self, origin, factor, Q):
-        """`_Branch` at `Q` [N/m] of the branch from `origin` [N/m] with `factor`, computed once per ``P_c``."""
-        P_c = self._corrective(origin, factor, Q)
-        if P_c not in self._branches:
+        """`_Branch` at `Q` [N/m] of the branch from `origin` [N/m] with `factor` (`_branch`)."""
+        return self._branch(self._corrective(origin, factor, Q))
+
+    def _branch(self, P_c):
+        """`_Branch` of the corrective load `P_c` [N/m], computed once per ``P_c`` (while cached)."""
+        branch = self._branches.get(P_c)
+        if branch is None:
             if len(self._branches) >= CACHED_BRANCHES:
                 self._branches.clear()
-            self._branches[P_c] = self._solved(P_c)
-        return self._branches[P_c]
+            branch = self._branches[P_c] = self._solved(P_c)
+        return branch
 
     def _solved(self, P_c):
         """`_Branch` of the corrective load `P_c` [N/m]: its contact, traction, slip, energy and delta_Q,
@@ -346,11 +454,9 @@ class ExactModel(Model):
         Q = f * contact.P * ((a - c) * (a + c) / a**2)
         energy = cattaneo_mindlin_dissipation(contact, Q) / f**2
         delta_Q = cattaneo_mindlin_compliance(contact, Q)
-        rows = zip(c.tolist(), energy.tolist(), delta_Q.tolist(), q, slip, strict=True)
-        return [  # where c >= a nothing slips (the shape is zero at every node)
-            _Branch(c_k, q_k, slip_k, energy_k, delta_Q_k) if c_k < a else _Branch(a, q_k, slip_k, 0.0, 0.0)
-            for c_k, energy_k, delta_Q_k, q_k, slip_k in rows
-        ]
+        slips = c < a  # elsewhere nothing slips (the shape is zero at every node)
+        c, energy, delta_Q = np.where(slips, c, a), np.where(slips, energy, 0.0), np.where(slips, delta_Q, 0.0)
+        return list(map(_Branch, c.tolist(), q, slip, energy.tolist(), delta_Q.tolist()))
 
 
 def _quadrature_slip_zones(contact, c, x):

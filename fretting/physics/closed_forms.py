@@ -102,7 +102,8 @@ def hertz_slip_shape(x: ArrayLike, b: ArrayLike) -> np.ndarray:
     z = np.atleast_1d(np.sqrt((X - b) * (X + b)) / b)
     shape = np.zeros(z.shape)  # where z = 0 (inside b) both forms are 0: only the slip zones are evaluated
     large = z >= SHAPE_SERIES_BELOW
-    shape[large] = z[large] * np.sqrt(1 + z[large] ** 2) - np.arcsinh(z[large])
+    z_large = z[large]
+    shape[large] = z_large * np.sqrt(1 + z_large**2) - np.arcsinh(z_large)
     small = (z > 0) & ~large
     if np.any(small):
         w = 2 * np.arcsinh(z[small])
@@ -258,14 +259,14 @@ def masing_increment(turning: Sequence[float], Q_from: float, Q_to: float) -> tu
     turning = list(turning)
     if Q_to == Q_from:
         return tuple(turning), []
-    direction = np.sign(Q_to - Q_from)
+    rising = Q_to > Q_from
     origin = masing_origin(turning)[0]
-    if Q_from != origin and np.sign(Q_from - origin) != direction:
+    if Q_from != origin and (Q_from > origin) != rising:  # a reversal
         turning.append(Q_from)
     pieces, start = [], Q_from
     while True:
         closes = None if not turning else (turning[-2] if len(turning) > 1 else -turning[0])
-        passes = closes is not None and (Q_to - closes) * direction >= 0
+        passes = closes is not None and (Q_to >= closes if rising else Q_to <= closes)
         end = closes if passes else Q_to
         pieces.append((*masing_origin(turning), start, end))
         if not passes:
