@@ -20,7 +20,10 @@ in a fresh process, on one BLAS thread:
 - in-phase sinusoids (a `sine` block, `SINE_STEPS` steps a cycle, the amplitudes above): their
   cycles repeat and are copied, so the rows show the memory of the history itself (held by one
   cycle), at 10^4 cycles and 10^5 (10^6 with ``--million``); the energy of the last cycle against
-  that of the 10^4 run's.
+  that of the 10^4 run's;
+- non-periodic out-of-phase cycles (``--out-of-phase`` alone: `out_of_phase_blocks`, every step
+  solved on method 4's mesh), 10^4 and 10^3 cycles at default settings: the energy per cycle of
+  the first `PREFIX_OUT_OF_PHASE` against those cycles on a mesh of ``rtol`` `FINE_RTOL`.
 
 The table ends each row with the issue's target and whether it is met ("?" where the row does not
 give that figure).
@@ -29,9 +32,10 @@ CPU time is the child's user + system time and peak memory its maximum resident 
 (`resource.getrusage` of a wrapper process that runs only that child). Cycles beyond those run
 are extrapolated linearly in the cycles, and printed as such.
 
-Run:  python benchmarks/service_life.py [--short] [--Q-alone] [--million]   (--short: 10^3 cycles in
-phase and 10^4 of Q alone, two minutes; default 10^4 and 10^5, about 15 minutes; --Q-alone: the
-rows of Q alone only; --million: 10^6 cycles of each as well, half an hour more)
+Run:  python benchmarks/service_life.py [--short] [--Q-alone] [--million] [--out-of-phase]   (--short:
+10^3 cycles in phase and 10^4 of Q alone, two minutes; default 10^4 and 10^5, about 15 minutes;
+--Q-alone: the rows of Q alone only; --million: 10^6 cycles of each as well, half an hour more;
+--out-of-phase: those rows only)
 """
 
 import argparse
@@ -59,6 +63,9 @@ GRID = 384
 #: Cycles of the reference run that solves every step: a prefix of the same draws.
 PREFIX = 200
 
+#: Cycles of the out-of-phase rows' reference, and its rtol (the default's is 1e-4).
+PREFIX_OUT_OF_PHASE, FINE_RTOL = 20, 1e-5
+
 #: Steps a cycle of the periodic rows (a `sine` block, whose cycles repeat and are copied).
 SINE_STEPS = 64
 
@@ -74,17 +81,38 @@ ONE_THREAD = {name: "1" for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", 
 
 
 def history_text(cycles, sigma, kind="random"):
-    """The example's contact under `cycles` random cycles (with bulk tension if `sigma`), as a history
-    file; `kind` "sine": in-phase sinusoids of the same amplitudes, `SINE_STEPS` steps a cycle."""
+    """The example's contact under `cycles` cycles as a history file: random in-phase cycles (with
+    bulk tension if `sigma`); `kind` "sine": in-phase sinusoids of the same amplitudes, `SINE_STEPS`
+    steps a cycle; "out_of_phase": `out_of_phase_blocks`."""
     contact = tomllib.loads(EXAMPLE.read_text())["contact"]
-    lines = ["[contact]", *(f"{key} = {value!r}" for key, value in contact.items()), "", "[[loading]]"]
-    lines += [f"kind = {kind!r}", f"cycles = {cycles}", f"Q_amplitude = {Q_AMPLITUDE}"]
+    lines = ["[contact]", *(f"{key} = {value!r}" for key, value in contact.items()), ""]
+    if kind == "out_of_phase":
+        return "\n".join([*lines, *out_of_phase_blocks(cycles)])
+    lines += ["[[loading]]", f"kind = {kind!r}", f"cycles = {cycles}", f"Q_amplitude = {Q_AMPLITUDE}"]
     if kind == "random":
         lines += [f"seed = {SEED}", f"steps_per_segment = {STEPS_PER_SEGMENT}"]
     else:
         lines += [f"steps_per_cycle = {SINE_STEPS}"]
     lines += [f"sigma_amplitude = {SIGMA_AMPLITUDE}"] if sigma else []
     return "\n".join([*lines, ""])
+
+
+def out_of_phase_blocks(cycles):
+    """History-file blocks of `cycles` non-periodic out-of-phase cycles: cycle ``k`` goes round the
+    octagon ``(A_k cos(theta), B_k sin(theta))``, ``theta = 2 pi j / 8``, ``A_k / Q_AMPLITUDE`` and
+    ``B_k / SIGMA_AMPLITUDE`` drawn uniformly from [0.5, 1) (seed `SEED`), `STEPS_PER_SEGMENT` / 4
+    steps a segment (32 a cycle), after a first loading to ``(A_1, 0)``; one block a cycle."""
+    amplitude = np.random.default_rng(SEED).random((cycles, 2)) * 0.5 + 0.5
+    theta = 2 * np.pi * np.arange(1, 9) / 8
+    steps = f"steps_per_segment = {STEPS_PER_SEGMENT // 4}"
+    lines = ["[[loading]]", 'kind = "linear"', f"Q = [{float(Q_AMPLITUDE * amplitude[0, 0])!r}]", steps, ""]
+    for A, B in amplitude:
+        Q, sigma = (
+            ", ".join(map(repr, values.tolist()))
+            for values in (Q_AMPLITUDE * A * np.cos(theta), SIGMA_AMPLITUDE * B * np.sin(theta))
+        )
+        lines += ["[[loading]]", 'kind = "linear"', f"Q = [{Q}]", f"sigma = [{sigma}]", steps, "cycle = true", ""]
+    return lines
 
 
 def run(folder, cycles, sigma, *options, kind="random"):
@@ -223,15 +251,38 @@ def periodic_rows(folder, million):
     return rows
 
 
+def out_of_phase_rows(folder):
+    """Non-periodic out-of-phase cycles (`out_of_phase_blocks`) at default settings, 10^4 and 10^3
+    cycles; the energy per cycle of the first `PREFIX_OUT_OF_PHASE` cycles against those cycles run
+    at ``--rtol`` `FINE_RTOL` (its own change from twice that rtol printed as its convergence)."""
+    reference, coarser = (
+        run(folder, PREFIX_OUT_OF_PHASE, True, "--rtol", str(rtol), kind="out_of_phase")[0]
+        for rtol in (FINE_RTOL, 2 * FINE_RTOL)
+    )
+    energy = fr.load(reference).cycle_dissipation.values
+    converged = worst(fr.load(coarser).cycle_dissipation.values, energy)
+    rows = []
+    for count in (10**4, 10**3):
+        output, seconds, peak = run(folder, count, True, kind="out_of_phase")
+        error = worst(fr.load(output).cycle_dissipation.values[:PREFIX_OUT_OF_PHASE], energy)
+        against = f"--rtol {FINE_RTOL:g} on the first {PREFIX_OUT_OF_PHASE} cycles ({_nodes(reference)}; "
+        against += f"--rtol {2 * FINE_RTOL:g} differs from it by {converged:.1e})"
+        rows.append(Row("out of phase", _nodes(output), count, seconds, peak, error, against))
+    return rows
+
+
 def _extrapolated(row, cycles):
     """`row` at `cycles`, its CPU time linear in the cycles; memory and error not known."""
     return Row(row.history, row.model, cycles, row.seconds / row.cycles * cycles, None, None, measured=False)
 
 
-def main(short=False, Q_only=False, million=False):
+def main(short=False, Q_only=False, million=False, out_of_phase=False):
     in_phase, Q_alone = (10**3, 10**4) if short else (10**4, 10**5)
     with tempfile.TemporaryDirectory() as directory:
         folder = Path(directory)
+        if out_of_phase:
+            table(out_of_phase_rows(folder))
+            return
         rows = [] if Q_only else in_phase_rows(folder, in_phase, million) + periodic_rows(folder, million)
         table(rows + Q_alone_rows(folder, Q_alone, million))
 
@@ -247,5 +298,8 @@ if __name__ == "__main__":
     parser.add_argument("--short", action="store_true", help="10 times fewer cycles: a quick check")
     parser.add_argument("--Q-alone", action="store_true", dest="Q_only", help="the rows of Q alone only")
     parser.add_argument("--million", action="store_true", help="also run 10^6 cycles of each history (minutes)")
+    parser.add_argument(
+        "--out-of-phase", action="store_true", help="the rows of non-periodic out-of-phase cycles only (an hour)"
+    )
     arguments = parser.parse_args()
-    main(arguments.short, arguments.Q_only, arguments.million)
+    main(arguments.short, arguments.Q_only, arguments.million, arguments.out_of_phase)

@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from fretting.engine.state import State, Tally, _unknown
+from fretting.engine.state import State, Tally
 from fretting.errors import GrossSlipError, SolverError
 from fretting.physics.surface import bulk_stress
 
@@ -300,7 +300,6 @@ class _Run:
             "q_peak": (np.vstack([tally.q_peak, np.full_like(begun, -np.inf)]), shear, np.maximum),
         }
         folded = {name: _folded(op, held, rows, first, length) for name, (held, rows, op) in fields.items()}
-        N = slips.shape[1]
         for k, (n, start, stop) in enumerate(zip(number.tolist(), first.tolist(), bounds[1:].tolist(), strict=True)):
             if k:
                 if tally.number:
@@ -310,17 +309,8 @@ class _Run:
                 energy = tally.dissipation
                 for row in range(start, stop):
                     energy += dissipation[row]
-                unknown = _unknown(N)
-                tally = Tally(
-                    n,
-                    energy,
-                    folded["w"][k],
-                    folded["slip_min"][k],
-                    folded["slip_max"][k],
-                    unknown,
-                    folded["q_peak"][k],
-                    unknown,
-                )
+                w, slip_min, slip_max, q_peak = (folded[name][k] for name in ("w", "slip_min", "slip_max", "q_peak"))
+                tally = Tally.without_stress(n, energy, w, slip_min, slip_max, q_peak)
         return tally
 
     def _cycle(self, number, tally, repeated):

@@ -57,6 +57,12 @@ class Tally:
         nothing = np.full(slip.size, -np.inf)
         return cls(number, 0.0, np.zeros(slip.size), slip, slip, nothing, nothing, nothing)
 
+    @classmethod
+    def without_stress(cls, number, dissipation, w, slip_min, slip_max, q_peak):
+        """A tally whose two peaks of ``sigma_xx`` are not known (NaN): that of a run that skips steps."""
+        unknown = _unknown(w.size)
+        return cls(number, dissipation, w, slip_min, slip_max, unknown, q_peak, unknown)
+
     def add(self, dissipation, w, slip, stress, shear):
         """The tally after an increment that dissipated `dissipation` [J/m], `w` [J/m^2] and left `slip` [m],
         the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa].
