@@ -185,7 +185,10 @@ class Row:
 
 
 def _met(target, row):
-    """The target of `row` and whether it is met (a part not run or not extrapolated: unknown)."""
+    """The target of `row` and whether it is met (a part not run or not extrapolated: unknown; an
+    extrapolated row, which carries the fixed costs of the shorter run into every cycle: not judged)."""
+    if not row.measured:
+        return "not judged: extrapolated (--million runs it)"
     limits = [(row.seconds, target[0], f"{target[0]:.0f} s")]
     limits += [(row.peak, target[1], "1 GB")] if target[1] is not None else []
     limits += [(row.error, target[2], f"{target[2]:.0e}")] if target[2] is not None else []
@@ -215,9 +218,10 @@ def in_phase_rows(folder, cycles, million):
         reference = run(folder, prefix, True, *options, "--every-step")[0]
         error = worst(fr.load(output).cycle_dissipation.values[:prefix], fr.load(reference).cycle_dissipation.values)
         against = f"--every-step on the first {prefix} cycles ({_nodes(reference)})"
-        rows.append(Row("in phase", _nodes(output), cycles, seconds, peak, error, against))
+        history = " ".join(["in phase", *options])  # the targets are the default's: of "in phase" alone
+        rows.append(Row(history, _nodes(output), cycles, seconds, peak, error, against))
         fewer = run(folder, cycles // 10, True, *options)
-        rows.append(Row("in phase", _nodes(fewer[0]), cycles // 10, fewer[1], fewer[2], None))
+        rows.append(Row(history, _nodes(fewer[0]), cycles // 10, fewer[1], fewer[2], None))
     if million:
         output, seconds, peak = run(folder, 10**6, True)
         rows.append(Row("in phase", _nodes(output), 10**6, seconds, peak, None))
