@@ -463,40 +463,44 @@ class Formed(History):
     @property
     def Q(self):
         """Shear force at every step [N/m], formed anew."""
-        return self._whole(0)
+        return self._whole(0)[0]
 
     @property
     def sigma(self):
         """Bulk tension at every step [Pa], formed anew."""
-        return self._whole(1)
+        return self._whole(1)[0]
 
     @property
     def cycle(self):
         """Cycle number (int32) of every step, formed anew; None for a history without cycles."""
-        return self._whole(2) if self.has_cycles else None
+        return self._whole(2)[0] if self.has_cycles else None
 
     @property
     def P(self):
         """Normal load at every step [N/m], formed anew; None: the contact's constant ``P``."""
-        return None if self.normal_start is None else self._whole(3)
+        return None if self.normal_start is None else self._whole(3)[0]
 
-    def _whole(self, index):
-        """Item `index` of `at` (0 Q, 1 sigma, 2 cycle, 3 P) at every step, formed `BLOCK_STEPS` steps at a time."""
-        values = None
-        for start in range(0, len(self), BLOCK_STEPS):
+    def _whole(self, *items):
+        """Items `items` of `at` (0 Q, 1 sigma, 2 cycle, 3 P) at every step, formed together in one pass
+        `BLOCK_STEPS` steps at a time; None for an item that `at` gives as None."""
+        wholes = [None] * len(items)
+        for start in range(0, len(self) if items else 0, BLOCK_STEPS):
             steps = np.arange(start, min(start + BLOCK_STEPS, len(self)))
-            block = self.at(steps)[index]
-            if values is None:
-                values = np.empty(len(self), dtype=block.dtype)
-            values[steps] = block
-        return values
+            blocks = self.at(steps)
+            for k, item in enumerate(items):
+                if blocks[item] is not None:
+                    if wholes[k] is None:
+                        wholes[k] = np.empty(len(self), dtype=blocks[item].dtype)
+                    wholes[k][steps] = blocks[item]
+        return wholes
 
     def _steps(self, start, stop):
         return self.at(np.arange(start, stop))
 
     def explicit(self):
         """The same history as a `History` whose arrays hold the loads of every step."""
-        return History(self.Q, self.sigma, self.vertex_step, self.cycle, self.P)
+        Q, sigma, cycle, P = self._whole(0, 1, 2, 3)
+        return History(Q, sigma, self.vertex_step, cycle, P)
 
     def turning_steps(self, max_turn=None, units=(1.0, 1.0)):
         """`History.turning_steps`, taken over slices of about `BLOCK_STEPS` steps from vertex to vertex.
@@ -597,12 +601,12 @@ class PiecewiseLinear(Formed):
             self.vertex_Q, self.vertex_sigma, self.steps, np.ones(self.steps.size, dtype=np.int32), self.vertex_P
         )
 
-    def _whole(self, index):
+    def _whole(self, *items):
         """`Formed._whole`, without an array where a load's vertices are all equal (a read-only broadcast)."""
-        vertices = (self.vertex_Q, self.vertex_sigma, None, self.vertex_P)[index]
-        if vertices is not None and np.all(vertices == vertices[0]):
-            return np.broadcast_to(vertices[0], (len(self),))
-        return super()._whole(index)
+        vertices = {0: self.vertex_Q, 1: self.vertex_sigma, 3: self.vertex_P}
+        constant = {item: vertices[item][0] for item in items if _constant(vertices.get(item))}
+        formed = iter(super()._whole(*(item for item in items if item not in constant)))
+        return [np.broadcast_to(constant[item], (len(self),)) if item in constant else next(formed) for item in items]
 
     def _segments(self, steps):
         """The segment of each of `steps` (array of int): the one that ends at or after it (0 at step 0).
@@ -617,7 +621,7 @@ class PiecewiseLinear(Formed):
 
     def _formed(self, vertices, steps, segment):
         """Loads of one load's `vertices` at `steps` (array of int) in their `segment`s: the class's formula."""
-        if np.all(vertices == vertices[0]):
+        if _constant(vertices):
             return np.full(steps.shape, vertices[0])
         k, n = steps - self.vertex_step[segment], self.steps[segment]
         values = vertices[segment + 1] - vertices[segment]
@@ -706,7 +710,8 @@ class Periodic(Formed):
         cycle, phase = np.divmod(np.maximum(steps - 1, 0), self.period)
         cycle += 1
         phase += 1
-        cycle[steps == 0] = phase[steps == 0] = 0
+        first = steps == 0
+        cycle[first] = phase[first] = 0
         Q, sigma, _, P = self.one.at(phase)
         return Q, sigma, cycle.astype(np.int32), P
 
@@ -795,6 +800,11 @@ def _joined_vertices(histories, ends):
         vertex_step.append(vertices + end)
         last_vertex = vertices[-1] + end if vertices.size else last_vertex
     return np.concatenate(vertex_step)
+
+
+def _constant(vertices):
+    """True where `vertices` (or None) are the loads of a load that keeps one value."""
+    return vertices is not None and bool(np.all(vertices == vertices[0]))
 
 
 def _segment_cycles(segment_cycle, steps):
