@@ -12,6 +12,11 @@ where sigma is held) and then cycled with small amplitudes ``A``; at each amplit
 - sigma cycles, Q held: the same for cycles of ``sigma0 +- A f p0``, printed as ``W / A`` (the
   tension drives the slip zones at the two edges on in turn, each by the amplitude).
 
+Then the energy of the last of two cycles of ``Q`` and ``sigma`` 90 degrees apart, of amplitude
+``1e-4 f P`` and ``1e-4 f p0`` about the same loads, at default settings and at finer rtol
+(the reference of tests/test_trajectories.py::test_energy_of_small_cycles_on_a_locked_in_slip,
+rtol = `ELLIPSE_RTOLS` [1], and its convergence), each with its nodes and CPU time.
+
 Below some amplitude a cycle's traction changes by less than the solver's rounding allowance
 (`fretting.models.solver.ROUNDING` of the largest term of the traction, ``|G| |slip|`` of the
 locked-in slip) and the cycle dissipates nothing.
@@ -19,6 +24,7 @@ locked-in slip) and the cycle dissipates nothing.
 Run:  python benchmarks/small_loops.py
 """
 
+import time
 import warnings
 
 import numpy as np
@@ -56,6 +62,17 @@ def second_cycle(contact, A, moving, rtol=fr.DEFAULT_RTOL):
 
 #: The rtol of the finer runs the defaults are compared with.
 FINE_RTOL = 2e-5
+#: The rtol of the ellipse's runs: the default's, then finer.
+ELLIPSE_RTOLS = (fr.DEFAULT_RTOL, 5e-5, 2e-5, 1e-5)
+
+
+def ellipse_cycle(contact, A, rtol):
+    """Energy [J/m] of the last of two elliptical cycles of ``A f P`` and ``A f p0``, 90 degrees apart,
+    about ``(0.3 f P, 0.2 f p0)``, 16 steps a cycle, on the mesh adapted to `rtol`; its nodes."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.sinusoidal(A * fP, A * fp0, 90, 2, 16, Q_mean=0.3 * fP, sigma_mean=0.2 * fp0)
+    result = fr.simulate(contact, history, rtol=rtol)
+    return result.dissipation.values[history.vertex_step[-2] + 1 :].sum(), result.sizes["x"]
 
 
 def main():
@@ -69,6 +86,14 @@ def main():
             fine = second_cycle(contact, A, moving, FINE_RTOL) / A**power
             row.append(f"{default:.5e}, {fine:.5e}, {default / fine - 1 if fine else float('nan'):+.1e}")
         print(" | ".join(row), flush=True)
+    print("\nellipse of 1e-4 f P and 1e-4 f p0, last cycle: rtol | nodes | CPU s | W [J/m] | W / W(rtol=1e-5) - 1")
+    rows = []
+    for rtol in ELLIPSE_RTOLS:
+        began = time.process_time()
+        W, nodes = ellipse_cycle(contact, 1e-4, rtol)
+        rows.append((rtol, nodes, time.process_time() - began, W))
+    for rtol, nodes, seconds, W in rows:
+        print(f"{rtol:5.0e} | {nodes:5d} | {seconds:6.1f} | {W:.7e} | {W / rows[-1][3] - 1:+.1e}")
 
 
 if __name__ == "__main__":

@@ -140,3 +140,37 @@ def test_a_sampled_mesh_that_falls_back_says_both(contact, small_sample, monkeyp
         result = fr.simulate(contact, history)
     said = " | ".join(str(w.message) for w in caught if issubclass(w.category, fr.ModelFallbackWarning))
     assert result.attrs["model_fallback"] in said and result.attrs["model_sample"] in said
+
+
+def test_an_energy_check_past_the_bound_runs_the_mesh_before_and_says_so(contact, monkeypatch):
+    """Small cycles on a locked-in slip (tests/test_trajectories.py) refine the mesh that locates
+    the ends until their energy per cycle settles; where that would pass the default's bound, the
+    mesh that locates the ends runs, with the change of the energy it still showed."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.sinusoidal(1e-4 * fP, 1e-4 * fp0, 90, 2, 16, Q_mean=0.3 * fP, sigma_mean=0.2 * fp0)
+    checked = adaptation.adapted_model(contact, history)
+    monkeypatch.setattr(adaptation, "RESLIP", 0.0)
+    located = adaptation.adapted_model(contact, history)
+    assert located.theta.size < checked.theta.size
+    monkeypatch.undo()
+    monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", located.theta.size**2 * (history.Q.size - 1))
+    with pytest.warns(fr.ModelFallbackWarning, match="settles the energy per cycle") as said:
+        result = fr.simulate(contact, history)
+    assert result.sizes["x"] == located.theta.size
+    assert result.attrs["model_fallback"] in str(said[0].message)
+    assert "energy per cycle changed by up to" in result.attrs["model_fallback"]
+
+
+@pytest.mark.parametrize("cycle", [np.array([0, 1, 1, 1, 2, 2, 2]), None])
+def test_energy_check_refines_the_increments_of_the_cycle_that_changed(cycle):
+    """Each cycle (each stretch between vertices without cycles) is held to rtol of its own energy,
+    not of the whole history's: 1e-3 of one increment fails the second cycle (3.3e-4 of it), not
+    the history (1.7e-4 of its energy to the last vertex), and only that increment is refined."""
+    turning = fr.History(np.zeros(7), np.zeros(7), np.array([0, 3, 6]), cycle)
+    energy = np.array([0.0, 1, 1, 1, 1, 1, 1])
+    change = np.array([0.0, 0, 0, 0, 0, 1e-3, 0])
+    rows, worst = adaptation._unsettled(turning, energy, change, 2e-4)
+    np.testing.assert_array_equal(rows, [5])
+    assert worst == pytest.approx(1e-3 / 3)
+    rows, worst = adaptation._unsettled(turning, energy, change, 4e-4)
+    assert rows.size == 0 and worst == 0.0

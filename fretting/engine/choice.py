@@ -129,7 +129,13 @@ def _default_model(contact, history, recorded=None):
         return _said(adapted_model(contact, history, DEFAULT_RTOL, MAX_DEFAULT_MESH, recorded, MAX_DEFAULT_WORK))
     except MeshTooLarge as error:
         model = error.model
-        if error.ends is not None:
+        if error.change is not None:
+            reason = (
+                f"{error}, over the default's bound of {MAX_DEFAULT_WORK:.2g}: runs the mesh before it, "
+                f"{model.theta.size} nodes, whose energy per cycle changed by up to {error.change:.1e} of itself "
+                f"from the mesh before that (rtol = {DEFAULT_RTOL:g})"
+            )
+        elif error.ends is not None:
             span = ENERGY_SPAN * DEFAULT_RTOL
             reason = (
                 f"{error}, over the default's bound of {MAX_DEFAULT_WORK:.2g}"

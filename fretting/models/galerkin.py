@@ -73,6 +73,7 @@ __all__ = [
     "DEFAULT_RTOL",
     "GalerkinModel",
     "Mesh",
+    "boundaries",
     "boundary_fraction",
     "clausen1",
     "clausen3_complement",
@@ -81,6 +82,7 @@ __all__ = [
     "located_end",
     "refine",
     "stiffness",
+    "tightened",
     "uniform_theta",
     "zone_fraction",
 ]
@@ -904,10 +906,10 @@ def element_targets(
     for point in breakpoints:  # the traction has the pressure's singular derivative there
         targets = np.minimum(targets, _graded_toward(theta, point, BREAKPOINT_SPAN * _span(point, rtol)))
     status = np.sign(d)
-    inside = np.flatnonzero(status[1:] != status[:-1])  # element k holds a boundary
+    inside, positions = _boundaries(theta, d)
     if inside.size == 0:
         return np.maximum(targets, MIN_SIZE if levels is None else np.maximum(h / 2**levels, MIN_SIZE))
-    ends = np.concatenate([[0.0], [_boundary_position(theta, d, k) for k in inside], [np.pi]])
+    ends = np.concatenate([[0.0], positions, [np.pi]])
     nodes = np.diff(np.concatenate([[0], inside + 1, [d.size]]))
     width = np.diff(ends)
     zone_status = status[np.concatenate([[0], inside + 1])]
@@ -972,6 +974,32 @@ def boundary_fraction(rtol):
     `zone_fraction`.
     """
     return min(zone_fraction(rtol), (rtol / BOUNDARY_ERROR) ** (2 / 5))
+
+
+def boundaries(theta, ds):
+    """Stick/slip boundaries [rad] of the slip increment `ds` [m] (scene order, as for
+    `element_targets`) on the mesh `theta` [rad], ascending, each placed by `_boundary_position`."""
+    return _boundaries(theta, np.asarray(ds, dtype=float)[::-1])[1]
+
+
+def _boundaries(theta, d):
+    """Elements holding a boundary of `d` (theta order) and the boundaries [rad] inside them."""
+    status = np.sign(d)
+    inside = np.flatnonzero(status[1:] != status[:-1])  # element k holds a boundary
+    return inside, np.array([_boundary_position(theta, d, k) for k in inside], dtype=float)
+
+
+def tightened(theta, positions, levels=LEVELS_PER_PASS):
+    """Targets [rad] that bisect the elements holding `positions` [rad] `levels` times, graded
+    around them like a boundary's (``BOUNDARY_GRADING``): where the energy of an increment whose
+    boundaries these are still changes from one mesh to the next
+    (`fretting.engine.adaptation.adapted_model`)."""
+    h = np.diff(theta)
+    targets = np.full(h.size, np.inf)
+    for position in positions:
+        k = min(int(np.searchsorted(theta, position, side="right")) - 1, h.size - 1)
+        targets = np.minimum(targets, _graded_toward(theta, position, max(h[k] / 2**levels, MIN_SIZE)))
+    return targets
 
 
 def _boundary_position(theta, d, k):
