@@ -52,6 +52,7 @@ __all__ = [
     "END_TURN",
     "MAX_TURN",
     "REFINEMENTS",
+    "RESLIP",
     "SAMPLE_TURNS",
     "MeshTooLarge",
     "adapted_mesh",
