@@ -174,3 +174,15 @@ def test_energy_check_refines_the_increments_of_the_cycle_that_changed(cycle):
     assert worst == pytest.approx(1e-3 / 3)
     rows, worst = adaptation._unsettled(turning, energy, change, 4e-4)
     assert rows.size == 0 and worst == 0.0
+
+
+def test_an_energy_check_that_cannot_refine_further_says_so(contact, monkeypatch):
+    """Where the elements holding the boundaries of the increments whose energy still changes can be
+    bisected no further, the mesh runs as it is: recorded and said, with the change it still showed."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.sinusoidal(1e-4 * fP, 1e-4 * fp0, 90, 2, 16, Q_mean=0.3 * fP, sigma_mean=0.2 * fp0)
+    monkeypatch.setattr(adaptation, "tightened", lambda theta, positions: np.full(theta.size - 1, np.inf))
+    with pytest.warns(fr.ModelFallbackWarning, match="can be bisected no further") as said:
+        result = fr.simulate(contact, history)
+    assert result.attrs["model_fallback"] in str(said[0].message)
+    assert "energy per cycle still changed by up to" in result.attrs["model_fallback"]

@@ -92,14 +92,10 @@ class MeshTooLarge(Exception):
     """
 
     def __init__(self, nodes, step, model, ends=None, change=None):
-        if change is not None:
+        if ends is not None:
+            task = "locates the stick ends of the recorded steps" if change is None else "settles the energy per cycle"
             message = (
-                f"the mesh that settles the energy per cycle would need {nodes} nodes, "
-                f"{nodes**2 * ends:.2g} nodes squared times the run's {ends} increments"
-            )
-        elif ends is not None:
-            message = (
-                f"the mesh that locates the stick ends of the recorded steps would need {nodes} nodes, "
+                f"the mesh that {task} would need {nodes} nodes, "
                 f"{nodes**2 * ends:.2g} nodes squared times the run's {ends} increments"
             )
         else:
@@ -285,6 +281,11 @@ def _energy_checked(model, adapt, turning, before):
             return model
         theta = adapt.refined(model.theta, tightened(model.theta, np.concatenate([now.ends[i] for i in unsettled])))
         if np.array_equal(theta, model.theta):  # its elements there are as small as any (MIN_SIZE)
+            reason = (
+                f"the energy per cycle still changed by up to {worst:.1e} of itself (rtol = {adapt.rtol:g}) "
+                f"where the elements holding its boundaries can be bisected no further"
+            )
+            model.spec = replace(model.spec, fallback=reason)
             return model
         adapt.check_work(theta, model, len(turning) - 1, worst)
         spec = model.spec

@@ -126,7 +126,7 @@ def _default_model(contact, history, recorded=None):
         if exact.holds_for(contact, history) is None:
             return exact.resolved_for(contact, history).build(contact)
     try:
-        return _said(adapted_model(contact, history, DEFAULT_RTOL, MAX_DEFAULT_MESH, recorded, MAX_DEFAULT_WORK))
+        model = adapted_model(contact, history, DEFAULT_RTOL, MAX_DEFAULT_MESH, recorded, MAX_DEFAULT_WORK)
     except MeshTooLarge as error:
         model = error.model
         if error.change is not None:
@@ -147,8 +147,7 @@ def _default_model(contact, history, recorded=None):
                 f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
                 f": runs the last mesh within it, {model.theta.size} nodes, coarser than rtol = {DEFAULT_RTOL:g} asks"
             )
-    warnings.warn(f"the default model falls back: {reason}", ModelFallbackWarning, stacklevel=3)
-    model.spec = replace(model.spec, fallback=reason)
+        model.spec = replace(model.spec, fallback=reason)
     return _said(model)
 
 
@@ -192,7 +191,10 @@ def built_model(spec, contact, history, recorded=None):
 
 
 def _said(model):
-    """`model`, with a `MeshSampleWarning` where its mesh was adapted to a sample of the history."""
+    """`model`, with a `ModelFallbackWarning` where its mesh fell back (`Mesh.fallback`) and a
+    `MeshSampleWarning` where it was adapted to a sample of the history."""
+    if model.spec.fallback is not None:
+        warnings.warn(f"the model falls back: {model.spec.fallback}", ModelFallbackWarning, stacklevel=4)
     if model.spec.sample is not None:
         warnings.warn(f"the mesh was {model.spec.sample}", MeshSampleWarning, stacklevel=4)
     return model
