@@ -48,10 +48,10 @@ from fretting.errors import GrossSlipError, SolverError
 __all__ = ["ChebyshevGrid", "Increment", "Stiffness", "chebyshev_angles", "solve_increment"]
 
 #: Rounding allowance on the friction limit, relative to the largest term of the traction: the
-#: solves leave slipping nodes off the limit by a few units of rounding of that term, ten times
-#: less than this on an out-of-phase path near sliding (tests/test_solver.py). A load cycle on a
-#: large locked-in slip whose traction changes by less dissipates nothing, so the allowance is
-#: held no larger than that margin asks (benchmarks/small_loops.py).
+#: solves leave slipping nodes off the limit by a few units of rounding of that term, at least ten
+#: times less than this on an out-of-phase path near sliding (tests/test_solver.py). A load cycle
+#: on a large locked-in slip whose traction changes by less dissipates nothing, so the allowance
+#: is held no larger than that margin asks (benchmarks/small_loops.py).
 ROUNDING = 2e-14
 
 
