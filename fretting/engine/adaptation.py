@@ -189,7 +189,8 @@ def _units(contact):
 def _located(model, adapt, history, recorded):
     """`model`'s mesh refined so that the stick ends of the steps `recorded` of `history` are located
     (`adapted_model`, second stage), then until the energies agree (`_energy_checked`); `model`
-    itself where nothing needs refining."""
+    itself where nothing needs refining. Either way its spec says where increments slip again
+    below the solver's floor (`_below_floor_said`)."""
     units = _units(model.contact)
     steps = history.turning_steps(END_TURN, units)
     turning = history.turning_points(END_TURN, units)
@@ -202,14 +203,36 @@ def _located(model, adapt, history, recorded):
 
     before = _Energies.of(model, turning, observe, with_ends=False)
     theta = adapt.refined(model.theta, targets)
-    if np.array_equal(theta, model.theta):
+    if not np.array_equal(theta, model.theta):
+        adapt.check_work(theta, model, len(steps) - 1)
+        located = _finer(model, theta, adapt.rtol)
+        if np.any(before.checkable(adapt.rtol) & (before.reslip < RESLIP * adapt.rtol)):
+            located = _energy_checked(located, adapt, turning, before)
+        model = located
+    return _below_floor_said(model, before, adapt.rtol)
+
+
+def _finer(model, theta, rtol):
+    """The `GalerkinModel` on `theta` [rad], refined from `model`'s mesh, keeping its sample."""
+    finer = Mesh(rtol, theta).build(model.contact, previous=model)
+    finer.spec = replace(finer.spec, sample=model.spec.sample)
+    return finer
+
+
+def _below_floor_said(model, energies, rtol):
+    """`model`, its spec's ``fallback`` saying how many increments of `energies` slip again below the
+    solver's floor (`_Energies.checkable`), whose energy no mesh holds to `rtol`."""
+    below = np.count_nonzero(~energies.checkable(rtol))
+    if below == 0:
         return model
-    adapt.check_work(theta, model, len(steps) - 1)
-    located = Mesh(adapt.rtol, theta).build(model.contact, previous=model)
-    located.spec = replace(located.spec, sample=model.spec.sample)
-    if not np.any(before.checkable(adapt.rtol) & (before.reslip < RESLIP * adapt.rtol)):
-        return located
-    return _energy_checked(located, adapt, turning, before)
+    note = (
+        f"the energy of {below} increment(s) between turning points that slip again by less than "
+        f"{ROUNDING / rtol:.0e} of the slip locked in is left to the solver's rounding allowance, "
+        f"not held to rtol = {rtol:g}"
+    )
+    fallback = note if model.spec.fallback is None else f"{model.spec.fallback}; {note}"
+    model.spec = replace(model.spec, fallback=fallback)
+    return model
 
 
 #: `_energy_checked` runs where an increment slips, at the nodes that slipped before, by less than
@@ -288,10 +311,7 @@ def _energy_checked(model, adapt, turning, before):
             model.spec = replace(model.spec, fallback=reason)
             return model
         adapt.check_work(theta, model, len(turning) - 1, worst)
-        spec = model.spec
-        model = Mesh(adapt.rtol, theta).build(model.contact, previous=model)
-        model.spec = replace(model.spec, sample=spec.sample)
-        before = now
+        model, before = _finer(model, theta, adapt.rtol), now
     raise SolverError(f"the energy still changed after {REFINEMENTS} refinements ({model.theta.size} nodes)")
 
 
