@@ -35,6 +35,8 @@ from fretting.models.galerkin import (
     BOUNDARY_SPAN,
     DEFAULT_RTOL,
     ENERGY_SPAN,
+    LEVELS_PER_PASS,
+    MIN_SIZE,
     Mesh,
     boundaries,
     element_targets,
@@ -42,7 +44,7 @@ from fretting.models.galerkin import (
     refine,
     tightened,
 )
-from fretting.models.solver import ROUNDING
+from fretting.models.solver import ROUNDING, held_by_allowance
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
@@ -181,6 +183,36 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
     return _located(model, adapt, history, recorded)
 
 
+def _push(model, turning, step):
+    """The change of `model`'s fully stuck traction (eqs 9 and 20, in its measure) from the loads of
+    `turning`'s step before `step` to those of `step`."""
+    before = model.g_stuck(turning.Q[step - 1], turning.sigma[step - 1])
+    return model.g_stuck(turning.Q[step], turning.sigma[step]) - before
+
+
+def _unseen_edges(model, outcome, push):
+    """Targets [rad] of `model`'s elements: ``2^-LEVELS_PER_PASS`` of an edge element whose edge node
+    an increment left stuck within its friction limit under a load change (`push`, as
+    `model.g_stuck`); ``inf`` elsewhere.
+
+    Where the pressure vanishes at the edges (`Profile.VANISHING_EDGES`) the fully stuck traction
+    there is unbounded (eqs 9 and 20), so any load change slips a zone at each edge: one about
+    ``A a / 4`` wide for a reversal of ``Q`` by ``A f P`` at an edge that slipped. The edge node
+    slips once its element is about as narrow as the zone; until then the zone and its energy are
+    unseen. An edge node over its limit that sticks is held there by the solver's rounding
+    allowance (`fretting.models.solver.held_by_allowance`), which no smaller element undoes.
+    """
+    targets = np.full(model.theta.size - 1, np.inf)
+    if not model.contact.profile.VANISHING_EDGES:
+        return targets
+    h = np.diff(model.theta)
+    for node, element in ((-1, 0), (0, -1)):  # nodes in ascending x; theta = 0 is x = a
+        unseen = outcome.ds[node] == 0 and push[node] != 0 and abs(outcome.g[node]) <= model.limit[node]
+        if unseen and h[element] > MIN_SIZE:
+            targets[element] = max(h[element] / 2**LEVELS_PER_PASS, MIN_SIZE)
+    return targets
+
+
 def _units(contact):
     """Units [N/m, Pa] of Q and sigma in which the load path's turns are measured (`MAX_TURN`)."""
     return np.pi * contact.a, 4.0
@@ -197,8 +229,8 @@ def _located(model, adapt, history, recorded):
     spans = _spans(steps, recorded)
     targets = np.full(model.theta.size - 1, np.inf)
 
-    def observe(step, ds):
-        found = element_targets(model.theta, ds, adapt.rtol, model.breakpoints, *spans[step], levels=None)
+    def observe(step, outcome):
+        found = element_targets(model.theta, outcome.ds, adapt.rtol, model.breakpoints, *spans[step], levels=None)
         np.minimum(targets, found, out=targets)
 
     before = _Energies.of(model, turning, observe, with_ends=False)
@@ -220,17 +252,26 @@ def _finer(model, theta, rtol):
 
 
 def _below_floor_said(model, energies, rtol):
-    """`model`, its spec's ``fallback`` saying how many increments of `energies` slip again below the
-    solver's floor (`_Energies.checkable`), whose energy no mesh holds to `rtol`."""
-    below = np.count_nonzero(~energies.checkable(rtol))
-    if below == 0:
+    """`model`, its spec's ``fallback`` saying how many increments of `energies` fall below the
+    solver's floor: those that slip again by too little for any mesh to hold their energy to `rtol`
+    (`_Energies.below_floor`), and those whose load change the rounding allowance held stuck
+    (`_Energies.held`), whose energy is lost."""
+    notes = []
+    if below := np.count_nonzero(energies.below_floor(rtol)):
+        notes.append(
+            f"the energy of {below} increment(s) between turning points that slip again by less than "
+            f"{ROUNDING / rtol:.0e} of the slip locked in is left to the solver's rounding allowance, "
+            f"not held to rtol = {rtol:g}"
+        )
+    if held := np.count_nonzero(energies.held):
+        notes.append(
+            f"{held} increment(s) between turning points take the traction over the friction limit by "
+            f"less than the solver's rounding allowance ({ROUNDING:.0e} of the largest term of the "
+            f"traction) and slip nowhere: what they would dissipate is lost"
+        )
+    if not notes:
         return model
-    note = (
-        f"the energy of {below} increment(s) between turning points that slip again by less than "
-        f"{ROUNDING / rtol:.0e} of the slip locked in is left to the solver's rounding allowance, "
-        f"not held to rtol = {rtol:g}"
-    )
-    fallback = note if model.spec.fallback is None else f"{model.spec.fallback}; {note}"
+    fallback = "; ".join(([] if model.spec.fallback is None else [model.spec.fallback]) + notes)
     model.spec = replace(model.spec, fallback=fallback)
     return model
 
@@ -245,41 +286,50 @@ RESLIP = 10.0
 
 class _Energies(NamedTuple):
     """A pass over the turning points on one mesh: per increment between them (row 0, the start:
-    none), the energy [J/m] dissipated, its stick/slip boundaries [rad], and the ratio of its slip
-    to the slip locked in before, at the nodes that slip again [-] (`RESLIP`; ``inf`` where none does)."""
+    none), the energy [J/m] dissipated, its stick/slip boundaries [rad], the ratio of its slip
+    to the slip locked in before, at the nodes that slip again [-] (`RESLIP`; ``inf`` where none
+    does), and whether it slipped nowhere though its load change took the traction over the limit
+    by less than the solver's rounding allowance (`fretting.models.solver.held_by_allowance`)."""
 
     energy: np.ndarray
     ends: list
     reslip: np.ndarray
+    held: np.ndarray
 
     @classmethod
     def of(cls, model, turning, observe=None, with_ends=True):
-        """Run `turning` on `model` from the virgin state; ``observe(step, ds)`` sees each increment
-        too. Without `with_ends`, ``ends`` is left empty (the pass whose mesh is refined before any
+        """Run `turning` on `model` from the virgin state; ``observe(step, outcome)`` sees each
+        increment too. Without `with_ends`, ``ends`` is left empty (the pass whose mesh is refined before any
         is needed)."""
         energy, ends, reslip = np.zeros(len(turning)), [()] * len(turning), np.full(len(turning), np.inf)
-        slip = np.zeros(model.theta.size)
+        held = np.zeros(len(turning), dtype=bool)
 
-        def watch(step, ds):
+        def watch(step, outcome):
+            ds, before = outcome.ds, outcome.slip - outcome.ds  # exactly the slip before where ds = 0
             energy[step] = model.dissipation(ds)
+            if not ds.any():
+                held[step] = held_by_allowance(outcome.g, model.limit, _push(model, turning, step)).size > 0
             if with_ends:
                 ends[step] = boundaries(model.theta, ds)
-            again = (ds != 0) & (slip != 0)
+            again = (ds != 0) & (before != 0)
             if again.any():
-                reslip[step] = np.max(np.abs(ds[again])) / np.max(np.abs(slip[again]))
-            slip[:] += ds
+                reslip[step] = np.max(np.abs(ds[again])) / np.max(np.abs(before[again]))
             if observe is not None:
-                observe(step, ds)
+                observe(step, outcome)
 
         follow(model, turning, State.virgin(model), observe=watch, tally=False)
-        return cls(energy, ends, reslip)
+        return cls(energy, ends, reslip, held)
+
+    def below_floor(self, rtol):
+        """The increments that re-slip by less than ``ROUNDING / rtol`` of the slip locked in
+        (`RESLIP`): their driving load change is then within ``rtol`` of the solver's rounding
+        allowance on the friction limit (`fretting.models.solver.ROUNDING`) on any mesh."""
+        return self.reslip < ROUNDING / rtol
 
     def checkable(self, rtol):
-        """The increments whose energy a finer mesh can settle to `rtol`: not those that re-slip by
-        less than ``ROUNDING / rtol`` of the slip locked in (`RESLIP`), whose driving load change is
-        then within ``rtol`` of the solver's rounding allowance on the friction limit
-        (`fretting.models.solver.ROUNDING`) on any mesh."""
-        return self.reslip >= ROUNDING / rtol
+        """The increments whose energy a finer mesh can settle to `rtol`: neither `below_floor` nor
+        `held`, where the allowance, not the mesh, decides what they dissipate."""
+        return ~self.below_floor(rtol) & ~self.held
 
 
 def _energy_checked(model, adapt, turning, before):
@@ -290,15 +340,17 @@ def _energy_checked(model, adapt, turning, before):
     the start to each vertex, must change by less than ``rtol`` of itself from one mesh to the
     next (`_unsettled`); where one changes more, the elements holding the boundaries of its
     increments that changed most are bisected `LEVELS_PER_PASS` times (`tightened`) and the
-    turning points run again. Increments below the solver's floor (`_Energies.checkable`) are
-    not held to it. A slip zone that a small load change drives on through slip locked in before
-    can end an element off on the mesh that locates the ends: its energy then errs in proportion
-    to that element, not to its ``5/2`` power (`fretting.models.galerkin.BOUNDARY_ERROR`), and
-    such zones can carry most of a cycle's energy (a ratchet: benchmarks/small_loops.py).
+    turning points run again. Increments below the solver's floor on either mesh
+    (`_Energies.checkable`) are not held to it. A slip zone that a small load change drives on
+    through slip locked in before can end an element off on the mesh that locates the ends: its
+    energy then errs in proportion to that element, not to its ``5/2`` power
+    (`fretting.models.galerkin.BOUNDARY_ERROR`), and such zones can carry most of a cycle's
+    energy (a ratchet: benchmarks/small_loops.py).
     """
     for _ in range(REFINEMENTS):
         now = _Energies.of(model, turning)
-        change = np.where(now.checkable(adapt.rtol), np.abs(now.energy - before.energy), 0.0)
+        checkable = now.checkable(adapt.rtol) & before.checkable(adapt.rtol)
+        change = np.where(checkable, np.abs(now.energy - before.energy), 0.0)
         unsettled, worst = _unsettled(turning, now.energy, change, adapt.rtol)
         if unsettled.size == 0:
             return model
@@ -373,12 +425,14 @@ class _Adaptation:
             model = Mesh(rtol, theta).build(self.contact, previous=model)
             targets, known, directions = np.full(theta.size - 1, np.inf), directions, {}
 
-            def observe(step, ds, model=model, targets=targets, found=directions):
+            def observe(step, outcome, model=model, targets=targets, found=directions):
+                ds = outcome.ds
                 np.minimum(
                     targets,
                     element_targets(model.theta, ds, rtol, model.breakpoints, ENERGY_SPAN, ENERGY_SPAN),
                     out=targets,
                 )
+                np.minimum(targets, _unseen_edges(model, outcome, _push(model, turning, step)), out=targets)
                 found[step] = np.sign(ds).astype(np.int8), model.x
                 if max_nodes is not None and (size := _bisected_size(model.theta, targets)) > max_nodes:
                     raise MeshTooLarge(size, step, model)
@@ -439,8 +493,8 @@ def refined_for(contact, state, history):
     for _ in range(REFINEMENTS):
         targets = np.full(model.theta.size - 1, np.inf)
 
-        def observe(step, ds, model=model, targets=targets):
-            np.minimum(targets, element_targets(model.theta, ds, spec.rtol, model.breakpoints), out=targets)
+        def observe(step, outcome, model=model, targets=targets):
+            np.minimum(targets, element_targets(model.theta, outcome.ds, spec.rtol, model.breakpoints), out=targets)
 
         follow(model, turning, state, observe=observe, tally=False)
         theta = refine(model.theta, targets)

@@ -89,9 +89,9 @@ def follow(model, history, state, recorder=None, observe=None, guess=None, tally
     """Run `history` on `model` from `state` (whose loads are the history's first); return the last state.
 
     `recorder` is told of every step and cycle, and says whether steps are skipped
-    (`Recorder.skipping`, `skippable`); ``observe(step, ds)`` sees the slip increment of every
-    step solved; ``guess(step)`` gives the slip directions to start the solver from, or None;
-    `tally` as for `advance`.
+    (`Recorder.skipping`, `skippable`); ``observe(step, outcome)`` sees the `Outcome` of every
+    step solved (its slip increment ``ds``, traction ``g`` and slip); ``guess(step)`` gives the
+    slip directions to start the solver from, or None; `tally` as for `advance`.
     """
     return _Run(model, history.explicit(), recorder, observe, guess, tally).follow(state)
 
@@ -212,7 +212,7 @@ class _Run:
             at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma) and P in (None, _load(self.model, state))
             outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally, self.stress, P)
             if self.observe is not None and not at_rest:
-                self.observe(step, outcome.ds)
+                self.observe(step, outcome)
             steps.append((outcome, state))
             if recorder is not None:
                 recorder.step(step, outcome, state)

@@ -122,7 +122,8 @@ class Stepper:
             a recorder that skips (`Recorder.skipping`) has the steps of
             `fretting.engine.follow.skippable` skipped.
         observe : callable, optional
-            ``observe(step, ds)`` sees the slip increment of every step solved (mesh adaptation).
+            ``observe(step, outcome)`` sees the `fretting.models.base.Outcome` of every step
+            solved (mesh adaptation).
         guess : callable, optional
             ``guess(step)``: the slip directions to start the solver from at `step`, or None.
         """

@@ -45,7 +45,7 @@ from scipy import linalg
 
 from fretting.errors import GrossSlipError, SolverError
 
-__all__ = ["ChebyshevGrid", "Increment", "Stiffness", "chebyshev_angles", "solve_increment"]
+__all__ = ["ChebyshevGrid", "Increment", "Stiffness", "chebyshev_angles", "held_by_allowance", "solve_increment"]
 
 #: Rounding allowance on the friction limit, relative to the largest term of the traction: the
 #: solves leave slipping nodes off the limit by a few units of rounding of that term, at least ten
@@ -277,6 +277,21 @@ def _over(stiffness, nodes, g, g_stuck, limit, slip):
     candidates = nodes[np.abs(g[nodes]) > limit[nodes]]
     scale = limit[candidates] + np.abs(g_stuck[candidates]) + _rows_times(stiffness.G_abs, candidates, np.abs(slip))
     return candidates[np.abs(g[candidates]) - limit[candidates] > ROUNDING * scale]
+
+
+def held_by_allowance(g, limit, push):
+    """The nodes an increment that slipped nowhere left over the friction limit by its load change.
+
+    `g` [as `limit`] is the traction after the increment, `push` the change of the fully stuck
+    traction it made (``g_stuck`` after less before). A node over its limit after an increment that
+    slipped nowhere is within the rounding allowance (`ROUNDING`); it is over by the load change,
+    not by the rounding of its traction, where the change moved it toward its limit by more than it
+    was over before: what the change would have dissipated there is lost to the allowance
+    (benchmarks/small_loops.py).
+    """
+    excess = np.abs(g) - limit
+    toward = push * np.sign(g)
+    return np.flatnonzero((excess > 0) & (toward > excess - toward))
 
 
 def _rows_product(G, rows, v, g_stuck):

@@ -38,6 +38,10 @@ class Profile(abc.ABC):
     SYMMETRIC = False
     #: Positions [m] where the gap's curvature jumps: the pressure's derivative is singular there.
     breakpoints = ()
+    #: The pressure vanishes at the edges of the contact (it is bounded there, eq 1), where the
+    #: fully stuck traction is unbounded: any change of the loads slips a zone at each edge. Not so
+    #: under the sharp `FlatPunch`, whose pressure is unbounded there as the traction is.
+    VANISHING_EDGES = True
 
     @abc.abstractmethod
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
@@ -116,6 +120,7 @@ class FlatPunch(Profile):
     """
 
     SYMMETRIC = True
+    VANISHING_EDGES = False
 
     def __init__(self, a: float) -> None:
         self.a = positive("a", a)
