@@ -118,6 +118,26 @@ def test_a_continued_run_refines_the_mesh_its_new_loads_need(hertz):
     assert abs(float(tail.total_dissipation) / float(whole.total_dissipation) - 1) < 1e-6
 
 
+def test_a_state_whose_mesh_notes_the_solvers_floor_is_still_refined_for_new_loads(hertz):
+    """A first part that ends in a cycle of 1e-10 f P, which the solver's rounding allowance holds
+    stuck, has that said in its mesh's ``fallback`` (tests/test_trajectories.py); the note is not a
+    cap (`choice.CAPPED`), so the run continued from its state with larger loads has the mesh
+    refined for them, and its energy is the whole run's (on the first part's mesh it erred by
+    1.8e-3, and only the floor's note was said)."""
+    fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
+    Q0, sigma0 = 0.3 * fP, 0.2 * fp0
+    first = fr.History.piecewise_linear([0, Q0, Q0, Q0 - 1e-10 * fP, Q0], [0, 0, sigma0, sigma0, sigma0], 8)
+    second = fr.History.piecewise_linear(
+        np.array([0.3, 0.7, -0.6, 0.7]) * fP, np.array([0.2, -0.6, 0.5, -0.6]) * fp0, 8
+    )
+    with pytest.warns(fr.ModelFallbackWarning, match="slip nowhere"):
+        head = fr.simulate(hertz, first)
+        whole = fr.simulate(hertz, fr.History.concatenate([first, second]))
+    tail = fr.simulate(hertz, second, state=fr.final_state(head))
+    assert tail.sizes["x"] > head.sizes["x"]
+    assert abs(float(tail.total_dissipation) / float(whole.total_dissipation) - 1) < 1e-6
+
+
 def test_a_given_mesh_is_continued_as_it_is(hertz):
     history = _walk(hertz)
     theta = np.linspace(0, np.pi, 65)

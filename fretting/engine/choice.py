@@ -118,6 +118,13 @@ def choose_model(contact: Contact, history: History) -> ModelSpec:
     return _default_model(contact, history).spec
 
 
+#: What the reason of every mesh the default capped at its bounds says (`_default_model`); a state
+#: of such a mesh is continued on it as it is (`continued`). Other notes of a mesh's spec (the
+#: increments below the solver's floor, an energy that could not settle) leave it refined for
+#: the loads that continue it.
+CAPPED = "over the default's bound of"
+
+
 def _default_model(contact, history, recorded=None):
     """The built model of `choose_model` (a mesh's stiffness is assembled once, by its adaptation)."""
     if varies_P(contact, history):
@@ -131,20 +138,20 @@ def _default_model(contact, history, recorded=None):
         model = error.model
         if error.change is not None:
             reason = (
-                f"{error}, over the default's bound of {MAX_DEFAULT_WORK:.2g}: runs the mesh before it, "
+                f"{error}, {CAPPED} {MAX_DEFAULT_WORK:.2g}: runs the mesh before it, "
                 f"{model.theta.size} nodes, whose energy per cycle changed by up to {error.change:.1e} of itself "
                 f"from the mesh before that (rtol = {DEFAULT_RTOL:g})"
             )
         elif error.ends is not None:
             span = ENERGY_SPAN * DEFAULT_RTOL
             reason = (
-                f"{error}, over the default's bound of {MAX_DEFAULT_WORK:.2g}"
+                f"{error}, {CAPPED} {MAX_DEFAULT_WORK:.2g}"
                 f": runs the mesh adapted to the energy, {model.theta.size} nodes, whose stick ends between "
                 f"turning points err by up to about {span:g} a"
             )
         else:
             reason = (
-                f"{error}, over the default's bound of {MAX_DEFAULT_MESH}"
+                f"{error}, {CAPPED} {MAX_DEFAULT_MESH}"
                 f": runs the last mesh within it, {model.theta.size} nodes, coarser than rtol = {DEFAULT_RTOL:g} asks"
             )
         model.spec = replace(model.spec, fallback=reason)
@@ -205,10 +212,10 @@ def continued(contact, state, history):
 
     A state of a `Mesh` adapted to an ``rtol`` has its mesh refined where the new loads need it
     (`fretting.engine.adaptation.refined_for`); any other is continued as it is, and so is a
-    mesh the default capped (its ``fallback`` stays true of it).
+    mesh the default capped (`CAPPED`: its ``fallback`` stays true of it).
     """
     spec = state.model
-    if isinstance(spec, Mesh) and spec.rtol is not None and spec.fallback is None:
+    if isinstance(spec, Mesh) and spec.rtol is not None and CAPPED not in (spec.fallback or ""):
         return refined_for(contact, state, history)
     return None, state
 
