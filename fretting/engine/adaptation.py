@@ -10,9 +10,10 @@ boundaries of the steps between lie in the slip zones of the increment from one 
 to the next, which `element_targets` fills with elements small enough to locate them. Along a
 curved stretch the loads of the steps between lie off the straight increment and their slip
 zones reach where it sticks; cut into pieces that turn by less than `MAX_TURN`, the stretch is
-nearly proportional again. Under ``Q`` alone or ``sigma`` alone on a symmetric profile the mesh is
-kept symmetric, as the solution is. A history that reaches gross slip is adapted to the steps
-before it.
+nearly proportional again. An edge element whose edge node a load change leaves stuck within its
+limit hides the zone that change slips at the edge, and is bisected (`_unseen_edges`). Under ``Q``
+alone or ``sigma`` alone on a symmetric profile the mesh is kept symmetric, as the solution is. A
+history that reaches gross slip is adapted to the steps before it.
 
 Each pass starts the active set at a turning point from the slip directions the pass before found
 there (`_interpolated_directions`), which the answer does not depend on and which saves most of
