@@ -186,3 +186,18 @@ def test_an_energy_check_that_cannot_refine_further_says_so(contact, monkeypatch
         result = fr.simulate(contact, history)
     assert result.attrs["model_fallback"] in str(said[0].message)
     assert "energy per cycle still changed by up to" in result.attrs["model_fallback"]
+
+
+def test_the_load_change_of_a_first_increment_is_from_the_contact_just_formed(contact):
+    """A history that starts at non-zero loads reaches them in one increment from the contact just
+    formed (`follow`), so the load change of its step 0, which `_unseen_edges` and
+    `held_by_allowance` read, is the whole fully stuck traction of its loads, not the change from
+    its last step (here back at the first loads: none)."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.piecewise_linear(np.array([0.3, 0.1, 0.3]) * fP, np.array([0.2, 0.0, 0.2]) * fp0, 1)
+    model = fr.models.Mesh(theta=fr.models.galerkin.initial_theta()).build(contact)
+    np.testing.assert_array_equal(adaptation._push(model, history, 0), model.g_stuck(history.Q[0], history.sigma[0]))
+    np.testing.assert_array_equal(
+        adaptation._push(model, history, 1),
+        model.g_stuck(history.Q[1], history.sigma[1]) - model.g_stuck(history.Q[0], history.sigma[0]),
+    )

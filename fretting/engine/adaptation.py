@@ -185,10 +185,12 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
 
 
 def _push(model, turning, step):
-    """The change of `model`'s fully stuck traction (eqs 9 and 20, in its measure) from the loads of
-    `turning`'s step before `step` to those of `step`."""
-    before = model.g_stuck(turning.Q[step - 1], turning.sigma[step - 1])
-    return model.g_stuck(turning.Q[step], turning.sigma[step]) - before
+    """The change of `model`'s fully stuck traction (eqs 9 and 20, in its measure) that the increment
+    to `turning`'s `step` makes: from the loads of the step before, or at step 0 from the contact
+    just formed, where the adaptation's passes start (`follow` reaches non-zero first loads in one
+    increment)."""
+    after = model.g_stuck(turning.Q[step], turning.sigma[step])
+    return after if step == 0 else after - model.g_stuck(turning.Q[step - 1], turning.sigma[step - 1])
 
 
 def _unseen_edges(model, outcome, push):
@@ -196,11 +198,11 @@ def _unseen_edges(model, outcome, push):
     an increment left stuck within its friction limit under a load change (`push`, as
     `model.g_stuck`); ``inf`` elsewhere.
 
-    Where the pressure vanishes at the edges (`Profile.VANISHING_EDGES`) the fully stuck traction
-    there is unbounded (eqs 9 and 20), so any load change slips a zone at each edge: one about
-    ``A a / 4`` wide for a reversal of ``Q`` by ``A f P`` at an edge that slipped. The edge node
-    slips once its element is about as narrow as the zone; until then the zone and its energy are
-    unseen. An edge node over its limit that sticks is held there by the solver's rounding
+    Where the pressure vanishes at the edges (`fretting.physics.profiles.Profile.VANISHING_EDGES`)
+    the fully stuck traction there is unbounded (eqs 9 and 20), so any load change slips a zone at
+    each edge: one about ``A a / 4`` wide for a reversal of ``Q`` by ``A f P`` at an edge that
+    slipped. The edge node slips once its element is about as narrow as the zone; until then the
+    zone and its energy are unseen. An edge node over its limit that sticks is held there by the solver's rounding
     allowance (`fretting.models.solver.held_by_allowance`), which no smaller element undoes.
     """
     targets = np.full(model.theta.size - 1, np.inf)
@@ -300,8 +302,8 @@ class _Energies(NamedTuple):
     @classmethod
     def of(cls, model, turning, observe=None, with_ends=True):
         """Run `turning` on `model` from the virgin state; ``observe(step, outcome)`` sees each
-        increment too. Without `with_ends`, ``ends`` is left empty (the pass whose mesh is refined before any
-        is needed)."""
+        increment too. Without `with_ends`, ``ends`` is left empty (the pass whose mesh is refined
+        before any is needed)."""
         energy, ends, reslip = np.zeros(len(turning)), [()] * len(turning), np.full(len(turning), np.inf)
         held = np.zeros(len(turning), dtype=bool)
 
