@@ -97,8 +97,8 @@ def test_small_Q_cycles_are_seen_at_the_edges_and_dissipate_or_say_why_not(A):
     wide at the edges, narrower than the initial mesh's edge elements (about 5e-9 a): the edge
     nodes stick, within their limit, and the zones are not seen. The adaptation bisects the edge
     elements until the edge nodes reach their limit (`adaptation._unseen_edges`): cycles of 1e-9
-    then dissipate (nothing, unsaid, before), and smaller ones are held by the solver's rounding
-    allowance. All three lie below the solver's floor, and the dataset says so."""
+    then dissipate, and smaller ones are held by the solver's rounding allowance. All three lie
+    below the solver's floor, and the dataset says so."""
     import small_loops  # benchmarks/, on the path by conftest
 
     contact = small_loops.hertz()
