@@ -193,26 +193,33 @@ def _push(model, turning, step):
     return after if step == 0 else after - model.g_stuck(turning.Q[step - 1], turning.sigma[step - 1])
 
 
-def _unseen_edges(model, outcome, push):
-    """Targets [rad] of `model`'s elements: ``2^-LEVELS_PER_PASS`` of an edge element whose edge node
-    an increment left stuck within its friction limit under a load change (`push`, as
-    `model.g_stuck`); ``inf`` elsewhere.
+def _unseen_edges(model, outcome, turning, step):
+    """Targets [rad] of `model`'s elements after the increment to `turning`'s `step`:
+    ``2^-LEVELS_PER_PASS`` of an edge element whose edge node the increment left stuck within its
+    friction limit under a load change (`_push`); ``inf`` elsewhere; None where neither is.
 
     Where the pressure vanishes at the edges (`fretting.physics.profiles.Profile.VANISHING_EDGES`)
     the fully stuck traction there is unbounded (eqs 9 and 20), so any load change slips a zone at
     each edge: one about ``A a / 4`` wide for a reversal of ``Q`` by ``A f P`` at an edge that
     slipped. The edge node slips once its element is about as narrow as the zone; until then the
-    zone and its energy are unseen. An edge node over its limit that sticks is held there by the solver's rounding
-    allowance (`fretting.models.solver.held_by_allowance`), which no smaller element undoes.
+    zone and its energy are unseen. An edge node over its limit that sticks is held there by the
+    solver's rounding allowance (`fretting.models.solver.held_by_allowance`), which no smaller
+    element undoes.
     """
+    edges = np.array([-1, 0])  # nodes in ascending x: theta = 0 (x = a) is the last
+    if outcome.ds[edges].all() or not model.contact.profile.VANISHING_EDGES:
+        return None
+    h = np.diff(model.theta)[[0, -1]]  # their elements
+    unseen = (
+        (outcome.ds[edges] == 0)
+        & (_push(model, turning, step)[edges] != 0)
+        & (np.abs(outcome.g[edges]) <= model.limit[edges])
+        & (h > MIN_SIZE)
+    )
+    if not unseen.any():
+        return None
     targets = np.full(model.theta.size - 1, np.inf)
-    if not model.contact.profile.VANISHING_EDGES:
-        return targets
-    h = np.diff(model.theta)
-    for node, element in ((-1, 0), (0, -1)):  # nodes in ascending x; theta = 0 is x = a
-        unseen = outcome.ds[node] == 0 and push[node] != 0 and abs(outcome.g[node]) <= model.limit[node]
-        if unseen and h[element] > MIN_SIZE:
-            targets[element] = max(h[element] / 2**LEVELS_PER_PASS, MIN_SIZE)
+    targets[[0, -1]] = np.where(unseen, np.maximum(h / 2**LEVELS_PER_PASS, MIN_SIZE), np.inf)
     return targets
 
 
@@ -435,7 +442,8 @@ class _Adaptation:
                     element_targets(model.theta, ds, rtol, model.breakpoints, ENERGY_SPAN, ENERGY_SPAN),
                     out=targets,
                 )
-                np.minimum(targets, _unseen_edges(model, outcome, _push(model, turning, step)), out=targets)
+                if (edges := _unseen_edges(model, outcome, turning, step)) is not None:
+                    np.minimum(targets, edges, out=targets)
                 found[step] = np.sign(ds).astype(np.int8), model.x
                 if max_nodes is not None and (size := _bisected_size(model.theta, targets)) > max_nodes:
                     raise MeshTooLarge(size, step, model)
