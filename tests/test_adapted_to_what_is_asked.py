@@ -201,3 +201,21 @@ def test_the_load_change_of_a_first_increment_is_from_the_contact_just_formed(co
         adaptation._push(model, history, 1),
         model.g_stuck(history.Q[1], history.sigma[1]) - model.g_stuck(history.Q[0], history.sigma[0]),
     )
+
+
+def test_a_mesh_past_the_default_bound_still_says_the_solvers_floor(contact, monkeypatch):
+    """Cycles of 1e-10 f P on a locked-in slip are held stuck by the solver's rounding allowance,
+    which the adapted mesh's spec says (tests/test_trajectories.py). Where the mesh that locates
+    the ends passes the default's bound of work, the mesh the default runs instead says that
+    bound and the floor both."""
+    import small_loops  # benchmarks/, on the path by conftest
+
+    history = small_loops.cycles(contact, 1e-10, "Q")
+    located = adaptation.adapted_model(contact, history)
+    assert "slip nowhere" in located.spec.fallback
+    monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", (located.theta.size // 2) ** 2 * (history.Q.size - 1))
+    with pytest.warns(fr.ModelFallbackWarning, match="runs the mesh adapted to the energy"):
+        result = fr.simulate(contact, history)
+    assert result.sizes["x"] < located.theta.size
+    assert choice.CAPPED in result.attrs["model_fallback"]
+    assert "slip nowhere: what they would dissipate is lost" in result.attrs["model_fallback"]

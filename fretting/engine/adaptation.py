@@ -231,8 +231,9 @@ def _units(contact):
 def _located(model, adapt, history, recorded):
     """`model`'s mesh refined so that the stick ends of the steps `recorded` of `history` are located
     (`adapted_model`, second stage), then until the energies agree (`_energy_checked`); `model`
-    itself where nothing needs refining. Either way its spec says where increments slip again
-    below the solver's floor (`_below_floor_said`)."""
+    itself where nothing needs refining. Either way its spec, or that of the `MeshTooLarge`'s model
+    where the refinement passes its bound, says where increments fall below the solver's floor
+    (`_below_floor_said`)."""
     units = _units(model.contact)
     steps = history.turning_steps(END_TURN, units)
     turning = history.turning_points(END_TURN, units)
@@ -245,12 +246,16 @@ def _located(model, adapt, history, recorded):
 
     before = _Energies.of(model, turning, observe, with_ends=False)
     theta = adapt.refined(model.theta, targets)
-    if not np.array_equal(theta, model.theta):
-        adapt.check_work(theta, model, len(steps) - 1)
-        located = _finer(model, theta, adapt.rtol)
-        if np.any(before.checkable(adapt.rtol) & (before.reslip < RESLIP * adapt.rtol)):
-            located = _energy_checked(located, adapt, turning, before)
-        model = located
+    try:
+        if not np.array_equal(theta, model.theta):
+            adapt.check_work(theta, model, len(steps) - 1)
+            located = _finer(model, theta, adapt.rtol)
+            if np.any(before.checkable(adapt.rtol) & (before.reslip < RESLIP * adapt.rtol)):
+                located = _energy_checked(located, adapt, turning, before)
+            model = located
+    except MeshTooLarge as error:  # the mesh it runs instead says the floor as well
+        error.model = _below_floor_said(error.model, before, adapt.rtol)
+        raise
     return _below_floor_said(model, before, adapt.rtol)
 
 

@@ -154,7 +154,8 @@ def _default_model(contact, history, recorded=None):
                 f"{error}, {CAPPED} {MAX_DEFAULT_MESH}"
                 f": runs the last mesh within it, {model.theta.size} nodes, coarser than rtol = {DEFAULT_RTOL:g} asks"
             )
-        model.spec = replace(model.spec, fallback=reason)
+        notes = model.spec.fallback  # the solver's floor, where the ends' stage counted it
+        model.spec = replace(model.spec, fallback=reason if notes is None else f"{reason}; {notes}")
     return _said(model)
 
 
