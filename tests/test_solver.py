@@ -86,10 +86,11 @@ def test_small_cycles_on_a_large_locked_in_slip_keep_their_law(moving, power):
     """After loading to (0.3 f P, 0.2 f p0), cycles of 1e-7 of f P (Q, sigma held) or of f p0 (sigma,
     Q held) dissipate as cycles of 1e-5 do, to 1e-4: ``W / A^3`` for Q (a small loop at the edges),
     ``W / A`` for sigma (the slip zones at the two edges driven on in turn). Both rest on the
-    rounding allowance `solver.ROUNDING`: a cycle of Q changes the traction by a few 1e-12 of its
-    largest term (that of the locked-in slip) and dissipates only where the allowance lies below
-    that; a cycle of sigma slips again by 1e-10 to 1e-7 of the locked-in slip, and the adaptation
-    settles the energy of increments above ``ROUNDING / rtol`` of it only (`_Energies.checkable`)."""
+    rounding allowance `solver.ROUNDING`: a cycle of Q dissipates only where its traction change
+    exceeds the allowance on the traction of the locked-in slip, and the adaptation settles the
+    energy of the increments of a cycle of sigma only where they slip again by more than
+    ``ROUNDING / rtol`` of that slip (`_Energies.checkable`); benchmarks/small_loops.py prints
+    where each kind loses its law."""
     import small_loops  # benchmarks/, on the path by conftest
 
     contact = small_loops.hertz()

@@ -122,8 +122,7 @@ def test_a_state_whose_mesh_notes_the_solvers_floor_is_still_refined_for_new_loa
     """A first part that ends in a cycle of 1e-10 f P, which the solver's rounding allowance holds
     stuck, has that said in its mesh's ``fallback`` (tests/test_trajectories.py); the note is not a
     cap (`choice.CAPPED`), so the run continued from its state with larger loads has the mesh
-    refined for them, and its energy is the whole run's (on the first part's mesh it erred by
-    1.8e-3, and only the floor's note was said)."""
+    refined for them, and its energy is the whole run's (on the first part's mesh it is not)."""
     fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
     Q0, sigma0 = 0.3 * fP, 0.2 * fp0
     first = fr.History.piecewise_linear([0, Q0, Q0, Q0 - 1e-10 * fP, Q0], [0, 0, sigma0, sigma0, sigma0], 8)

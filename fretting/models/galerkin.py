@@ -638,9 +638,10 @@ class Mesh(ModelSpec):
         Mesh nodes [rad], strictly increasing from 0 to pi.
     fallback : str, optional
         Why the mesh, or the energy on it, is coarser than `rtol` asks: the adaptation of a default
-        stopped at one of its bounds (`fretting.engine.choice.MAX_DEFAULT_MESH`, `MAX_DEFAULT_WORK`),
-        or increments slip again below the solver's floor (`fretting.engine.adaptation`). None: the
-        mesh is the one asked for.
+        stopped at one of its bounds (`fretting.engine.choice.MAX_DEFAULT_MESH`, `MAX_DEFAULT_WORK`;
+        the reason holds `fretting.engine.choice.CAPPED`), an energy that could not settle, or
+        increments below the solver's floor, slipping again too little or held stuck by its
+        rounding allowance (`fretting.engine.adaptation`). None: the mesh is the one asked for.
     sample : str, optional
         What the adaptation ran when it ran a sample of a long history's turning points instead of
         all of them (`fretting.engine.adaptation.SAMPLE_TURNS`). None: it ran them all.
