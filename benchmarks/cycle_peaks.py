@@ -15,6 +15,7 @@ import time
 import fretting as fr
 from fretting.engine.follow import advance, specimen_surface
 from fretting.engine.threads import one_blas_thread
+from fretting.loading.loads import Loads
 
 CONTACT = fr.Contact(fr.Hertz(0.05), 115.38e9, 0.7, 1e5)
 
@@ -46,7 +47,7 @@ def main():
     stepper.resolve(loads)
     model = stepper.model
     sigma = 50e6
-    outcome, _ = advance(model, stepper.state, 0.3 * CONTACT.f * CONTACT.P, sigma)
+    outcome, _ = advance(model, stepper.state, Loads(0.3 * CONTACT.f * CONTACT.P, sigma))
     calls = 1000
     with one_blas_thread():
         specimen_surface(model, outcome, sigma)  # builds the matrix once per model

@@ -12,6 +12,7 @@ from fretting.engine.stepper import Stepper
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, SolverError
 from fretting.loading.history import History
 from fretting.loading.history_file import HistoryFileError, read_history
+from fretting.loading.loads import Loads
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL
 from fretting.physics.contact import Contact, plane_strain_modulus
@@ -33,6 +34,7 @@ __all__ = [
     "History",
     "HistoryError",
     "HistoryFileError",
+    "Loads",
     "ModelFallbackWarning",
     "Profile",
     "ResultError",

@@ -16,6 +16,7 @@ import fretting as fr
 from fretting.engine.choice import recorded_spec
 from fretting.engine.state import State
 from fretting.loading import history as history_module
+from fretting.loading.loads import Loads
 from fretting.models.inphase import InPhase, on_line, proportional_ratio, regime_bound
 from fretting.physics import closed_forms as cf
 
@@ -156,7 +157,7 @@ def test_an_increment_off_the_line_is_refused():
     model = InPhase(ratio=regime_bound(contact)).resolved_for(contact, None).build(contact)
     state = State.virgin(model)
     with pytest.raises(ValueError, match="not in phase"):
-        model.increment(state, 1e4, 0.0)
+        model.increment(state, Loads(1e4, 0.0))
 
 
 def test_a_continued_run_equals_the_whole_run(tmp_path):

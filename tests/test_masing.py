@@ -11,6 +11,7 @@ from scipy import integrate
 from test_hard_cases import assert_friction_conditions, rounded_flat
 
 import fretting as fr
+from fretting.loading.loads import LoadBlock
 from fretting.models import exact as masing
 from fretting.physics import closed_forms as cf
 
@@ -69,7 +70,7 @@ def test_branches_solved_together_are_those_solved_alone(hertz):
     Q = hertz.f * hertz.P * np.array([0.0, 0.5, -0.2, 0.3, 0.1, 0.45, -0.6, 0.2, 0.9999])
     spec = masing.Exact(64).resolved_for(hertz, None)
     together, alone = spec.build(hertz), spec.build(hertz)
-    together.prepare(fr.State.virgin(together), Q[1:])
+    together.prepare(fr.State.virgin(together), LoadBlock(Q[1:], np.zeros(Q.size - 1)))
     assert len(together._branches) >= len(Q) - 1  # a branch at each load at least
     for P_c, branch in together._branches.items():
         single = alone._solved(P_c)
@@ -286,5 +287,5 @@ def test_prepared_loads_past_gross_slip_are_left_to_the_run(hertz):
     branches before it."""
     model = masing.Exact(64).resolved_for(hertz, None).build(hertz)
     with np.errstate(all="raise"):
-        model.prepare(fr.State.virgin(model), hertz.f * hertz.P * np.array([0.5, -1.2, 0.3]))
+        model.prepare(fr.State.virgin(model), LoadBlock(hertz.f * hertz.P * np.array([0.5, -1.2, 0.3]), np.zeros(3)))
     assert list(model._branches) == [hertz.P, hertz.P - 0.5 * hertz.P]  # the branch from Q = 0 to 0.5 f P

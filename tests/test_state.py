@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from fretting.engine.state import State, Tally
+from fretting.loading.loads import Loads
 from fretting.models.base import Outcome
 
 N = 64
@@ -38,8 +39,8 @@ def _episode_start(before, start, ds, slip):
 def test_episode_start_is_its_definition_bit_for_bit(fields):
     before, start, ds = fields
     slip = before + ds
-    state = State(1.0, 0.0, before, start, Tally.begin(1, before), None)
-    after = state.advance(Outcome(slip, ds, slip, 0.0), 2.0, 0.0, None, None, None)
+    state = State(Loads(1.0, 0.0), before, start, Tally.begin(1, before), None)
+    after = state.advance(Outcome(slip, ds, slip, 0.0), Loads(2.0, 0.0), None, None, None)
     expected = _episode_start(before, start, ds, slip)
     assert np.array_equal(after.episode_start, expected)
     assert np.array_equal(np.signbit(after.episode_start), np.signbit(expected))

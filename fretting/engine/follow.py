@@ -40,36 +40,36 @@ STRAIGHT = 1e-9
 PREPARED_STEPS = 512
 
 
-def advance(model, state, Q, sigma, step=None, guess=None, at_rest=False, tally=True, stress=True, P=None):
-    """(outcome, state after) of the increment of `model` from `state` to `Q` [N/m], `sigma` [Pa], `P` [N/m].
+def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=True, stress=True):
+    """(outcome, state after) of the increment of `model` from `state` to `loads` (`Loads`).
 
     `at_rest`: no increment, the state as it stands (the starting state of a history). `step`
     names the step in a `GrossSlipError`. An increment that reports negative dissipation is a
     solver failure (`SolverError`), never a result. `tally`: add the increment to the cycle in
     progress (its energy density and peaks); False where only the slip matters (mesh adaptation).
     `stress`: tally the specimen's surface stress peaks (False: NaN, not known, as for a run that
-    skips steps). `P` None: the contact's normal load, which the models of a constant ``P`` are
-    given no other.
+    skips steps). ``loads.P`` None: the contact's normal load, which the models of a constant ``P``
+    are given no other.
     """
-    contact = model.contact
-    sliding = min(model.friction_force, contact.f * (contact.P if P is None else P))  # no stick zone from here on
+    Q, sigma = loads.Q, loads.sigma
+    sliding = min(model.friction_force, model.contact.f * loads.normal(model.contact))  # no stick zone from here on
     if abs(Q) >= sliding:
         raise GrossSlipError(step, Q, sigma, sliding)
     if at_rest:
         return model.at_rest(state), state
     try:
-        outcome = model.increment(state, Q, sigma, guess) if P is None else model.increment(state, Q, sigma, guess, P)
+        outcome = model.increment(state, loads, guess)
     except GrossSlipError:  # within rounding of the friction force: the increment found no stick zone
         raise GrossSlipError(step, Q, sigma, sliding) from None
     if not outcome.dissipation >= 0:
         raise SolverError(f"the increment to Q = {Q!r}, sigma = {sigma!r} dissipated {outcome.dissipation!r} J/m")
     if not (tally and state.tally.number):
-        return outcome, state.advance(outcome, Q, sigma, None, None, None, P)
+        return outcome, state.advance(outcome, loads, None, None, None)
     if stress:
         surface, shear = specimen_surface(model, outcome, sigma)
     else:
         surface, shear = None, np.abs(model.traction(outcome))
-    return outcome, state.advance(outcome, Q, sigma, model.energy_density(outcome), surface, shear, P)
+    return outcome, state.advance(outcome, loads, model.energy_density(outcome), surface, shear)
 
 
 def specimen_surface(model, outcome, sigma):
@@ -128,9 +128,9 @@ def skippable(history, recorded, contact):
     return skip & ~recorded
 
 
-def _load(model, state):
-    """The normal load [N/m] of `state` on `model`'s contact."""
-    return model.contact.P if state.P is None else state.P
+def engine_loads(loads, contact):
+    """`loads` as the engine gives them to a model: ``P`` None where it is the contact's, which every model runs."""
+    return loads if loads.P is None or loads.P != contact.P else replace(loads, P=None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,9 +156,9 @@ class _Run:
         else:
             self.skip = skippable(history, recorder.row >= 0, model.contact)
         self.solved = np.flatnonzero(~self.skip)  # the last step is never skipped
-        self.prepare = getattr(model, "prepare", None)
+        self.loads = history.loads
         self.prepared = 0  # the steps before it are prepared
-        windows = getattr(model, "windows", False) and not self.stress and tally and observe is None and guess is None
+        windows = model.windows and not self.stress and tally and observe is None and guess is None
         if windows and history.P is None:
             self.windowed = ~self.skip & (recorder.row < 0) & ~self._copyable()
             self.windowed[0] = False  # it may be the state at rest
@@ -172,7 +172,6 @@ class _Run:
         repeated = False  # the cycle in progress is a copy
         step, solved = 0, 0  # solved: index in self.solved of the first solved step from `step`
         history, cycle, skip, recorder = self.history, self.cycle, self.skip, self.recorder
-        contact_P = self.model.contact.P
         while step < len(history):
             number = int(cycle[step])
             if number != state.tally.number:  # the increment to `step` begins a new stretch
@@ -201,16 +200,14 @@ class _Run:
                     step = int(self.solved[solved - 1]) + 1
                     before = previous = None  # no copies of cycles solved in a window (`_copyable`)
                     continue
-            if self.prepare is not None and step >= self.prepared:
+            if step >= self.prepared:
                 ahead = self.solved[solved : solved + PREPARED_STEPS]
-                self.prepare(state, history.Q[ahead])
+                self.model.prepare(state, self.loads[ahead])
                 self.prepared = int(ahead[-1]) + 1
             guess = None if self.guess is None else self.guess(step)
-            Q, sigma = history.Q[step], history.sigma[step]
-            P = None if history.P is None else float(history.P[step])
-            P = None if P == contact_P else P  # None: the contact's, which every model runs
-            at_rest = step == 0 and (Q, sigma) == (state.Q, state.sigma) and P in (None, _load(self.model, state))
-            outcome, state = advance(self.model, state, Q, sigma, step, guess, at_rest, self.tally, self.stress, P)
+            loads = self._at(step)
+            at_rest = step == 0 and loads == state.loads
+            outcome, state = advance(self.model, state, loads, step, guess, at_rest, self.tally, self.stress)
             if self.observe is not None and not at_rest:
                 self.observe(step, outcome)
             steps.append((outcome, state))
@@ -221,6 +218,10 @@ class _Run:
         if state.tally.number:
             self._cycle(state.tally.number, state.tally, repeated)
         return state
+
+    def _at(self, step):
+        """The `Loads` of `step` (`engine_loads`)."""
+        return engine_loads(self.loads[step], self.model.contact)
 
     def _copyable(self):
         """Steps of the stretches (load cycles, or the steps outside them) that the stretch after might
@@ -254,7 +255,7 @@ class _Run:
         ahead = ahead[: _leading(self.windowed[ahead] & (np.abs(history.Q[ahead]) < sliding))]
         if ahead.size == 0:
             return None
-        slip, q, dissipation, memory, still = model.window(state, history.Q[ahead])
+        slip, q, dissipation, memory, still = model.window(state, self.loads[ahead])
         ahead = ahead[: _leading(np.array(dissipation) >= 0)]
         K = ahead.size
         if K == 0:
@@ -280,8 +281,7 @@ class _Run:
             dissipated += energy
         step = ahead[-1]
         after = State(
-            history.Q[step],
-            history.sigma[step],
+            self._at(step),
             slips[-1],
             episode_start,
             tally,

@@ -17,6 +17,7 @@ import xarray as xr
 
 from fretting.engine.choice import recorded_spec
 from fretting.engine.state import State, Tally
+from fretting.loading.loads import Loads
 from fretting.results.variables import ACCUMULATED, CYCLE_FIELDS, CYCLE_PEAKS, build_dataset, variable
 
 __all__ = [
@@ -256,6 +257,7 @@ class Recorder:
     def data(self, state):
         """The arrays of the result (names from `VARIABLES`) of a run that ended in `state`."""
         model, history, steps = self.model, self.history, self.steps
+        spec = model.spec
         data = self.fields | _zone_ends(model.contact, self.zones)
         if history.cycle is not None:
             data["cycle"] = history.cycle[steps].astype(np.int64)  # the History holds it in 32 bits
@@ -285,7 +287,7 @@ class Recorder:
             }
             | {f"state_{name}": getattr(tally, name) for name in CYCLE_PEAKS}
             | ({} if model.theta is None else {"theta": model.theta[::-1]})
-            | ({} if model.memory_variable is None else {model.memory_variable: np.array(state.memory, dtype=float)})
+            | ({} if spec.memory_variable is None else {spec.memory_variable: np.array(state.memory, dtype=float)})
             | ({} if history.P is None else _normal_loads(model, history, steps, state))
         )
 
@@ -332,16 +334,17 @@ def final_state(result: xr.Dataset) -> State:
         result.state_slip_max.values.copy(),
         *(_state_peak(result, name) for name in CYCLE_PEAKS),
     )
+    spec = recorded_spec(result)
+    P = None if "state_P" not in result or float(result.state_P) == result.attrs["P"] else float(result.state_P)
+    memory = spec.memory_variable
     return State(
-        float(result.state_Q),
-        float(result.state_sigma),
+        Loads(float(result.state_Q), float(result.state_sigma), P),
         result.state_slip.values.copy(),
         result.state_episode_start.values.copy(),
         tally,
-        recorded_spec(result),
+        spec,
         float(result.total_dissipation),
-        tuple(result.state_turning.values.tolist()) if "state_turning" in result else (),
-        None if "state_P" not in result or float(result.state_P) == result.attrs["P"] else float(result.state_P),
+        tuple(result[memory].values.tolist()) if memory is not None and memory in result else (),
     )
 
 

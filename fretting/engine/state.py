@@ -11,6 +11,7 @@ from functools import cache
 import numpy as np
 
 from fretting.errors import HistoryError
+from fretting.loading.loads import Loads
 from fretting.results.variables import CYCLE_PEAKS
 
 __all__ = ["State", "Tally"]
@@ -98,10 +99,8 @@ class State:
 
     Attributes
     ----------
-    Q : float
-        Shear force [N/m].
-    sigma : float
-        Bulk tension [Pa].
+    loads : Loads
+        The loads of the state (`fretting.loading.loads.Loads`; ``loads.P`` None: the contact's ``P``).
     slip : ndarray, shape (N,)
         Accumulated slip [m] at the nodes, ascending in x.
     episode_start : ndarray, shape (N,)
@@ -117,28 +116,39 @@ class State:
     memory : tuple of float
         What the model remembers beyond the slip (the open turning points [N/m] of the exact
         model of ``Q`` alone, oldest first; empty for method 4).
-    P : float, optional
-        Normal load [N/m] where the history varies it (None: the contact's ``P``).
     """
 
-    Q: float
-    sigma: float
+    loads: Loads
     slip: np.ndarray
     episode_start: np.ndarray
     tally: Tally
     model: object
     dissipated: float = 0.0
     memory: tuple = ()
-    P: float | None = None
+
+    @property
+    def Q(self):
+        """Shear force [N/m]."""
+        return self.loads.Q
+
+    @property
+    def sigma(self):
+        """Bulk tension [Pa]."""
+        return self.loads.sigma
+
+    @property
+    def P(self):
+        """Normal load [N/m] where the history varies it (None: the contact's ``P``)."""
+        return self.loads.P
 
     @classmethod
     def virgin(cls, model):
         """The contact of `model` (a `fretting.models.base.Model`) just formed: no load and no slip."""
         slip = np.zeros(model.x.size)
-        return cls(0.0, 0.0, slip, slip, Tally.begin(0, slip), model.spec)
+        return cls(Loads(0.0, 0.0), slip, slip, Tally.begin(0, slip), model.spec)
 
-    def advance(self, outcome, Q, sigma, w, stress, shear, P=None):
-        """The state after the increment `outcome` to the loads `Q`, `sigma`, `P`, which dissipated `w` [J/m^2]
+    def advance(self, outcome, loads, w, stress, shear):
+        """The state after the increment `outcome` to `loads`, which dissipated `w` [J/m^2]
         and left the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]
         (`w` None where nothing is tallied: outside a load cycle, or where only the slip matters;
         `stress` None where it is not known, `Tally.add`).
@@ -151,12 +161,12 @@ class State:
         np.copyto(episode_start, slip, where=ds == 0)
         tally = self.tally if w is None else self.tally.add(outcome.dissipation, w, slip, stress, shear)
         dissipated = self.dissipated + outcome.dissipation
-        return State(Q, sigma, slip, episode_start, tally, self.model, dissipated, outcome.memory, P)
+        return State(loads, slip, episode_start, tally, self.model, dissipated, outcome.memory)
 
     def repeats(self, other):
         """True if this state is `other`'s memory bit for bit: the same loads, slip fields and model memory."""
         return (
-            (self.Q, self.sigma, self.memory, self.P) == (other.Q, other.sigma, other.memory, other.P)
+            (self.loads, self.memory) == (other.loads, other.memory)
             and np.array_equal(self.slip, other.slip)
             and np.array_equal(self.episode_start, other.episode_start)
         )

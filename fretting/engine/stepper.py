@@ -19,6 +19,7 @@ from fretting.engine.state import State, Tally
 from fretting.engine.threads import one_blas_thread
 from fretting.errors import HistoryError
 from fretting.loading.history import History
+from fretting.loading.loads import Loads
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.physics.contact import Contact
 
@@ -98,7 +99,7 @@ class Stepper:
             if cycle != self._state.tally.number:
                 self._state = replace(self._state, tally=Tally.begin(cycle, self._state.slip))
             P = None if P is None or P == self.contact.P else positive_load(P)
-            outcome, self._state = advance(self._model, self._state, Q, sigma, P=P)
+            outcome, self._state = advance(self._model, self._state, Loads(Q, sigma, P))
         self._fresh = False
         return outcome
 

@@ -10,6 +10,7 @@ from numpy.typing import ArrayLike
 
 from fretting._validate import finite, finite_array, positive
 from fretting.errors import HistoryError
+from fretting.loading.loads import LoadBlock
 
 __all__ = ["Formed", "History", "Joined", "Periodic", "PiecewiseLinear", "RAMP_STEPS"]
 
@@ -113,6 +114,11 @@ class History:
     def explicit(self):
         """This history with the loads of every step held in arrays: itself."""
         return self
+
+    @property
+    def loads(self):
+        """The loads of every step, a `LoadBlock` (``P`` None where the history does not vary it)."""
+        return LoadBlock(self.Q, self.sigma, self.P)
 
     @property
     def has_cycles(self):

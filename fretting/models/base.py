@@ -69,6 +69,8 @@ class ModelSpec(abc.ABC):
 
     #: Short name recorded as the dataset's ``model`` attribute.
     name: ClassVar[str]
+    #: Dataset variable that records `State.memory` (None: the model keeps no memory beyond the slip).
+    memory_variable: ClassVar[str | None] = None
     #: One line on what the model solves and how.
     description: ClassVar[str]
     #: Node angles [rad] of a resolved spec whose nodes are recorded as angles (None: not resolved,
@@ -131,9 +133,6 @@ class Model(abc.ABC):
         quadrature of the pressure).
     """
 
-    #: Dataset variable that records `State.memory` (None: the model keeps no memory beyond the slip).
-    memory_variable: ClassVar[str | None] = None
-
     spec: ModelSpec
     contact: object
     x: np.ndarray
@@ -146,14 +145,28 @@ class Model(abc.ABC):
         """`Outcome` of no increment at all: the state as it stands under its own loads."""
 
     @abc.abstractmethod
-    def increment(self, state, Q, sigma, guess=None):
-        """`Outcome` of the increment from `state` to the loads `Q` [N/m], `sigma` [Pa].
+    def increment(self, state, loads, guess=None):
+        """`Outcome` of the increment from `state` to `loads` (`fretting.loading.loads.Loads`).
 
-        `guess`, if given, is the slip direction (+1, -1, 0) to try first at each node; a start
-        only, which the answer does not depend on. A model may ignore it. A model that follows a
-        varying normal load (`fretting.models.normal`) also takes the load ``P`` [N/m] after the
-        increment as a fifth argument; the engine gives it only where the history varies ``P``.
+        The model reads the fields of `loads` that its spec follows (`ModelSpec.inputs`); the
+        engine gives a model no loads that move an input it does not follow. `guess`, if given,
+        is the slip direction (+1, -1, 0) to try first at each node; a start only, which the
+        answer does not depend on. A model may ignore it.
         """
+
+    #: True if the model steps a run of increments at once (`window`).
+    windows: bool = False
+
+    def window(self, state, loads):
+        """The increments from `state` through the `loads` (a `fretting.loading.loads.LoadBlock`) in
+        turn, as rows, where `windows` is True: ``(slip, q, dissipation, memory, still)``, row ``k``
+        what `increment` gives for the ``k``-th loads from the state the rows before it leave, bit
+        for bit (`fretting.models.exact.ExactModel.window` states the arrays)."""
+        raise NotImplementedError(f"{type(self).__name__} does not step increments as rows (windows is False)")
+
+    def prepare(self, state, loads):  # noqa: B027 (a neutral default: most models have nothing to prepare)
+        """Prepare the increments from `state` through the `loads` (a `LoadBlock`) that are to come,
+        so that `increment` finds them cheaper; what is prepared changes no result. Nothing by default."""
 
     @abc.abstractmethod
     def traction(self, outcome):

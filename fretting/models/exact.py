@@ -96,6 +96,7 @@ class Exact(ModelSpec):
     theta: np.ndarray | None = None
 
     name: ClassVar[str] = "exact"
+    memory_variable: ClassVar[str] = "state_turning"
     description: ClassVar[str] = (
         "the exact model of Q alone: Ciavarella-Jaeger with Masing's rule on a symmetric profile, at fixed nodes"
     )
@@ -195,8 +196,6 @@ class ExactModel(Model):
     oldest first.
     """
 
-    memory_variable = "state_turning"
-
     def __init__(self, contact, spec):
         if not contact.profile.SYMMETRIC:
             raise ValueError(f"{contact.profile!r}: the exact model of Q alone needs a symmetric profile")
@@ -232,13 +231,14 @@ class ExactModel(Model):
         return self._fp * np.abs(ds)
 
     def at_rest(self, state):
-        return self.increment(state, state.Q, state.sigma)
+        return self.increment(state, state.loads)
 
-    def increment(self, state, Q, sigma=0.0, guess=None):
-        """`Outcome` from `state` (its ``Q``, slip and open turning points) to the shear force `Q` [N/m].
+    def increment(self, state, loads, guess=None):
+        """`Outcome` from `state` (its ``Q``, slip and open turning points) to the shear force ``loads.Q`` [N/m].
 
         ``sigma`` is zero for this model (`Exact.holds_for`); `guess` is not needed.
         """
+        Q = loads.Q
         if Q == state.Q:
             slip, q, delta_Q, _ = self._at(state.memory, Q)
             return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
@@ -275,7 +275,7 @@ class ExactModel(Model):
         return type(self).increment is ExactModel.increment
 
     def window(self, state, loads):
-        """The increments from `state` through the shear forces `loads` [N/m] in turn, as rows.
+        """The increments from `state` through the shear forces of `loads` (a `LoadBlock`) in turn, as rows.
 
         Row ``k`` is what `increment` gives for the ``k``-th load from the state the ``k - 1`` before
         it leave, bit for bit (the same sums in the same order, elementwise over the rows).
@@ -291,7 +291,7 @@ class ExactModel(Model):
         still : ndarray of bool, shape (len(loads),)
             The increments that leave ``Q`` as it was (their ``ds`` is zero, `increment`).
         """
-        loads = np.asarray(loads, dtype=float)
+        loads = np.asarray(loads.Q, dtype=float)
         walk = self._walk(state.memory, state.Q, loads.tolist())
         branches = self._solve(walk.corrective)
         ends = [
@@ -336,8 +336,8 @@ class ExactModel(Model):
         return summed
 
     def prepare(self, state, loads):
-        """Solve together the branches that the increments from `state` through the shear forces
-        `loads` [N/m], in turn, meet, so that `increment` finds them solved.
+        """Solve together the branches that the increments from `state` through the shear forces of
+        `loads` (a `LoadBlock`), in turn, meet, so that `increment` finds them solved.
 
         The Masing walk of `loads` is scalar (kept for `increment`), up to the first load of gross
         slip (``|Q| >= f P``, where the run stops); on Hertz the new branches are then one 2-D
@@ -348,7 +348,7 @@ class ExactModel(Model):
         """
         if not self._together:
             return
-        loads = np.asarray(loads, dtype=float)
+        loads = np.asarray(loads.Q, dtype=float)
         beyond = np.flatnonzero(np.abs(loads) >= self.friction_force)
         walk = self._walk(state.memory, state.Q, (loads[: beyond[0]] if beyond.size else loads).tolist())
         energy = self._dissipated(walk, self._solve(walk.corrective)).tolist()

@@ -119,6 +119,7 @@ class InPhase(ModelSpec):
     theta: np.ndarray | None = None
 
     name: ClassVar[str] = "inphase"
+    memory_variable: ClassVar[str] = "state_turning"
     description: ClassVar[str] = (
         "the exact model of in-phase Q and sigma on Hertz: Nowell-Hills with Masing's rule, at fixed nodes"
     )
@@ -203,11 +204,12 @@ class InPhaseModel(ExactModel):
         super().__init__(contact, spec)
         self.ratio = spec.ratio
 
-    def increment(self, state, Q, sigma=0.0, guess=None):
-        """`Outcome` from `state` to the loads `Q` [N/m] and `sigma` [Pa], which must be ``ratio Q``."""
+    def increment(self, state, loads, guess=None):
+        """`Outcome` from `state` to the loads ``Q`` [N/m] and ``sigma`` [Pa], which must be ``ratio Q``."""
+        Q, sigma = loads.Q, loads.sigma
         if not _on_path(Q, sigma, self.ratio, self.friction_force):
             raise ValueError(f"sigma = {sigma!r} Pa is not {self.ratio!r} 1/m times Q = {Q!r} N/m: not in phase")
-        outcome = super().increment(state, Q, sigma, guess)
+        outcome = super().increment(state, loads, guess)
         return InPhaseOutcome(*(getattr(outcome, field.name) for field in fields(Outcome)), Q=Q)
 
     def stick_zones(self, outcome, state):

@@ -44,10 +44,10 @@ class Method4Model(Model):
         ds = np.zeros(state.slip.size)
         return Outcome(self.g_stuck(state.Q, state.sigma) - self.G @ state.slip, ds, state.slip, 0.0)
 
-    def increment(self, state, Q, sigma, guess=None):
+    def increment(self, state, loads, guess=None):
         if guess is None:  # the directions of the increment before
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
-        solved = solve_increment(self.stiffness, self.g_stuck(Q, sigma), self.limit, state.slip, guess)
+        solved = solve_increment(self.stiffness, self.g_stuck(loads.Q, loads.sigma), self.limit, state.slip, guess)
         return Outcome(solved.g, solved.ds, solved.slip, self.dissipation(solved.ds))
 
     def stick_zones(self, outcome, state):

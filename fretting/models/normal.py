@@ -316,21 +316,21 @@ class NormalModel(Model):
         g = self.forces(state.slip, state.Q, state.sigma, P)
         return NormalOutcome(g, np.zeros(self.x.size), state.slip, 0.0, P=P, density=np.zeros(self.x.size), locked=g)
 
-    def increment(self, state, Q, sigma, guess=None, P=None):
-        """The increment to `Q`, `sigma`, `P` [N/m], solved in parts at the loads where cells enter or leave
-        (`parts`), each on the cells in contact over it; the energy of a part is ``f (p_begin + p_end) h |ds| / 2``
-        summed over its nodes, the trapezoidal rule in ``P`` (module docstring)."""
-        P = self.contact.P if P is None else P
+    def increment(self, state, loads, guess=None):
+        """The increment to the loads ``Q``, ``sigma``, ``P`` [N/m], solved in parts at the loads where cells enter
+        or leave (`parts`), each on the cells in contact over it; the energy of a part is
+        ``f (p_begin + p_end) h |ds| / 2`` summed over its nodes, the trapezoidal rule in ``P`` (module docstring)."""
+        after = (loads.Q, loads.sigma, loads.normal(self.contact))
         if guess is None:
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
-        loads = (state.Q, state.sigma, self.load(state))
-        locked = self.forces(state.slip, *loads)
+        before = (state.Q, state.sigma, self.load(state))
+        locked = self.forces(state.slip, *before)
         slip, ds, density = state.slip, np.zeros(self.x.size), np.zeros(self.x.size)
-        g, dissipation, P_begin = None, 0.0, loads[2]
-        for fraction, m in self.parts(loads[2], P):
+        g, dissipation, P_begin = None, 0.0, before[2]
+        for fraction, m in self.parts(before[2], after[2]):
             Q_, sigma_, P_ = (
-                after if fraction == 1 else before + fraction * (after - before)
-                for before, after in zip(loads, (Q, sigma, P), strict=True)
+                end if fraction == 1 else begin + fraction * (end - begin)
+                for begin, end in zip(before, after, strict=True)
             )
             nodes, limit = self.cells(m), self.contact.f * self.force(P_, m)
             g_stuck = Q_ * self.punch(m) + self.stiffness(m).G @ self.bulk_slip(sigma_)[nodes]
@@ -343,8 +343,8 @@ class NormalModel(Model):
             dissipation += float(np.dot(mean, np.abs(solved.ds)))
             P_begin = P_
             slip = self.free_surface(slip, g, sigma_, m)
-        edges = self.edges_slip(loads, (Q, sigma, P))
-        return NormalOutcome(g, ds, slip, dissipation, P=P, density=density, edges=edges, locked=locked)
+        edges = self.edges_slip(before, after)
+        return NormalOutcome(g, ds, slip, dissipation, P=after[2], density=density, edges=edges, locked=locked)
 
     def edges_slip(self, before, after):
         """Whether each edge of the contact (``x = -a``, ``x = a``) slips in the increment from the loads

@@ -1,0 +1,68 @@
+"""Loads as values: one point of the load path (`Loads`) and the loads of a run of steps (`LoadBlock`).
+
+A model reads the fields it follows (`fretting.models.base.ModelSpec.inputs`) and nothing else; a
+new load input is a field here, a column of the history file and the model that reads it
+(docs/developer/architecture.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+__all__ = ["INPUTS", "LoadBlock", "Loads"]
+
+
+@dataclass(frozen=True, slots=True)
+class Loads:
+    """The loads at one point of the history.
+
+    Attributes
+    ----------
+    Q : float
+        Shear force per unit length [N/m].
+    sigma : float
+        Differential bulk tension [Pa].
+    P : float, optional
+        Normal load per unit length [N/m]; None: the contact's ``P`` (the load it was formed at),
+        which every model runs.
+    """
+
+    Q: float
+    sigma: float = 0.0
+    P: float | None = None
+
+    def normal(self, contact):
+        """The normal load [N/m] on `contact`: `P`, or the contact's where it is None."""
+        return contact.P if self.P is None else self.P
+
+    def given(self):
+        """Names of the inputs these loads set: ``Q`` and ``sigma`` always, the optional ones where not None."""
+        return frozenset(field.name for field in fields(self) if getattr(self, field.name) is not None)
+
+
+#: Every load input a history can move, in the order of `Loads`' fields.
+INPUTS = tuple(field.name for field in fields(Loads))
+
+
+@dataclass(frozen=True, eq=False)
+class LoadBlock:
+    """The loads of a run of steps: each field of `Loads` as an array over the steps (None: not given).
+
+    ``block[k]`` is the `Loads` of step ``k``, ``block[steps]`` (a slice or an index array) the
+    block of those steps.
+    """
+
+    Q: np.ndarray
+    sigma: np.ndarray
+    P: np.ndarray | None = None
+
+    def __len__(self):
+        return len(self.Q)
+
+    def __getitem__(self, steps):
+        P = self.P
+        if isinstance(steps, (int, np.integer)):
+            return Loads(float(self.Q[steps]), float(self.sigma[steps]), None if P is None else float(P[steps]))
+        return LoadBlock(self.Q[steps], self.sigma[steps], None if self.P is None else self.P[steps])
