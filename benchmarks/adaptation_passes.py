@@ -23,7 +23,7 @@ import fretting as fr
 
 method4 = sys.modules["fretting.models.method4"]
 follow_module = sys.modules["fretting.engine.follow"]
-adaptation = sys.modules["fretting.engine.adaptation"]
+adaptation = sys.modules["fretting.models.galerkin.adaptation"]
 
 
 def cpu():

@@ -38,12 +38,12 @@ def main():
     with threadpool_limits(limits=2, user_api="blas"):
         limit = threads.one_blas_thread
         threads_kept = lambda: threadpool_limits(limits=2, user_api="blas")  # noqa: E731
-        for module in (sys.modules["fretting.engine.stepper"], sys.modules["fretting.engine.adaptation"]):
+        for module in (sys.modules["fretting.engine.stepper"], sys.modules["fretting.engine.simulation"]):
             module.one_blas_thread = threads_kept  # without the engine's limit
         try:
             print(f"BLAS on 2 threads: {ms_per_step(fr.simulate, contact, history):.2f} ms per step")
         finally:
-            for module in (sys.modules["fretting.engine.stepper"], sys.modules["fretting.engine.adaptation"]):
+            for module in (sys.modules["fretting.engine.stepper"], sys.modules["fretting.engine.simulation"]):
                 module.one_blas_thread = limit
 
 

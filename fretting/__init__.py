@@ -2,19 +2,18 @@
 
 from fretting import models
 from fretting.analysis.methods import partial_slip
-from fretting.engine.adaptation import adapted_mesh
-from fretting.engine.choice import MAX_DEFAULT_MESH, MAX_DEFAULT_WORK, ModelFallbackWarning, choose_model
+from fretting.engine.choice import ModelFallbackWarning, choose_model
 from fretting.engine.recorder import final_state
 from fretting.engine.runner import run_file
-from fretting.engine.simulation import simulate
-from fretting.engine.state import State
+from fretting.engine.simulation import adapted_mesh, simulate
 from fretting.engine.stepper import Stepper
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, SolverError
 from fretting.loading.history import History
 from fretting.loading.history_file import HistoryFileError, read_history
 from fretting.loading.loads import Loads
 from fretting.models.collocation import DEFAULT_NODES
-from fretting.models.galerkin import DEFAULT_RTOL
+from fretting.models.galerkin import DEFAULT_RTOL, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
+from fretting.models.state import State
 from fretting.physics.contact import Contact, plane_strain_modulus
 from fretting.physics.profiles import FlatPunch, Gap, Hertz, Profile, RoundedFlat
 from fretting.results.io import ResultError, join_results, load, save

@@ -16,7 +16,6 @@ from tqdm import tqdm
 from fretting import __version__
 from fretting._validate import positive
 from fretting.analysis import nucleation
-from fretting.engine.choice import MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.engine.recorder import (
     CYCLE_FIELDS_EXPECTED,
     CYCLE_FIELDS_STORED,
@@ -31,7 +30,7 @@ from fretting.loading.examples import examples, resolve_history
 from fretting.loading.history_file import read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
-from fretting.models.galerkin import DEFAULT_RTOL
+from fretting.models.galerkin import DEFAULT_RTOL, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.results.io import ResultError, load, save
 from fretting.stress import COMPONENTS, field
 from fretting.studies.sweeps import add_arguments as add_sweep_arguments

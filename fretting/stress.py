@@ -47,7 +47,7 @@ from scipy import special
 
 from fretting._validate import finite, finite_array
 from fretting.analysis.nucleation import body_bulk, body_role
-from fretting.engine.choice import recorded_spec
+from fretting.engine.recorder import recorded_spec
 from fretting.physics.closed_forms import masing_increment, masing_origin
 from fretting.physics.contact import POISSON_RANGE
 

@@ -17,6 +17,7 @@ from scipy import integrate
 import fretting as fr
 from fretting.analysis.accuracy import BAND, traction_error
 from fretting.models import galerkin as gk
+from fretting.models.galerkin import kernels, mesh, quadrature
 from fretting.physics import closed_forms as cf
 
 #: Increments per segment of the cycles ``Q = +-psi f P`` (as in benchmarks/galerkin_convergence.py).
@@ -33,22 +34,27 @@ FLOOR_RTOL = (1e-4, 1e-5)
 #: Tolerances of the cycles' energy.
 RTOLS = (1e-3, gk.DEFAULT_RTOL)
 #: Ratios of the geometric pieces compared with `GRADING_RATIO`.
-GRADING_RATIOS = (gk.GRADING_RATIO, 0.75, 0.9)
+GRADING_RATIOS = (quadrature.GRADING_RATIO, 0.75, 0.9)
 #: Rounded flat whose friction limits are integrated (b = 1 mm, R = 20 mm, as in the benchmark).
 ROUNDED_FLAT = (1e-3, 0.02)
+
+
+def _owner(name):
+    """The module of `fretting.models.galerkin` that defines the constant `name`."""
+    return next(module for module in (kernels, quadrature, mesh) if name in vars(module))
 
 
 @contextlib.contextmanager
 def overridden(**values):
     """Set constants of `fretting.models.galerkin` for the block, and restore them after it."""
-    before = {name: getattr(gk, name) for name in values}
+    before = {name: getattr(_owner(name), name) for name in values}
     for name, value in values.items():
-        setattr(gk, name, value)
+        setattr(_owner(name), name, value)
     try:
         yield
     finally:
         for name, value in before.items():
-            setattr(gk, name, value)
+            setattr(_owner(name), name, value)
 
 
 def cycle_error(contact, psi, rtol):
@@ -100,7 +106,7 @@ def rtol_section(contact, table):
 
 
 def boundary_section(contact, table):
-    values = (gk.BOUNDARY_ERROR, gk.BOUNDARY_ERROR / 4)
+    values = (mesh.BOUNDARY_ERROR, mesh.BOUNDARY_ERROR / 4)
     rows = []
     for value in values:
         with overridden(BOUNDARY_ERROR=value):
@@ -113,7 +119,7 @@ def boundary_section(contact, table):
     return (
         "## BOUNDARY_ERROR\n\n"
         f"The worst relative error of the cycles' energy above (Q*/fP in {list(CYCLE_PSI)}) over rtol,\n"
-        f"with `BOUNDARY_ERROR` as shipped ({gk.BOUNDARY_ERROR:g}) and a quarter of it (elements holding a\n"
+        f"with `BOUNDARY_ERROR` as shipped ({mesh.BOUNDARY_ERROR:g}) and a quarter of it (elements holding a\n"
         "boundary about 1.7 times as large). Above 1, some cycle misses the accuracy asked.\n\n"
         + table(("BOUNDARY_ERROR", *(f"worst error / rtol, rtol {rtol:.0e}" for rtol in RTOLS)), rows)
     )
@@ -121,7 +127,7 @@ def boundary_section(contact, table):
 
 def cattaneo_mindlin_section(contact, table, name, alternative, loads, why):
     rows = []
-    for value in (getattr(gk, name), alternative):
+    for value in (getattr(_owner(name), name), alternative):
         with overridden(**{name: value}):
             for psi in loads:
                 slip, q, nodes = cattaneo_mindlin_errors(contact, psi)
@@ -129,7 +135,8 @@ def cattaneo_mindlin_section(contact, table, name, alternative, loads, why):
     return (
         f"## {name}\n\n"
         f"Cattaneo-Mindlin: `Q = psi f P` in 4 increments on the mesh adapted at rtol {gk.DEFAULT_RTOL:.0e}, {why};\n"
-        f"`{name}` as shipped ({getattr(gk, name)}) and {alternative}. Slip error relative to the largest slip;\n"
+        f"`{name}` as shipped ({getattr(_owner(name), name)}) and {alternative}. "
+        "Slip error relative to the largest slip;\n"
         f"traction error in f p0 away from {BAND} a of the stick ends and the edges.\n\n"
         + table((name, "Q/fP", "nodes", "slip", "traction"), rows)
     )
@@ -137,7 +144,7 @@ def cattaneo_mindlin_section(contact, table, name, alternative, loads, why):
 
 def zone_floor_section(contact, table):
     rows = []
-    for label, zone_error in (("as shipped", gk.ZONE_ERROR), (f"held at {gk.ZONE_ELEMENTS}", np.finfo(float).tiny)):
+    for label, zone_error in (("as shipped", mesh.ZONE_ERROR), (f"held at {mesh.ZONE_ELEMENTS}", np.finfo(float).tiny)):
         with overridden(ZONE_ERROR=zone_error):
             for psi in FLOOR_PSI:
                 cells = (
@@ -146,8 +153,8 @@ def zone_floor_section(contact, table):
                 rows.append((label, psi, *cells))
     return (
         "## ZONE_ERROR\n\n"
-        f"`zone_fraction` makes zones finer than `ZONE_ELEMENTS` ({gk.ZONE_ELEMENTS}) elements once rtol is below\n"
-        f"`ZONE_ERROR` ({gk.ZONE_ERROR:.0e}). The cycles' energy error [nodes] as above, with that refinement as\n"
+        f"`zone_fraction` makes zones finer than `ZONE_ELEMENTS` ({mesh.ZONE_ELEMENTS}) elements once rtol is below\n"
+        f"`ZONE_ERROR` ({mesh.ZONE_ERROR:.0e}). The cycles' energy error [nodes] as above, with that refinement as\n"
         f"shipped and with the zones held at `ZONE_ELEMENTS` elements (the boundary elements still follow rtol):\n"
         "the energy error left inside zones of `ZONE_ELEMENTS` elements is at most the latter.\n\n"
         + table(("zone elements", "Q*/fP", *(f"rtol {rtol:.0e}" for rtol in FLOOR_RTOL)), rows)
@@ -199,10 +206,10 @@ def body(table):
         rtol_section(contact, table),
         boundary_section(contact, table),
         cattaneo_mindlin_section(
-            contact, table, "INITIAL_ELEMENTS", gk.INITIAL_ELEMENTS // 2, NEAR_SLIDING_PSI, "close to sliding"
+            contact, table, "INITIAL_ELEMENTS", mesh.INITIAL_ELEMENTS // 2, NEAR_SLIDING_PSI, "close to sliding"
         ),
         cattaneo_mindlin_section(
-            contact, table, "ZONE_ELEMENTS", gk.ZONE_ELEMENTS // 2, SMALL_ZONE_PSI, "small slip zones"
+            contact, table, "ZONE_ELEMENTS", mesh.ZONE_ELEMENTS // 2, SMALL_ZONE_PSI, "small slip zones"
         ),
         zone_floor_section(contact, table),
         grading_section(table),

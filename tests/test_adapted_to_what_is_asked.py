@@ -7,8 +7,10 @@ import numpy as np
 import pytest
 
 import fretting as fr
-from fretting.engine import adaptation, choice
 from fretting.engine.choice import MeshSampleWarning
+from fretting.engine.follow import follow
+from fretting.models.galerkin import Mesh, adaptation
+from fretting.models.galerkin import model as galerkin_model
 
 SAMPLE = 8
 
@@ -40,14 +42,14 @@ def whole(contact, history, theta):
     """The model the energy passes (`adapted_model`'s first stage) over all of `history`'s turning
     points reach from the mesh `theta`."""
     points = turning(contact, history)
-    run = adaptation._Adaptation(contact, history, fr.models.galerkin.DEFAULT_RTOL, None, False)
+    run = adaptation._Adaptation(Mesh(), contact, history, follow, None, False)
     return run(points, theta)
 
 
 def test_repeating_cycles_adapt_to_a_sample_that_needs_nothing_more(contact, small_sample):
     history = in_phase_cycles(contact, 12)
     assert len(turning(contact, history)) > 2 * SAMPLE
-    model = adaptation.adapted_model(contact, history, recorded=[])  # the energy's mesh alone
+    model = adaptation.adapted_model(Mesh(), contact, history, follow, recorded=[])  # the energy's mesh alone
     assert model.spec.sample is not None and f"first {2 * SAMPLE} of" in model.spec.sample
     # the passes over every turning point of the history refine nothing of the sampled mesh
     assert np.array_equal(whole(contact, history, model.theta).theta, model.theta)
@@ -56,15 +58,15 @@ def test_repeating_cycles_adapt_to_a_sample_that_needs_nothing_more(contact, sma
 def test_growing_zones_adapt_to_the_whole_history(contact, small_sample):
     amplitudes = np.linspace(0.1, 0.7, 6)  # each cycle's slip zones reach beyond the last's
     history = in_phase_cycles(contact, amplitudes.size, amplitudes)
-    model = adaptation.adapted_model(contact, history, recorded=[])
+    model = adaptation.adapted_model(Mesh(), contact, history, follow, recorded=[])
     assert model.spec.sample is None  # every doubling grew the mesh, up to the whole history
 
 
 def test_short_histories_adapt_as_before(contact, monkeypatch):
     history = in_phase_cycles(contact, 3)
-    default = adaptation.adapted_model(contact, history)
+    default = adaptation.adapted_model(Mesh(), contact, history, follow)
     monkeypatch.setattr(adaptation, "SAMPLE_TURNS", 10**6)
-    assert np.array_equal(adaptation.adapted_model(contact, history).theta, default.theta)
+    assert np.array_equal(adaptation.adapted_model(Mesh(), contact, history, follow).theta, default.theta)
     assert default.spec.sample is None
 
 
@@ -108,9 +110,11 @@ def test_steps_not_recorded_are_resolved_for_their_energy_alone(contact):
 def test_a_step_recorded_inside_a_stretch_refines_that_stretch(contact):
     history = walk(contact)
     middle = (history.vertex_step[2] + history.vertex_step[3]) // 2
-    vertices = adaptation.adapted_model(contact, history, recorded=history.vertex_step)
-    with_middle = adaptation.adapted_model(contact, history, recorded=np.sort(np.r_[history.vertex_step, middle]))
-    every = adaptation.adapted_model(contact, history)
+    vertices = adaptation.adapted_model(Mesh(), contact, history, follow, recorded=history.vertex_step)
+    with_middle = adaptation.adapted_model(
+        Mesh(), contact, history, follow, recorded=np.sort(np.r_[history.vertex_step, middle])
+    )
+    every = adaptation.adapted_model(Mesh(), contact, history, follow)
     assert vertices.theta.size < with_middle.theta.size < every.theta.size
 
 
@@ -118,10 +122,10 @@ def test_ends_past_the_bound_run_the_energy_mesh_and_say_so(contact, monkeypatch
     """Where the mesh that locates the recorded steps' stick ends would pass the default's bound,
     the mesh adapted to the energy runs: recorded and said, with the accuracy its ends reach."""
     history = walk(contact)
-    energy_only = adaptation.adapted_model(contact, history, recorded=[])
-    located = adaptation.adapted_model(contact, history)
+    energy_only = adaptation.adapted_model(Mesh(), contact, history, follow, recorded=[])
+    located = adaptation.adapted_model(Mesh(), contact, history, follow)
     increments = history.Q.size - 1
-    monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", (located.theta.size - 1) ** 2 * increments)
+    monkeypatch.setattr(galerkin_model, "MAX_DEFAULT_WORK", (located.theta.size - 1) ** 2 * increments)
     with pytest.warns(fr.ModelFallbackWarning, match="locates the stick ends") as said:
         result = fr.simulate(contact, history)
     assert result.sizes["x"] == energy_only.theta.size < located.theta.size
@@ -133,8 +137,8 @@ def test_ends_past_the_bound_run_the_energy_mesh_and_say_so(contact, monkeypatch
 def test_a_sampled_mesh_that_falls_back_says_both(contact, small_sample, monkeypatch):
     """Past the bound, the energy's mesh of a sample runs: the fallback and the sample are both said."""
     history = in_phase_cycles(contact, 12, sigma_mean=0.05)
-    energy_only = adaptation.adapted_model(contact, history, recorded=[])
-    monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", energy_only.theta.size**2 * (history.Q.size - 1))
+    energy_only = adaptation.adapted_model(Mesh(), contact, history, follow, recorded=[])
+    monkeypatch.setattr(galerkin_model, "MAX_DEFAULT_WORK", energy_only.theta.size**2 * (history.Q.size - 1))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = fr.simulate(contact, history)
@@ -148,12 +152,12 @@ def test_an_energy_check_past_the_bound_runs_the_mesh_before_and_says_so(contact
     mesh that locates the ends runs, with the change of the energy it still showed."""
     fP, fp0 = contact.f * contact.P, contact.f * contact.p0
     history = fr.History.sinusoidal(1e-4 * fP, 1e-4 * fp0, 90, 2, 16, Q_mean=0.3 * fP, sigma_mean=0.2 * fp0)
-    checked = adaptation.adapted_model(contact, history)
+    checked = adaptation.adapted_model(Mesh(), contact, history, follow)
     monkeypatch.setattr(adaptation, "RESLIP", 0.0)
-    located = adaptation.adapted_model(contact, history)
+    located = adaptation.adapted_model(Mesh(), contact, history, follow)
     assert located.theta.size < checked.theta.size
     monkeypatch.undo()
-    monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", located.theta.size**2 * (history.Q.size - 1))
+    monkeypatch.setattr(galerkin_model, "MAX_DEFAULT_WORK", located.theta.size**2 * (history.Q.size - 1))
     with pytest.warns(fr.ModelFallbackWarning, match="settles the energy per cycle") as said:
         result = fr.simulate(contact, history)
     assert result.sizes["x"] == located.theta.size
@@ -211,11 +215,11 @@ def test_a_mesh_past_the_default_bound_still_says_the_solvers_floor(contact, mon
     import small_loops  # benchmarks/, on the path by conftest
 
     history = small_loops.cycles(contact, 1e-10, "Q")
-    located = adaptation.adapted_model(contact, history)
+    located = adaptation.adapted_model(Mesh(), contact, history, follow)
     assert "slip nowhere" in located.spec.fallback
-    monkeypatch.setattr(choice, "MAX_DEFAULT_WORK", (located.theta.size // 2) ** 2 * (history.Q.size - 1))
+    monkeypatch.setattr(galerkin_model, "MAX_DEFAULT_WORK", (located.theta.size // 2) ** 2 * (history.Q.size - 1))
     with pytest.warns(fr.ModelFallbackWarning, match="runs the mesh adapted to the energy"):
         result = fr.simulate(contact, history)
     assert result.sizes["x"] < located.theta.size
-    assert choice.CAPPED in result.attrs["model_fallback"]
+    assert fr.models.galerkin.CAPPED in result.attrs["model_fallback"]
     assert "slip nowhere: what they would dissipate is lost" in result.attrs["model_fallback"]

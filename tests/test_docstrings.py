@@ -8,7 +8,6 @@ import pytest
 #: The modules whose docstrings hold Examples of the public API.
 MODULES = [
     "fretting.analysis.methods",
-    "fretting.engine.adaptation",
     "fretting.engine.choice",
     "fretting.engine.recorder",
     "fretting.engine.runner",

@@ -8,8 +8,6 @@ slips below f P. The adaptive driver here is the loop of the issue: run, reduce 
 targets of every increment, refine, until the mesh stays.
 """
 
-import sys
-
 import harness
 import numpy as np
 import pytest
@@ -20,9 +18,9 @@ from scipy import integrate, special
 
 import fretting as fr
 from fretting.analysis import accuracy
-from fretting.engine import choice
 from fretting.models import Grid, Outcome
 from fretting.models import galerkin as gk
+from fretting.models.galerkin import kernels, mesh
 from fretting.models.solver import solve_increment
 from fretting.physics import closed_forms as cf
 
@@ -69,19 +67,19 @@ def test_clausen_against_direct_sums():
 def test_pair_means_series_meets_corners(monkeypatch):
     """The far-pair Taylor series and the four-corner formula agree where both are accurate."""
     lo, hi = np.array([0.2, 1.0, 2.0]), np.array([0.25, 1.04, 2.1])
-    series = gk._kernel_means(lo, hi)
-    monkeypatch.setattr(gk, "FAR_PAIRS", np.inf)
-    np.testing.assert_allclose(series, gk._kernel_means(lo, hi), rtol=1e-11)
+    series = kernels.kernel_means(lo, hi)
+    monkeypatch.setattr(kernels, "FAR_PAIRS", np.inf)
+    np.testing.assert_allclose(series, kernels.kernel_means(lo, hi), rtol=1e-11)
 
 
 def test_pair_means_against_quadrature(monkeypatch):
     """Means of ``Cl1(theta - phi) - Cl1(theta + phi)`` on a graded mesh, summed a row at a time
     (mirrored across blocks), against quadrature: Gauss-Legendre on the pairs the series serves in
     both kernels, nested adaptive quadrature on pairs that touch a singularity of ``Cl1``."""
-    monkeypatch.setattr(gk, "BLOCK_PAIRS", 1)
+    monkeypatch.setattr(kernels, "BLOCK_PAIRS", 1)
     theta = gk.initial_theta(8)  # 8 elements, the edge ones bisected down to 1e-4: sizes differ 4096-fold
     lo, hi = theta[:-1], theta[1:]
-    means = gk._kernel_means(lo, hi)[1:-1, 1:-1]
+    means = kernels.kernel_means(lo, hi)[1:-1, 1:-1]
     centre, h = (lo + hi) / 2, hi - lo
     points, weights = np.polynomial.legendre.leggauss(24)
     at = centre[:, None] + h[:, None] / 2 * points  # (M, 24)
@@ -89,7 +87,7 @@ def test_pair_means_against_quadrature(monkeypatch):
         -1: np.abs(centre[:, None] - centre[None, :]),
         1: np.minimum(centre[:, None] + centre[None, :], 2 * np.pi - centre[:, None] - centre[None, :]),
     }
-    far = np.all([distance[sign] >= gk.FAR_PAIRS * (h[:, None] + h[None, :]) / 2 for sign in (-1, 1)], axis=0)
+    far = np.all([distance[sign] >= kernels.FAR_PAIRS * (h[:, None] + h[None, :]) / 2 for sign in (-1, 1)], axis=0)
     e, f = np.nonzero(far)
     kernel = gk.clausen1(at[e, :, None] - at[f, None, :]) - gk.clausen1(at[e, :, None] + at[f, None, :])
     np.testing.assert_allclose(means[e, f], kernel @ weights @ weights / 4, rtol=0, atol=1e-14)
@@ -125,9 +123,9 @@ def test_series_coefficients_of_two_sizes_do_not_depend_on_the_others():
     """The table entry of two element sizes is the same, bit for bit, among any other sizes (BLAS would round
     the products of a 5-size table and of a 40-size one differently)."""
     sizes = np.sort(np.random.default_rng(0).uniform(1e-6, 0.05, 40))
-    table = gk._series_coefficients(sizes)
+    table = kernels._series_coefficients(sizes)
     for subset in (slice(1), slice(5), slice(9), slice(17), slice(None, None, 3)):
-        np.testing.assert_array_equal(gk._series_coefficients(sizes[subset]), table[:, subset, subset])
+        np.testing.assert_array_equal(kernels._series_coefficients(sizes[subset]), table[:, subset, subset])
 
 
 @pytest.mark.parametrize("block_pairs", [1, 2**9, 2**20])
@@ -135,9 +133,9 @@ def test_pair_means_do_not_depend_on_the_blocks(monkeypatch, block_pairs):
     """Each mean is its two elements' alone, bit for bit, whatever block it is summed in (not so with a BLAS
     product over the block, whose rounding depends on its shape)."""
     theta = refinement_chain(seed=0)[-1]
-    default = gk._kernel_means(theta[:-1], theta[1:])
-    monkeypatch.setattr(gk, "BLOCK_PAIRS", block_pairs)
-    np.testing.assert_array_equal(gk._kernel_means(theta[:-1], theta[1:]), default)
+    default = kernels.kernel_means(theta[:-1], theta[1:])
+    monkeypatch.setattr(kernels, "BLOCK_PAIRS", block_pairs)
+    np.testing.assert_array_equal(kernels.kernel_means(theta[:-1], theta[1:]), default)
 
 
 @pytest.mark.parametrize("seed", [0, 3])
@@ -148,7 +146,7 @@ def test_stiffness_reusing_the_mesh_before_is_bit_for_bit_fresh(hertz, seed):
         scene = scene_of(hertz, theta, previous=previous)
         np.testing.assert_array_equal(scene.G, scene_of(hertz, theta).G)
         if previous is not None:
-            recurring = gk._recurring_elements(theta[:-1], theta[1:], previous.theta) >= 0
+            recurring = kernels._recurring_elements(theta[:-1], theta[1:], previous.theta) >= 0
             assert 0.5 < recurring.mean() < 1
             reused = gk.stiffness(theta, hertz.E_star, previous=previous)
             np.testing.assert_array_equal(reused, gk.stiffness(theta, hertz.E_star))
@@ -159,7 +157,7 @@ def test_stiffness_reusing_a_mesh_without_common_elements(hertz):
     """Every other node of the mesh (the last element spans 2 or 3): no element has both ends in common."""
     theta = refinement_chain(seed=1)[-1]
     previous = scene_of(hertz, np.append(theta[:-2:2], np.pi))
-    assert np.all(gk._recurring_elements(theta[:-1], theta[1:], previous.theta) < 0)
+    assert np.all(kernels._recurring_elements(theta[:-1], theta[1:], previous.theta) < 0)
     reused = scene_of(hertz, theta, previous=previous)
     np.testing.assert_array_equal(reused.G, scene_of(hertz, theta).G)
 
@@ -421,7 +419,7 @@ def test_settled_mesh_resolves_tiny_stick_zone():
     Q = 0.999999 * contact.f * contact.P
     scene, ds, _, _ = adapt(contact, monotonic(Q)[0])
     stuck = np.flatnonzero(ds.sum(axis=0) == 0)
-    assert stuck.size >= gk.MIN_ZONE_NODES
+    assert stuck.size >= mesh.MIN_ZONE_NODES
 
 
 # --- meshes adapted at the turning points of a history --------------------------------------------
@@ -508,22 +506,22 @@ def test_default_runs_its_last_mesh_where_the_adapted_mesh_would_be_too_large(mo
     the mesh would take more than MAX_DEFAULT_MESH nodes; the default stops adapting as soon as
     that is certain and runs the last mesh within the bound, the same run as that mesh asked for,
     saying so in a warning and in the dataset. The bound is lowered to 768 nodes to keep the test short."""
-    monkeypatch.setattr(choice, "MAX_DEFAULT_MESH", 768)
+    monkeypatch.setattr(gk.model, "MAX_DEFAULT_MESH", 768)
     contact = fr.Contact(fr.RoundedFlat(1e-3, 0.02), 115e9, 0.3, 3e4)
     history = fr.History.sinusoidal(
         0.474 * contact.f * contact.P, 1.187 * contact.f * contact.p0, 103.6, cycles=3, steps_per_cycle=32
     )
-    assert fr.adapted_mesh(contact, history, max_nodes=choice.MAX_DEFAULT_MESH) is None
+    assert fr.adapted_mesh(contact, history, max_nodes=gk.model.MAX_DEFAULT_MESH) is None
     with pytest.warns(fr.ModelFallbackWarning, match="runs the last mesh within it"):
         result = fr.simulate(contact, history)
-    assert result.attrs["model"] == "mesh" and result.sizes["x"] <= choice.MAX_DEFAULT_MESH
+    assert result.attrs["model"] == "mesh" and result.sizes["x"] <= gk.model.MAX_DEFAULT_MESH
     state = fr.final_state(result)
     back = fr.History.piecewise_linear([state.Q, 0.0], [state.sigma, 0.0], 4)
     continued = fr.simulate(contact, back, state=state)  # the capped mesh goes on as it is, and says so
     np.testing.assert_array_equal(continued.theta.values, result.theta.values)
     assert continued.attrs["model_fallback"] == result.attrs["model_fallback"]
     reason = result.attrs.pop("model_fallback")
-    assert f"over the default's bound of {choice.MAX_DEFAULT_MESH}" in reason
+    assert f"over the default's bound of {gk.model.MAX_DEFAULT_MESH}" in reason
     given = fr.simulate(contact, history, mesh=result.theta.values[::-1])
     assert result.attrs.pop("rtol") == fr.DEFAULT_RTOL
     xr.testing.assert_identical(result, given)
@@ -574,5 +572,5 @@ def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkey
     contact = harness.hertz_contact()
     history = harness.baseline_history(contact, 2)
     warm = fr.adapted_mesh(contact, history)
-    monkeypatch.setattr(sys.modules["fretting.engine.adaptation"], "_interpolated_directions", lambda *args: None)
+    monkeypatch.setattr(gk.adaptation, "_interpolated_directions", lambda *args: None)
     np.testing.assert_array_equal(warm, fr.adapted_mesh(contact, history))

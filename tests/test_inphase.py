@@ -13,11 +13,11 @@ from scipy import integrate
 from test_hard_cases import rounded_flat
 
 import fretting as fr
-from fretting.engine.choice import recorded_spec
-from fretting.engine.state import State
+from fretting.engine.recorder import recorded_spec
 from fretting.loading import history as history_module
 from fretting.loading.loads import Loads
 from fretting.models.inphase import InPhase, on_line, proportional_ratio, regime_bound
+from fretting.models.state import State
 from fretting.physics import closed_forms as cf
 
 #: The fine mesh of method 4 (uniform in theta) that the model is compared with, and how far [a]

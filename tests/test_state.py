@@ -4,9 +4,9 @@ every case of sign: sticking nodes, reversals, episodes that have not moved, and
 import numpy as np
 import pytest
 
-from fretting.engine.state import State, Tally
 from fretting.loading.loads import Loads
 from fretting.models.base import Outcome
+from fretting.models.state import State, Tally
 
 N = 64
 

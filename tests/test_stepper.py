@@ -10,8 +10,9 @@ import pytest
 
 import fretting as fr
 from fretting import cli
-from fretting.engine import choice
-from fretting.engine.choice import RECORDED_BEFORE, recorded_spec
+from fretting.engine.recorder import recorded_spec
+from fretting.models.base import ModelSpec
+from fretting.models.galerkin import model as galerkin_model
 
 
 def _walk(contact, sigma=True, steps=4):
@@ -80,7 +81,7 @@ def test_the_command_line_says_when_the_default_falls_back(tmp_path, capsys, mon
     """The rounded flat out of phase whose adapted mesh passes MAX_DEFAULT_MESH: exit 0, one note
     on stderr, and the result records why (issue 19 item 7). The bound is lowered to 768 nodes to keep
     the test short."""
-    monkeypatch.setattr(choice, "MAX_DEFAULT_MESH", 768)
+    monkeypatch.setattr(galerkin_model, "MAX_DEFAULT_MESH", 768)
     monkeypatch.chdir(tmp_path)
     (tmp_path / "oop.toml").write_text(
         '[contact]\nprofile = "rounded_flat"\nb = 1e-3\nR = 0.02\nE_star = 115e9\nf = 0.3\nP = 3e4\n\n'
@@ -92,7 +93,7 @@ def test_the_command_line_says_when_the_default_falls_back(tmp_path, capsys, mon
     assert (
         len(notes) == 1
         and "falls back" in notes[0]
-        and f"over the default's bound of {choice.MAX_DEFAULT_MESH}" in notes[0]
+        and f"over the default's bound of {galerkin_model.MAX_DEFAULT_MESH}" in notes[0]
     )
     assert fr.load(tmp_path / "oop.h5").attrs["model_fallback"] in notes[0]
 
@@ -121,7 +122,7 @@ def test_a_continued_run_refines_the_mesh_its_new_loads_need(hertz):
 def test_a_state_whose_mesh_notes_the_solvers_floor_is_still_refined_for_new_loads(hertz):
     """A first part that ends in a cycle of 1e-10 f P, which the solver's rounding allowance holds
     stuck, has that said in its mesh's ``fallback`` (tests/test_trajectories.py); the note is not a
-    cap (`choice.CAPPED`), so the run continued from its state with larger loads has the mesh
+    cap (`fretting.models.galerkin.CAPPED`), so the run continued from its state with larger loads has the mesh
     refined for them, and its energy is the whole run's (on the first part's mesh it is not)."""
     fP, fp0 = hertz.f * hertz.P, hertz.f * hertz.p0
     Q0, sigma0 = 0.3 * fP, 0.2 * fp0
@@ -151,7 +152,8 @@ def test_a_result_of_fretting_0_1_0_is_read_with_its_model(hertz, model):
     read as the model it describes, so the result can still be continued or resumed."""
     history = _walk(hertz, sigma=model is not None)
     result = fr.simulate(hertz, history, model=model)
-    old = {description for description, name in RECORDED_BEFORE.items() if name == result.attrs["model"]}
+    spec = ModelSpec.registry[result.attrs["model"]]
+    old = {name for name, kind in ModelSpec.registry.items() if kind is spec and name != spec.name}
     (description,) = old
     kept = result.copy()
     kept.attrs = {k: v for k, v in result.attrs.items() if k not in ("model_description", "grid_nodes")}

@@ -24,8 +24,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from fretting.engine.state import State, Tally
 from fretting.errors import GrossSlipError, SolverError
+from fretting.models.state import State, Tally
 from fretting.physics.surface import bulk_stress
 
 __all__ = ["STRAIGHT", "advance", "follow", "skippable"]
@@ -245,9 +245,7 @@ class _Run:
 
         The results are those of `advance` step by step, bit for bit: the tallies add the rows of
         each cycle in order (`_folded`), and each node's episode begins again at the last step where it
-        sticks or reverses. Along the steps ``ds`` is the difference of consecutive slips, so a node
-        reverses where the sign of ``ds`` flips (the sign of the episode so far is that of the ``ds``
-        before, or zero where it stuck): the test of `State.advance`, but on the first step.
+        sticks or reverses (`State.episode_after`).
         """
         history, model = self.history, self.model
         ahead = self.solved[solved : solved + PREPARED_STEPS]
@@ -263,16 +261,6 @@ class _Run:
         slips = np.vstack([state.slip, slip[:K]])  # the slip before each step, then after the last
         ds = slips[1:] - slips[:-1]
         ds[still[:K]] = 0.0
-        stuck = ds == 0
-        sign = np.sign(ds)
-        turned = np.empty_like(stuck)
-        turned[0] = sign[0] * (state.slip - state.episode_start) < 0
-        turned[1:] = sign[1:] * sign[:-1] < 0
-        begins = stuck | turned
-        last = K - 1 - np.argmax(begins[::-1], axis=0)
-        nodes = np.arange(slip.shape[1])
-        start = np.where(stuck[last, nodes], slips[last + 1, nodes], slips[last, nodes])
-        episode_start = np.where(begins[last, nodes], start, state.episode_start)
         tally = self._tallies(
             state, self.cycle[ahead], slips, model.dissipation_density(ds), np.abs(q[:K]), dissipation
         )
@@ -281,13 +269,7 @@ class _Run:
             dissipated += energy
         step = ahead[-1]
         after = State(
-            self._at(step),
-            slips[-1],
-            episode_start,
-            tally,
-            state.model,
-            dissipated,
-            memory[K - 1],
+            self._at(step), slips[-1], state.episode_after(slips, ds), tally, state.model, dissipated, memory[K - 1]
         )
         return after, solved + K
 
@@ -297,14 +279,7 @@ class _Run:
         bounds = np.concatenate([[0], np.flatnonzero(np.diff(numbers)) + 1, [numbers.size]])
         first, length, number = bounds[:-1], np.diff(bounds), numbers[bounds[:-1]]
         tally = state.tally
-        begun = slips[first[1:]]  # the slip at the start of each later stretch
-        fields = {
-            "w": (np.vstack([tally.w, np.zeros_like(begun)]), w, np.add),
-            "slip_min": (np.vstack([tally.slip_min, begun]), slips[1:], np.minimum),
-            "slip_max": (np.vstack([tally.slip_max, begun]), slips[1:], np.maximum),
-            "q_peak": (np.vstack([tally.q_peak, np.full_like(begun, -np.inf)]), shear, np.maximum),
-        }
-        folded = {name: _folded(op, held, rows, first, length) for name, (held, rows, op) in fields.items()}
+        folded = tally.folded(slips, w, shear, first, length)
         for k, (n, start, stop) in enumerate(zip(number.tolist(), first.tolist(), bounds[1:].tolist(), strict=True)):
             if k:
                 if tally.number:
@@ -369,17 +344,3 @@ class _Run:
 def _leading(mask):
     """Number of leading True in the boolean array `mask`."""
     return mask.size if mask.all() else int(np.argmin(mask))
-
-
-def _folded(op, held, rows, first, length):
-    """``op`` of each stretch's `held` row with its `rows` (the `length` rows from `first`), applied
-    row after row in order as step by step (a reduction along the rows might add them in another
-    order), one stretch per row of the result."""
-    folded = held.copy()
-    for k in range(int(length.max())):
-        live = length > k
-        if live.all():
-            folded = op(folded, rows[first + k])
-        else:
-            folded[live] = op(folded[live], rows[first[live] + k])
-    return folded

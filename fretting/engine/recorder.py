@@ -15,9 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from fretting.engine.choice import recorded_spec
-from fretting.engine.state import State, Tally
 from fretting.loading.loads import Loads
+from fretting.models.base import ModelSpec
+from fretting.models.state import State, Tally
 from fretting.results.variables import ACCUMULATED, CYCLE_FIELDS, CYCLE_PEAKS, build_dataset, variable
 
 __all__ = [
@@ -28,6 +28,7 @@ __all__ = [
     "FieldSelector",
     "Recorder",
     "final_state",
+    "recorded_spec",
     "recorded_steps",
 ]
 
@@ -346,6 +347,12 @@ def final_state(result: xr.Dataset) -> State:
         float(result.total_dissipation),
         tuple(result[memory].values.tolist()) if memory is not None and memory in result else (),
     )
+
+
+def recorded_spec(result: xr.Dataset) -> ModelSpec:
+    """The resolved spec a result was run with, from its ``model`` attribute and nodes (`ModelSpec.recorded`)."""
+    theta = result.theta.values[::-1].copy() if "theta" in result else None  # ascending in theta
+    return ModelSpec.recorded(result.attrs, theta)
 
 
 def _state_peak(result, name):

@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from filelock import FileLock, Timeout
 
-from fretting.engine.choice import ModelFallbackWarning, could_be_default, recorded_spec
+from fretting.engine.choice import ModelFallbackWarning
 from fretting.engine.follow import skippable
 from fretting.engine.recorder import (
     CYCLE_PEAKS_TALLIED,
@@ -40,6 +40,7 @@ from fretting.engine.recorder import (
     FieldSelector,
     Recorder,
     final_state,
+    recorded_spec,
     recorded_steps,
 )
 from fretting.engine.stepper import Stepper
@@ -449,7 +450,7 @@ def _resumable(checkpoint, source, model, skipping, attributes):
         ways = ["every step solved (--every-step)", "steps skipped (without --every-step)"]
         raise ResultError(f"{checkpoint}: found a run with {ways[not skipping]}, expected {ways[skipping]}")
     found = recorded_spec(done)
-    if model is None and not could_be_default(found):
+    if model is None and not found.is_default():
         raise ResultError(
             f"{checkpoint}: found a run with {_described(found.attributes())}, expected the default model"
         )

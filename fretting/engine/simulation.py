@@ -1,24 +1,29 @@
-"""`simulate`: follow a load history with a model and record the contact."""
+"""`simulate`: follow a load history with a model and record the contact; `adapted_mesh`: the mesh it would adapt."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
 
+from fretting._validate import positive
 from fretting.engine.choice import continued, spec_from
+from fretting.engine.follow import follow
 from fretting.engine.recorder import Recorder, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.engine.threads import one_blas_thread
 from fretting.loading.history import History
+from fretting.models.galerkin import DEFAULT_RTOL, Mesh
+from fretting.models.galerkin.adaptation import MeshTooLarge, adapted_model
 
 if TYPE_CHECKING:
-    from fretting.engine.state import State
     from fretting.models.base import ModelSpec
+    from fretting.models.state import State
     from fretting.physics.contact import Contact
 
-__all__ = ["simulate"]
+__all__ = ["adapted_mesh", "simulate"]
 
 
 def simulate(
@@ -94,3 +99,30 @@ def simulate(
     stepper.resolve(history, recorded)
     recorder = Recorder(stepper.model, history, recorded)
     return recorder.dataset(stepper.run(history, recorder))
+
+
+def adapted_mesh(
+    contact: Contact, history: History, rtol: float = DEFAULT_RTOL, max_nodes: int | None = None
+) -> np.ndarray | None:
+    """Galerkin mesh ``theta`` [rad] that resolves the stick and slip zones of `history` to `rtol`
+    (`fretting.models.galerkin.adaptation.adapted_model`); None as soon as it is certain to need
+    more than `max_nodes` nodes.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
+    >>> fP = contact.f * contact.P
+    >>> history = fr.History.piecewise_linear([0, 0.5 * fP], [0, 50e6], 8)
+    >>> theta = adapted_mesh(contact, history)
+    >>> bool(theta[0] == 0 and theta[-1] == np.pi and np.all(np.diff(theta) > 0))
+    True
+    >>> adapted_mesh(contact, history, max_nodes=16) is None
+    True
+    >>> result = fr.simulate(contact, history, mesh=theta)  # the mesh as it is
+    """
+    try:
+        with one_blas_thread():
+            return adapted_model(Mesh(rtol=positive("rtol", rtol)), contact, history, follow, max_nodes).theta
+    except MeshTooLarge:
+        return None

@@ -15,12 +15,12 @@ import numpy as np
 
 from fretting.engine import choice
 from fretting.engine.follow import advance, follow
-from fretting.engine.state import State, Tally
 from fretting.engine.threads import one_blas_thread
 from fretting.errors import HistoryError
 from fretting.loading.history import History
-from fretting.loading.loads import Loads
+from fretting.loading.loads import NAMED, Loads
 from fretting.models.base import Model, ModelSpec, Outcome
+from fretting.models.state import State, Tally
 from fretting.physics.contact import Contact
 
 if TYPE_CHECKING:
@@ -99,7 +99,13 @@ class Stepper:
             if cycle != self._state.tally.number:
                 self._state = replace(self._state, tally=Tally.begin(cycle, self._state.slip))
             P = None if P is None or P == self.contact.P else positive_load(P)
-            outcome, self._state = advance(self._model, self._state, Loads(Q, sigma, P))
+            loads = Loads(Q, sigma, P)
+            if unfollowed := loads.given() - self._spec.inputs:
+                names = " and ".join(NAMED[name] for name in sorted(unfollowed))
+                raise HistoryError(
+                    f"{self._spec.description} does not follow {names}: give it no other than the contact's"
+                )
+            outcome, self._state = advance(self._model, self._state, loads)
         self._fresh = False
         return outcome
 

@@ -115,6 +115,12 @@ class History:
         """This history with the loads of every step held in arrays: itself."""
         return self
 
+    def moves(self, contact):
+        """Names of the load inputs (`fretting.loading.loads.INPUTS`) this history moves on `contact`:
+        ``Q`` and ``sigma`` always, ``P`` where it leaves the contact's."""
+        varies_P = self.P is not None and bool(np.any(self.P != contact.P))
+        return frozenset({"Q", "sigma", "P"} if varies_P else {"Q", "sigma"})
+
     @property
     def loads(self):
         """The loads of every step, a `LoadBlock` (``P`` None where the history does not vary it)."""

@@ -11,7 +11,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-__all__ = ["INPUTS", "LoadBlock", "Loads"]
+__all__ = ["INPUTS", "NAMED", "LoadBlock", "Loads"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -42,8 +42,9 @@ class Loads:
         return frozenset(field.name for field in fields(self) if getattr(self, field.name) is not None)
 
 
-#: Every load input a history can move, in the order of `Loads`' fields.
-INPUTS = tuple(field.name for field in fields(Loads))
+#: Every load input a history can move, in the order of `Loads`' fields, with the words that name it.
+NAMED = {"Q": "the shear force Q", "sigma": "the bulk tension sigma", "P": "the normal load P"}
+INPUTS = tuple(NAMED)
 
 
 @dataclass(frozen=True, eq=False)

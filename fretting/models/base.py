@@ -3,25 +3,38 @@
 A *model specification* (`ModelSpec`) is a value: which discretisation, with which parameters
 (`fretting.models.Grid`, `Mesh`, `Exact`). Bound to a contact it builds a *model* (`Model`), the
 fixed arrays every increment uses. The engine (`fretting.engine.stepper.Stepper`) holds a model
-and a `fretting.engine.state.State`, asks the model for one increment at a time and never asks
+and a `fretting.models.state.State`, asks the model for one increment at a time and never asks
 which class it holds.
 
 Units: every per-node array is in ascending ``x`` [m]; slip [m], traction [Pa], energy [J/m]
 (per unit length of the contact along ``y``), energy density [J/m^2]; stick intervals in the
 normalised position ``t = (x - centre) / a`` [-].
 
-Adding a model: one module with a `ModelSpec` subclass and its `Model` subclass, and one line in
-`fretting.engine.choice` where models are chosen or resolved.
+Adding a model: one module (or package) with a `ModelSpec` subclass and its `Model` subclass; a
+default model is one more entry of `fretting.engine.choice.DEFAULTS`.
 """
+
+from __future__ import annotations
 
 import abc
 import functools
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
+from fretting.loading.loads import NAMED
 from fretting.physics.surface import SurfaceStress
+
+if TYPE_CHECKING:
+    from fretting.loading.history import History
+    from fretting.models.state import State
+    from fretting.physics.contact import Contact
+
+#: The engine's loop over a history, ``run(model, history, state, observe=..., guess=..., tally=...)``
+#: returning the last `State` (`fretting.engine.follow.follow`), which a spec that adapts its nodes runs.
+Run = Callable[..., "State"]
 
 __all__ = ["Model", "ModelSpec", "Outcome"]
 
@@ -63,41 +76,118 @@ class ModelSpec(abc.ABC):
     """A discretisation and its parameters: a value, recorded in the state and the dataset.
 
     A spec is *resolved* when it fixes its nodes (`resolved`), so that `build` needs only the
-    contact; a spec that adapts its nodes to a history is resolved by
-    `fretting.engine.choice.resolve`.
+    contact; `model_for` resolves it for a history and builds its model. Every decision about a
+    model is one of its spec's methods, so the engine never asks which class it holds: which
+    histories it runs (`refusal`), its model for a history (`model_for`, `default_model`), how a
+    state of it is continued (`continued`) and whether the default can give it (`is_default`).
+    Subclasses register by their `name` (`registry`), so that a result recording a user's spec
+    reads back with it.
     """
 
     #: Short name recorded as the dataset's ``model`` attribute.
     name: ClassVar[str]
-    #: Dataset variable that records `State.memory` (None: the model keeps no memory beyond the slip).
-    memory_variable: ClassVar[str | None] = None
     #: One line on what the model solves and how.
     description: ClassVar[str]
+    #: Names the dataset's ``model`` attribute held for this spec in results of older releases.
+    recorded_as: ClassVar[tuple[str, ...]] = ()
+    #: The load inputs (fields of `fretting.loading.loads.Loads`) the model follows; a history that
+    #: moves any other is refused (`refusal`).
+    inputs: ClassVar[frozenset[str]] = frozenset({"Q", "sigma"})
+    #: Dataset variable that records `State.memory` (None: the model keeps no memory beyond the slip).
+    memory_variable: ClassVar[str | None] = None
+    #: Every spec class by its `name` and its `recorded_as` names (`__init_subclass__`).
+    registry: ClassVar[dict[str, type[ModelSpec]]] = {}
     #: Node angles [rad] of a resolved spec whose nodes are recorded as angles (None: not resolved,
     #: or nodes that follow from the parameters).
-    theta = None
+    theta: np.ndarray | None = None
+    #: Why the model is coarser than its parameters ask (None: it is not); said as a fallback.
+    fallback: str | None = None
+    #: What part of a long history the model was resolved for, where not all of it (None: all).
+    sample: str | None = None
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "name" not in cls.__dict__:
+            return
+        for name in (cls.name, *cls.recorded_as):
+            known = ModelSpec.registry.setdefault(name, cls)
+            if known is not cls and known.__qualname__ != cls.__qualname__:
+                raise TypeError(f"the model name {name!r} of {cls.__qualname__} is {known.__qualname__}'s already")
+            ModelSpec.registry[name] = cls
+
+    @staticmethod
+    def recorded(attrs: Mapping[str, Any], theta: np.ndarray | None) -> ModelSpec:
+        """The resolved spec of the class the ``model`` attribute of `attrs` names (`registry`), from
+        `attrs` and the node angles `theta` [rad] ascending (`from_record`)."""
+        name = attrs.get("model")
+        if name not in ModelSpec.registry:
+            known = ", ".join(spec.name for spec in dict.fromkeys(ModelSpec.registry.values()))
+            raise ValueError(f"the result records the model {name!r}, expected one of {known}")
+        return ModelSpec.registry[name].from_record(attrs, theta)
 
     @classmethod
     @abc.abstractmethod
-    def from_record(cls, attrs, theta):
+    def from_record(cls, attrs: Mapping[str, Any], theta: np.ndarray | None) -> ModelSpec:
         """The resolved spec recorded by a dataset's attributes `attrs` (`attributes`) and node angles `theta`."""
 
     @property
     @abc.abstractmethod
-    def resolved(self):
+    def resolved(self) -> bool:
         """True when the nodes are fixed and `build` needs only the contact."""
 
     @abc.abstractmethod
-    def build(self, contact):
+    def build(self, contact: Contact) -> Model:
         """The `Model` of this resolved spec on `contact`."""
 
     @abc.abstractmethod
-    def attributes(self):
+    def attributes(self) -> dict[str, Any]:
         """Dataset attributes of the spec: ``{"model": name, ...parameters}`` (numbers and strings)."""
 
-    def holds_for(self, contact, history):
-        """None if the model can run `history` on `contact`, else the reason why not (one line)."""
+    def holds_for(self, contact: Contact, history: History | None) -> str | None:
+        """None if the model can run `history` on `contact`, else the reason why not (one line).
+
+        A subclass states its own conditions here; `refusal` adds the inputs it follows."""
         return None
+
+    def refusal(self, contact: Contact, history: History | None) -> str | None:
+        """None if the model can run `history` on `contact`: it follows every input the history moves
+        (`inputs`) and `holds_for` it; else the reason why not (one line)."""
+        moved = frozenset() if history is None else history.moves(contact) - self.inputs
+        if moved:
+            followers = sorted(
+                f"fretting.models.{spec.__name__}" for spec in set(self.registry.values()) if moved <= spec.inputs
+            )
+            names = " and ".join(NAMED[name] for name in sorted(moved))
+            return f"the history varies {names}, which this model does not follow ({' or '.join(followers)} does)"
+        return self.holds_for(contact, history)
+
+    def resolved_for(self, contact: Contact, history: History | None) -> ModelSpec:
+        """This spec with its nodes fixed for `history` on `contact` (None: no history known). A resolved spec:
+        itself."""
+        return self
+
+    def model_for(self, contact: Contact, history: History, run: Run, recorded: np.ndarray | None = None) -> Model:
+        """The built model of this spec for `history`: resolved (`resolved_for`) and built.
+
+        `run` is the engine's loop over a history (`fretting.engine.follow.follow`), for a spec that
+        adapts its nodes by running the history; `recorded` the steps whose fields are stored (None:
+        all), for a spec that resolves them more finely.
+        """
+        return self.resolved_for(contact, history).build(contact)
+
+    def default_model(self, contact: Contact, history: History, run: Run, recorded: np.ndarray | None = None) -> Model:
+        """`model_for` as the default runs it (`fretting.engine.choice.choose_model`): a spec may bound its
+        cost there and record why (`fallback`)."""
+        return self.model_for(contact, history, run, recorded)
+
+    def continued(self, contact: Contact, state: State, history: History, run: Run) -> tuple[Model | None, State]:
+        """The model (None: the state's own, to build) and the state with which `state` of this spec
+        goes on along `history`: the state as it is, by default."""
+        return None, state
+
+    def is_default(self) -> bool:
+        """True if `fretting.engine.choice.choose_model` can give this resolved spec (one read from a result)."""
+        return False
 
     def __eq__(self, other):
         """The same kind of model with the same parameters and nodes."""

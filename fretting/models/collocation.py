@@ -40,6 +40,9 @@ class Grid(ModelSpec):
     nodes: int = DEFAULT_NODES
 
     name: ClassVar[str] = "grid"
+    recorded_as: ClassVar[tuple[str, ...]] = (
+        "method 4: dislocation correction to the fully adhered solution, Gauss-Chebyshev collocation",
+    )
     description: ClassVar[str] = (
         "method 4: dislocation correction to the fully adhered solution, Gauss-Chebyshev collocation"
     )

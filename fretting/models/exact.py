@@ -96,6 +96,9 @@ class Exact(ModelSpec):
     theta: np.ndarray | None = None
 
     name: ClassVar[str] = "exact"
+    recorded_as: ClassVar[tuple[str, ...]] = (
+        "Ciavarella-Jaeger with Masing's rule: exact for Q alone on a symmetric profile, at fixed nodes",
+    )
     memory_variable: ClassVar[str] = "state_turning"
     description: ClassVar[str] = (
         "the exact model of Q alone: Ciavarella-Jaeger with Masing's rule on a symmetric profile, at fixed nodes"
@@ -115,6 +118,9 @@ class Exact(ModelSpec):
 
     def build(self, contact: Contact) -> ExactModel:
         return ExactModel(contact, self)
+
+    def is_default(self) -> bool:
+        return True
 
     def attributes(self) -> dict:
         return {"model": self.name, "grid_nodes": int(self.nodes)}

@@ -146,6 +146,9 @@ class InPhase(ModelSpec):
     def build(self, contact: Contact) -> InPhaseModel:
         return InPhaseModel(contact, self)
 
+    def is_default(self) -> bool:
+        return True
+
     def attributes(self) -> dict:
         found = {"model": self.name, "grid_nodes": int(self.nodes)}
         return found | ({} if self.ratio is None else {"sigma_per_Q": self.ratio})

@@ -127,6 +127,7 @@ class Varying(ModelSpec):
     load_part: float = DEFAULT_LOAD_PART
 
     name: ClassVar[str] = "varying"
+    inputs: ClassVar[frozenset[str]] = frozenset({"Q", "sigma", "P"})
     description: ClassVar[str] = (
         "method 4 under a varying normal load: cells fixed in x over the largest contact, Jaeger's superposition"
     )
@@ -153,6 +154,9 @@ class Varying(ModelSpec):
 
     def build(self, contact: Contact) -> NormalModel:
         return NormalModel(contact, self)
+
+    def is_default(self) -> bool:
+        return (self.cells, self.load_part) == (DEFAULT_CELLS, DEFAULT_LOAD_PART)
 
     def attributes(self) -> dict:
         return {

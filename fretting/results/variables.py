@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike
 
 __all__ = ["ACCUMULATED", "CYCLE_FIELDS", "CYCLE_PEAKS", "VARIABLES", "build_dataset", "variable"]
 
-#: Per-node peaks over every step of each load cycle that the engine tallies (`fretting.engine.state.Tally`);
+#: Per-node peaks over every step of each load cycle that the engine tallies (`fretting.models.state.Tally`);
 #: each is also recorded as ``state_<name>`` for the cycle in progress at the last step.
 CYCLE_PEAKS = ("sigma_xx_peak", "q_peak", "sigma_xx_q_peak")
 

@@ -87,6 +87,25 @@ class Tally:
             sigma_xx_q_peak,
         )
 
+    def folded(self, slips, w, shear, first, length):
+        """The fields ``w``, ``slip_min``, ``slip_max``, ``q_peak`` of the stretches of a run of increments
+        taken as rows (`fretting.models.base.Model.window`), one row per stretch: this tally's for the
+        first, a new one's (`begin`) for each later one.
+
+        `slips` [m] holds the slip before the first row, then after each row; `w` [J/m^2] and `shear`
+        [Pa] are each row's energy density and ``|q|``; stretch ``k`` is the `length` [k] rows from
+        `first` [k]. Each field is added or compared row after row in order, as `add` would step by
+        step, bit for bit (a reduction along the rows might add them in another order).
+        """
+        begun = slips[first[1:]]  # the slip at the start of each later stretch
+        fields = {
+            "w": (np.vstack([self.w, np.zeros_like(begun)]), w, np.add),
+            "slip_min": (np.vstack([self.slip_min, begun]), slips[1:], np.minimum),
+            "slip_max": (np.vstack([self.slip_max, begun]), slips[1:], np.maximum),
+            "q_peak": (np.vstack([self.q_peak, np.full_like(begun, -np.inf)]), shear, np.maximum),
+        }
+        return {name: _folded(op, held, rows, first, length) for name, (held, rows, op) in fields.items()}
+
     @property
     def slip_amplitude(self):
         """Half the range of the slip over the cycle [m]."""
@@ -163,6 +182,26 @@ class State:
         dissipated = self.dissipated + outcome.dissipation
         return State(loads, slip, episode_start, tally, self.model, dissipated, outcome.memory)
 
+    def episode_after(self, slips, ds):
+        """`episode_start` [m] after a run of increments taken as rows: `slips` the slip before the
+        first, then after each; `ds` each row's slip increment, exactly zero where a node stuck.
+
+        Row by row as `advance` would: a node's episode begins again at the last row where it
+        sticks (at its slip after) or reverses (at its slip before); a node reverses where the sign
+        of ``ds`` flips (the sign of the episode so far is that of the ``ds`` before, or zero where it
+        stuck), and on the first row against this state's episode.
+        """
+        stuck = ds == 0
+        sign = np.sign(ds)
+        turned = np.empty_like(stuck)
+        turned[0] = sign[0] * (self.slip - self.episode_start) < 0
+        turned[1:] = sign[1:] * sign[:-1] < 0
+        begins = stuck | turned
+        last = ds.shape[0] - 1 - np.argmax(begins[::-1], axis=0)
+        nodes = np.arange(ds.shape[1])
+        start = np.where(stuck[last, nodes], slips[last + 1, nodes], slips[last, nodes])
+        return np.where(begins[last, nodes], start, self.episode_start)
+
     def repeats(self, other):
         """True if this state is `other`'s memory bit for bit: the same loads, slip fields and model memory."""
         return (
@@ -198,6 +237,19 @@ class State:
         P = contact.P if self.P is None else self.P
         if abs(self.Q) >= contact.f * P:
             raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")
+
+
+def _folded(op, held, rows, first, length):
+    """``op`` of each stretch's `held` row with its `rows` (the `length` rows from `first`), applied
+    row after row in order, one stretch per row of the result."""
+    folded = held.copy()
+    for k in range(int(length.max())):
+        live = length > k
+        if live.all():
+            folded = op(folded, rows[first + k])
+        else:
+            folded[live] = op(folded[live], rows[first[live] + k])
+    return folded
 
 
 @cache

@@ -1,8 +1,12 @@
-"""The Galerkin mesh adapted to a history: `adapted_mesh`.
+"""The Galerkin mesh adapted to a history: `adapted_model`.
+
+The passes run the history on a mesh with the engine's own loop, which the engine hands in as
+``run(model, history, state, observe=..., guess=..., tally=False)`` (`fretting.engine.follow.follow`),
+so that the adaptation lives with its model and imports nothing of the engine.
 
 Runs the history's turning points (`History.turning_points`, from the contact just formed), each
 curved stretch between them cut where its direction has turned by `MAX_TURN`, on a mesh graded
-toward the edges; refines every element that `fretting.models.galerkin.element_targets` finds too
+toward the edges; refines every element that `fretting.models.galerkin.mesh.element_targets` finds too
 coarse at any of them, and runs them again until no element is. The other steps are not run:
 along a proportional stretch each node slips one way only, so its dissipation is
 ``f p |s_end - s_start|`` and depends on the states at the turning points alone, and the
@@ -27,18 +31,12 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from fretting._validate import positive
-from fretting.engine.follow import follow
-from fretting.engine.state import State
-from fretting.engine.threads import one_blas_thread
 from fretting.errors import GrossSlipError, SolverError
-from fretting.models.galerkin import (
+from fretting.models.galerkin.mesh import (
     BOUNDARY_SPAN,
-    DEFAULT_RTOL,
     ENERGY_SPAN,
     LEVELS_PER_PASS,
     MIN_SIZE,
-    Mesh,
     boundaries,
     element_targets,
     initial_theta,
@@ -46,10 +44,10 @@ from fretting.models.galerkin import (
     tightened,
 )
 from fretting.models.solver import ROUNDING, held_by_allowance
+from fretting.models.state import State
 
 if TYPE_CHECKING:
-    from fretting.loading.history import History
-    from fretting.physics.contact import Contact
+    pass
 
 __all__ = [
     "END_TURN",
@@ -58,13 +56,12 @@ __all__ = [
     "RESLIP",
     "SAMPLE_TURNS",
     "MeshTooLarge",
-    "adapted_mesh",
     "adapted_model",
     "refined_for",
     "remapped",
 ]
 
-#: Refinements of the mesh before `adapted_mesh` gives up: each at least halves an element, and 60
+#: Refinements of the mesh before `adapted_model` gives up: each at least halves an element, and 60
 #: halvings take pi below 1e-17.
 REFINEMENTS = 60
 
@@ -107,35 +104,10 @@ class MeshTooLarge(Exception):
         self.nodes, self.step, self.model, self.ends, self.change = nodes, step, model, ends, change
 
 
-def adapted_mesh(
-    contact: Contact, history: History, rtol: float = DEFAULT_RTOL, max_nodes: int | None = None
-) -> np.ndarray | None:
-    """Galerkin mesh ``theta`` [rad] that resolves the stick and slip zones of `history` to `rtol`
-    (`adapted_model`); None as soon as it is certain to need more than `max_nodes` nodes.
-
-    Examples
-    --------
-    >>> import fretting as fr
-    >>> contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5)
-    >>> fP = contact.f * contact.P
-    >>> history = fr.History.piecewise_linear([0, 0.5 * fP], [0, 50e6], 8)
-    >>> theta = adapted_mesh(contact, history)
-    >>> bool(theta[0] == 0 and theta[-1] == np.pi and np.all(np.diff(theta) > 0))
-    True
-    >>> adapted_mesh(contact, history, max_nodes=16) is None
-    True
-    >>> result = fr.simulate(contact, history, mesh=theta)  # the mesh as it is
-    """
-    try:
-        with one_blas_thread():
-            return adapted_model(contact, history, positive("rtol", rtol), max_nodes).theta
-    except MeshTooLarge:
-        return None
-
-
-def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=None, max_work=None):
+def adapted_model(spec, contact, history, run, max_nodes=None, recorded=None, max_work=None):
     """The `GalerkinModel` (built once, for the run to use) whose mesh ``theta`` [rad] resolves the
-    stick and slip zones of `history` to `rtol`.
+    stick and slip zones of `history` to the ``rtol`` of the unresolved `spec` (a `Mesh`), its
+    passes run by the engine's loop `run` (module docstring).
 
     Two stages. The energy: passes over the turning points (`MAX_TURN`) refine every element
     that `fretting.models.galerkin.element_targets` finds too coarse, with elements of
@@ -167,7 +139,7 @@ def adapted_model(contact, history, rtol=DEFAULT_RTOL, max_nodes=None, recorded=
     steps = history.turning_steps(MAX_TURN, _units(contact))
     turning = history.turning_points(MAX_TURN, _units(contact))
     mirrored = contact.profile.SYMMETRIC and not all(history.largest_loads())
-    adapt = _Adaptation(contact, history, rtol, max_nodes, mirrored, max_work)
+    adapt = _Adaptation(spec, contact, history, run, max_nodes, mirrored, max_work)
     size = min(SAMPLE_TURNS, len(turning))
     model = adapt(turning[:size], initial_theta())
     while size < len(turning):
@@ -244,12 +216,12 @@ def _located(model, adapt, history, recorded):
         found = element_targets(model.theta, outcome.ds, adapt.rtol, model.breakpoints, *spans[step], levels=None)
         np.minimum(targets, found, out=targets)
 
-    before = _Energies.of(model, turning, observe, with_ends=False)
+    before = _Energies.of(model, turning, adapt.run, observe, with_ends=False)
     theta = adapt.refined(model.theta, targets)
     try:
         if not np.array_equal(theta, model.theta):
             adapt.check_work(theta, model, len(steps) - 1)
-            located = _finer(model, theta, adapt.rtol)
+            located = _finer(model, theta)
             if np.any(before.checkable(adapt.rtol) & (before.reslip < RESLIP * adapt.rtol)):
                 located = _energy_checked(located, adapt, turning, before)
             model = located
@@ -259,11 +231,9 @@ def _located(model, adapt, history, recorded):
     return _below_floor_said(model, before, adapt.rtol)
 
 
-def _finer(model, theta, rtol):
-    """The `GalerkinModel` on `theta` [rad], refined from `model`'s mesh, keeping its sample."""
-    finer = Mesh(rtol, theta).build(model.contact, previous=model)
-    finer.spec = replace(finer.spec, sample=model.spec.sample)
-    return finer
+def _finer(model, theta):
+    """The `GalerkinModel` on `theta` [rad], refined from `model`'s mesh, keeping its ``rtol`` and sample."""
+    return replace(model.spec, theta=theta, fallback=None).build(model.contact, previous=model)
 
 
 def _below_floor_said(model, energies, rtol):
@@ -312,10 +282,10 @@ class _Energies(NamedTuple):
     held: np.ndarray
 
     @classmethod
-    def of(cls, model, turning, observe=None, with_ends=True):
-        """Run `turning` on `model` from the virgin state; ``observe(step, outcome)`` sees each
-        increment too. Without `with_ends`, ``ends`` is left empty (the pass whose mesh is refined
-        before any is needed)."""
+    def of(cls, model, turning, run, observe=None, with_ends=True):
+        """Run `turning` on `model` from the virgin state with the engine's loop `run`;
+        ``observe(step, outcome)`` sees each increment too. Without `with_ends`, ``ends`` is left
+        empty (the pass whose mesh is refined before any is needed)."""
         energy, ends, reslip = np.zeros(len(turning)), [()] * len(turning), np.full(len(turning), np.inf)
         held = np.zeros(len(turning), dtype=bool)
 
@@ -332,7 +302,7 @@ class _Energies(NamedTuple):
             if observe is not None:
                 observe(step, outcome)
 
-        follow(model, turning, State.virgin(model), observe=watch, tally=False)
+        run(model, turning, State.virgin(model), observe=watch, tally=False)
         return cls(energy, ends, reslip, held)
 
     def below_floor(self, rtol):
@@ -363,7 +333,7 @@ def _energy_checked(model, adapt, turning, before):
     energy (a ratchet: benchmarks/small_loops.py).
     """
     for _ in range(REFINEMENTS):
-        now = _Energies.of(model, turning)
+        now = _Energies.of(model, turning, adapt.run)
         checkable = now.checkable(adapt.rtol) & before.checkable(adapt.rtol)
         change = np.where(checkable, np.abs(now.energy - before.energy), 0.0)
         unsettled, worst = _unsettled(turning, now.energy, change, adapt.rtol)
@@ -378,7 +348,7 @@ def _energy_checked(model, adapt, turning, before):
             model.spec = replace(model.spec, fallback=reason)
             return model
         adapt.check_work(theta, model, len(turning) - 1, worst)
-        model, before = _finer(model, theta, adapt.rtol), now
+        model, before = _finer(model, theta), now
     raise SolverError(f"the energy still changed after {REFINEMENTS} refinements ({model.theta.size} nodes)")
 
 
@@ -428,8 +398,8 @@ class _Adaptation:
     the turning points of (a part of) one history, and the bounds of both stages: `max_nodes` of the
     energy's mesh, `max_work` of the run's ``N^2 x increments`` on the ends' mesh."""
 
-    def __init__(self, contact, history, rtol, max_nodes, mirrored, max_work=None):
-        self.contact, self.history, self.rtol = contact, history, rtol
+    def __init__(self, spec, contact, history, run, max_nodes, mirrored, max_work=None):
+        self.spec, self.contact, self.history, self.run, self.rtol = spec, contact, history, run, spec.rtol
         self.max_nodes, self.mirrored, self.max_work = max_nodes, mirrored, max_work
         self.increments = len(history) - 1  # the run's, up to gross slip
 
@@ -437,7 +407,7 @@ class _Adaptation:
         """The model whose mesh, refined from `theta` [rad], resolves the increments of `turning`."""
         rtol, max_nodes, directions, model = self.rtol, self.max_nodes, {}, None
         for _ in range(REFINEMENTS):
-            model = Mesh(rtol, theta).build(self.contact, previous=model)
+            model = replace(self.spec, theta=theta).build(self.contact, previous=model)
             targets, known, directions = np.full(theta.size - 1, np.inf), directions, {}
 
             def observe(step, outcome, model=model, targets=targets, found=directions):
@@ -457,7 +427,7 @@ class _Adaptation:
                 return _interpolated_directions(*known[step], x) if step in known else None
 
             try:
-                follow(model, turning, State.virgin(model), observe=observe, guess=guess, tally=False)
+                self.run(model, turning, State.virgin(model), observe=observe, guess=guess, tally=False)
             except GrossSlipError as error:  # named by the step of the history whose loads reached it
                 raise GrossSlipError(self._step_at(error.Q, error.sigma), error.Q, error.sigma, error.limit) from None
             refined = self.refined(theta, targets)
@@ -487,9 +457,9 @@ class _Adaptation:
         return refined
 
 
-def refined_for(contact, state, history):
+def refined_for(contact, state, history, run):
     """The model and state to continue `state` along `history` with, on the state's mesh refined
-    where the increments of `history` need it.
+    where the increments of `history` need it (run by the engine's loop `run`).
 
     The state's `Mesh` was adapted to ``rtol`` for the history it came from; a history that goes
     on with larger or other loads may need a finer one. The turning points of `history` (from
@@ -512,7 +482,7 @@ def refined_for(contact, state, history):
         def observe(step, outcome, model=model, targets=targets):
             np.minimum(targets, element_targets(model.theta, outcome.ds, spec.rtol, model.breakpoints), out=targets)
 
-        follow(model, turning, state, observe=observe, tally=False)
+        run(model, turning, state, observe=observe, tally=False)
         theta = refine(model.theta, targets)
         if np.array_equal(theta, model.theta):
             return (model if refined else None), state
