@@ -823,7 +823,7 @@ def adapt(contact, Q, sigma=None, rtol=gk.DEFAULT_RTOL, theta=None, passes=30):
     The loop of the Galerkin issue, by hand: run the path ``Q[k], sigma[k]`` [N/m, Pa], reduce
     the element targets of every increment, refine, from `theta` (default
     `fretting.models.galerkin.initial_theta`): the energy stage of
-    `fretting.engine.adaptation.adapted_model`, elements of ``ENERGY_SPAN rtol a``.
+    `fretting.models.galerkin.adaptation.adapted_model`, elements of ``ENERGY_SPAN rtol a``.
     """
     theta = gk.initial_theta() if theta is None else theta
     for count in range(1, passes + 1):

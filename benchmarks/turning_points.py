@@ -1,7 +1,7 @@
 """Meshes adapted at the turning points of a history against meshes adapted at every step.
 
 `fretting.adapted_mesh` asks `element_targets` about the increments between turning points of
-the load path only (curved stretches cut where they have turned by `fretting.engine.adaptation.MAX_TURN`).
+the load path only (curved stretches cut where they have turned by `fretting.models.galerkin.adaptation.MAX_TURN`).
 This script measures what that costs in accuracy: for each scene it adapts a second mesh to
 every increment of the history (the stick and slip zones of every step resolved), and compares
 nodes, time and the energy of the last cycle with the closed form (Hertz under Q alone,

@@ -65,7 +65,7 @@ def simulate(
         `step` coordinate holds their numbers. Energy and slip range per cycle and the final
         state always cover every step. A mesh adapted to the history locates the stick ends of
         the recorded steps; the increments with none recorded are resolved for their energy
-        (`fretting.engine.adaptation.adapted_model`).
+        (`fretting.models.galerkin.adaptation.adapted_model`).
 
     Returns
     -------

@@ -329,7 +329,7 @@ def _energy_checked(model, adapt, turning, before):
     (`_Energies.checkable`) are not held to it. A slip zone that a small load change drives on
     through slip locked in before can end an element off on the mesh that locates the ends: its
     energy then errs in proportion to that element, not to its ``5/2`` power
-    (`fretting.models.galerkin.BOUNDARY_ERROR`), and such zones can carry most of a cycle's
+    (`fretting.models.galerkin.mesh.BOUNDARY_ERROR`), and such zones can carry most of a cycle's
     energy (a ratchet: benchmarks/small_loops.py).
     """
     for _ in range(REFINEMENTS):

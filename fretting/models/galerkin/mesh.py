@@ -61,7 +61,7 @@ BOUNDARY_ERROR = 40.0
 #: accuracy asked of the ends, ``1e-3 a`` at the default rtol (benchmarks/trajectories.py).
 BOUNDARY_SPAN = 10.0
 #: The span, in units of ``rtol a``, of those elements in the mesh adapted to the energy (the
-#: first stage of `fretting.engine.adaptation.adapted_model`), and where no step between two
+#: first stage of `fretting.models.galerkin.adaptation.adapted_model`), and where no step between two
 #: turning points is recorded: the energy of the histories of benchmarks/trajectories.py is then
 #: within 1e-4, their located ends within about ``ENERGY_SPAN rtol a``.
 ENERGY_SPAN = 50.0
@@ -259,7 +259,7 @@ def tightened(theta, positions, levels=LEVELS_PER_PASS):
     """Targets [rad] that bisect the elements holding `positions` [rad] `levels` times, graded
     around them like a boundary's (``BOUNDARY_GRADING``): where the energy of an increment whose
     boundaries these are still changes from one mesh to the next
-    (`fretting.engine.adaptation.adapted_model`)."""
+    (`fretting.models.galerkin.adaptation.adapted_model`)."""
     h = np.diff(theta)
     targets = np.full(h.size, np.inf)
     for position in positions:

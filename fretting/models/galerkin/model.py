@@ -54,8 +54,8 @@ CAPPED = "over the default's bound of"
 @dataclass(frozen=True, eq=False)
 class Mesh(ModelSpec):
     """Method 4 by P1 Galerkin on a mesh in ``theta``: the mesh `theta` as given, or one adapted to
-    the history so that the energy of each increment is right to `rtol` (resolved by
-    `fretting.engine.choice.resolve`).
+    the history so that the energy of each increment is right to `rtol` (resolved for a history by
+    `model_for`).
 
     Parameters
     ----------
