@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
-from fretting.loading.loads import NAMED
+from fretting.loading.loads import NAMED, LoadBlock, Loads
 from fretting.physics.surface import SurfaceStress
 
 if TYPE_CHECKING:
@@ -189,15 +189,18 @@ class ModelSpec(abc.ABC):
         """True if `fretting.engine.choice.choose_model` can give this resolved spec (one read from a result)."""
         return False
 
-    def __eq__(self, other):
+    def __eq__(self, other: object) -> bool:
         """The same kind of model with the same parameters and nodes."""
-        if type(self) is not type(other) or self.attributes() != other.attributes():
+        if not isinstance(other, ModelSpec) or type(other) is not type(self):
             return False
-        return (self.theta is None) == (other.theta is None) and (
-            self.theta is None or np.array_equal(self.theta, other.theta)
-        )
+        if self.attributes() != other.attributes():
+            return False
+        mine, theirs = self.theta, other.theta
+        if mine is None or theirs is None:
+            return mine is None and theirs is None
+        return np.array_equal(mine, theirs)
 
-    def __hash__(self):
+    def __hash__(self) -> int:
         return hash(
             (type(self), tuple(self.attributes().items()), None if self.theta is None else self.theta.tobytes())
         )
@@ -224,18 +227,18 @@ class Model(abc.ABC):
     """
 
     spec: ModelSpec
-    contact: object
+    contact: Contact
     x: np.ndarray
     t: np.ndarray
     theta: np.ndarray | None
     friction_force: float
 
     @abc.abstractmethod
-    def at_rest(self, state):
+    def at_rest(self, state: State) -> Outcome:
         """`Outcome` of no increment at all: the state as it stands under its own loads."""
 
     @abc.abstractmethod
-    def increment(self, state, loads, guess=None):
+    def increment(self, state: State, loads: Loads, guess: np.ndarray | None = None) -> Outcome:
         """`Outcome` of the increment from `state` to `loads` (`fretting.loading.loads.Loads`).
 
         The model reads the fields of `loads` that its spec follows (`ModelSpec.inputs`); the
@@ -247,52 +250,52 @@ class Model(abc.ABC):
     #: True if the model steps a run of increments at once (`window`).
     windows: bool = False
 
-    def window(self, state, loads):
+    def window(self, state: State, loads: LoadBlock) -> tuple:
         """The increments from `state` through the `loads` (a `fretting.loading.loads.LoadBlock`) in
         turn, as rows, where `windows` is True: ``(slip, q, dissipation, memory, still)``, row ``k``
         what `increment` gives for the ``k``-th loads from the state the rows before it leave, bit
         for bit (`fretting.models.exact.ExactModel.window` states the arrays)."""
         raise NotImplementedError(f"{type(self).__name__} does not step increments as rows (windows is False)")
 
-    def prepare(self, state, loads):  # noqa: B027 (a neutral default: most models have nothing to prepare)
+    def prepare(self, state: State, loads: LoadBlock) -> None:  # noqa: B027 (a neutral default: most models have nothing to prepare)
         """Prepare the increments from `state` through the `loads` (a `LoadBlock`) that are to come,
         so that `increment` finds them cheaper; what is prepared changes no result. Nothing by default."""
 
     @abc.abstractmethod
-    def traction(self, outcome):
+    def traction(self, outcome: Outcome) -> np.ndarray:
         """Shear traction [Pa] at the nodes after `outcome`."""
 
     @abc.abstractmethod
-    def stick_zones(self, outcome, state):
+    def stick_zones(self, outcome: Outcome, state: State) -> list[tuple[float, float]]:
         """Stick intervals ``(start, end)`` in ``t`` of the increment `outcome`, which left `state`."""
 
     @abc.abstractmethod
-    def delta_Q(self, outcome):
+    def delta_Q(self, outcome: Outcome) -> float:
         """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of the slip after `outcome` (docs: theory, conventions)."""
 
     @abc.abstractmethod
-    def delta_sigma(self, outcome):
+    def delta_sigma(self, outcome: Outcome) -> float:
         """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2] of the slip after `outcome`."""
 
     @abc.abstractmethod
-    def dissipation_density(self, ds):
+    def dissipation_density(self, ds: np.ndarray) -> np.ndarray:
         """``f p |ds|`` [J/m^2] at the nodes, consistent with the increment's `dissipation`."""
 
     @functools.cached_property
-    def surface(self):
+    def surface(self) -> tuple[SurfaceStress, np.ndarray]:
         """The surface direct stress at the nodes (`fretting.physics.surface.SurfaceStress`, its
         Hilbert matrix built at the first use) and the contact pressure there [Pa]."""
         return SurfaceStress(self.t), self.contact.pressure(self.x)
 
-    def surface_at(self, outcome):
+    def surface_at(self, outcome: Outcome) -> tuple[SurfaceStress, np.ndarray]:
         """`surface` under the normal load after `outcome` (the contact's: a model whose ``P`` varies overrides it)."""
         return self.surface
 
-    def pressure_at(self, P):
+    def pressure_at(self, P: float) -> np.ndarray:
         """Contact pressure [Pa] at the nodes under the normal load `P` [N/m] (a model of a constant ``P``: the
         contact's)."""
         return self.contact.pressure(self.x)
 
-    def energy_density(self, outcome):
+    def energy_density(self, outcome: Outcome) -> np.ndarray:
         """`dissipation_density` of the increment `outcome` (at its normal load, where a model varies it)."""
         return self.dissipation_density(outcome.ds)

@@ -5,14 +5,20 @@ everything an increment depends on (`State.repeats` is the test of that), and th
 computed with (`State.model`, a resolved `fretting.models.base.ModelSpec`).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from functools import cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from fretting.errors import HistoryError
 from fretting.loading.loads import Loads
 from fretting.results.variables import CYCLE_PEAKS
+
+if TYPE_CHECKING:
+    from fretting.models.base import Model, ModelSpec, Outcome
 
 __all__ = ["State", "Tally"]
 
@@ -53,7 +59,7 @@ class Tally:
     sigma_xx_q_peak: np.ndarray
 
     @classmethod
-    def begin(cls, number, slip):
+    def begin(cls, number: int, slip: np.ndarray) -> Tally:
         """Nothing done yet in cycle `number`, which starts from `slip` [m]."""
         nothing = np.full(slip.size, -np.inf)
         return cls(number, 0.0, np.zeros(slip.size), slip, slip, nothing, nothing, nothing)
@@ -141,32 +147,39 @@ class State:
     slip: np.ndarray
     episode_start: np.ndarray
     tally: Tally
-    model: object
+    model: ModelSpec
     dissipated: float = 0.0
     memory: tuple = ()
 
     @property
-    def Q(self):
+    def Q(self) -> float:
         """Shear force [N/m]."""
         return self.loads.Q
 
     @property
-    def sigma(self):
+    def sigma(self) -> float:
         """Bulk tension [Pa]."""
         return self.loads.sigma
 
     @property
-    def P(self):
+    def P(self) -> float | None:
         """Normal load [N/m] where the history varies it (None: the contact's ``P``)."""
         return self.loads.P
 
     @classmethod
-    def virgin(cls, model):
+    def virgin(cls, model: Model) -> State:
         """The contact of `model` (a `fretting.models.base.Model`) just formed: no load and no slip."""
         slip = np.zeros(model.x.size)
         return cls(Loads(0.0, 0.0), slip, slip, Tally.begin(0, slip), model.spec)
 
-    def advance(self, outcome, loads, w, stress, shear):
+    def advance(
+        self,
+        outcome: Outcome,
+        loads: Loads,
+        w: np.ndarray | None,
+        stress: np.ndarray | None,
+        shear: np.ndarray | None,
+    ) -> State:
         """The state after the increment `outcome` to `loads`, which dissipated `w` [J/m^2]
         and left the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]
         (`w` None where nothing is tallied: outside a load cycle, or where only the slip matters;
@@ -182,7 +195,7 @@ class State:
         dissipated = self.dissipated + outcome.dissipation
         return State(loads, slip, episode_start, tally, self.model, dissipated, outcome.memory)
 
-    def episode_after(self, slips, ds):
+    def episode_after(self, slips: np.ndarray, ds: np.ndarray) -> np.ndarray:
         """`episode_start` [m] after a run of increments taken as rows: `slips` the slip before the
         first, then after each; `ds` each row's slip increment, exactly zero where a node stuck.
 
@@ -202,7 +215,7 @@ class State:
         start = np.where(stuck[last, nodes], slips[last + 1, nodes], slips[last, nodes])
         return np.where(begins[last, nodes], start, self.episode_start)
 
-    def repeats(self, other):
+    def repeats(self, other: State) -> bool:
         """True if this state is `other`'s memory bit for bit: the same loads, slip fields and model memory."""
         return (
             (self.loads, self.memory) == (other.loads, other.memory)
