@@ -346,3 +346,29 @@ def test_a_mesh_with_nan_is_refused(hertz):
     history = fr.History.piecewise_linear([0, 0.3 * hertz.f * hertz.P], None, 4)
     with pytest.raises(ValueError, match="theta must increase strictly from 0 to pi"):
         fr.simulate(hertz, history, mesh=[0, np.nan, np.pi])
+
+
+def test_a_mesh_finer_than_the_rounding_of_its_edge_is_refused_and_one_at_the_bound_runs(hertz):
+    """An edge element below ``sqrt(2 eps)`` rad sees ``cos(theta) = 1`` at every quadrature point: its
+    edge node's friction limit vanishes and its traction was NaN (issue 38). Such a mesh is refused
+    in one line; a mesh whose edge elements are `SMALLEST_ELEMENT` runs with a finite traction."""
+    fP = hertz.f * hertz.P
+    history = fr.History.piecewise_linear([0, 0.5 * fP, -0.3 * fP], [0, 50e6, 0], 8)
+    theta = fr.models.galerkin.initial_theta()
+    with pytest.raises(ValueError, match=r"theta's elements must span at least 2.5e-08 rad .* theta\[0:2\]"):
+        fr.simulate(hertz, history, mesh=np.sort(np.r_[theta, 1e-300]))
+    edge = fr.models.galerkin.mesh.SMALLEST_ELEMENT * (1 + 1e-6)  # pi - edge rounds off the last digits
+    result = fr.simulate(hertz, history, mesh=np.sort(np.r_[theta, edge, np.pi - edge]))
+    assert np.isfinite(result.q).all() and result.total_dissipation > 0
+
+
+def test_a_state_with_negative_energy_is_refused(hertz):
+    """A hand-made state that has dissipated less than nothing is refused, not run on (issue 38)."""
+    history = fr.History.piecewise_linear([0, 0.3 * hertz.f * hertz.P], None, 4)
+    state = fr.final_state(fr.simulate(hertz, history, nodes=64))
+    more = fr.History.piecewise_linear([0.3 * hertz.f * hertz.P, 0.0], None, 4)
+    with pytest.raises(fr.HistoryError, match=r"state.dissipated = -1.0, expected a finite number >= 0"):
+        fr.simulate(hertz, more, state=replace(state, dissipated=-1.0))
+    negative = replace(state.tally, w=np.where(np.arange(64) == 5, -1.0, state.tally.w))
+    with pytest.raises(fr.HistoryError, match=r"state.tally.w is negative at node 5"):
+        fr.simulate(hertz, more, state=replace(state, tally=negative))

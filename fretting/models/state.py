@@ -237,6 +237,10 @@ class State:
                 )
             if name not in peaks and not np.all(np.isfinite(values)):
                 raise HistoryError(f"state.{name} is not finite at node {int(np.argmin(np.isfinite(values)))}")
+        if np.any(self.tally.w < 0):
+            raise HistoryError(
+                f"state.tally.w is negative at node {int(np.argmax(self.tally.w < 0))}: energy is dissipated"
+            )
         numbers = {
             "Q": self.Q,
             "sigma": self.sigma,
@@ -247,6 +251,11 @@ class State:
         for name, value in numbers.items():
             if not np.isfinite(value):
                 raise HistoryError(f"state.{name} = {value!r}, expected a finite number")
+        for name in ("dissipated", "tally.dissipation"):
+            if numbers[name] < 0:
+                raise HistoryError(
+                    f"state.{name} = {numbers[name]!r}, expected a finite number >= 0 (energy dissipated)"
+                )
         P = contact.P if self.P is None else self.P
         if abs(self.Q) >= contact.f * P:
             raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")

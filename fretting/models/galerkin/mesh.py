@@ -42,6 +42,11 @@ EDGE_SIZE = 1e-4
 #: Smallest element size [rad] that `element_targets` asks for, so that refinement ends even
 #: where a zone never resolves.
 MIN_SIZE = 1e-7
+#: Smallest element [rad] of any mesh a model is built on. In an edge element narrower than
+#: ``sqrt(2 eps)`` (2.1e-8 rad) ``cos(theta)`` rounds to 1 at every quadrature point, so the pressure
+#: and the edge node's friction limit vanish and its traction is 0/0; `refine` bisects down to
+#: ``MIN_SIZE / 2`` at least, and a quarter keeps a margin above the rounding.
+SMALLEST_ELEMENT = MIN_SIZE / 4
 #: Elements across every stick or slip zone, at least: half as many leave the slip of small zones
 #: (Q/fP = 0.05, 0.2) less accurate (docs/validation/galerkin-constants.md#zone_elements).
 ZONE_ELEMENTS = 10

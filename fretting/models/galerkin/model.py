@@ -17,7 +17,7 @@ from fretting.models.base import ModelSpec
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin.adaptation import MeshTooLarge, adapted_model, refined_for
 from fretting.models.galerkin.kernels import kernel_means, stiffness_of_means
-from fretting.models.galerkin.mesh import DEFAULT_RTOL, ENERGY_SPAN, located_end
+from fretting.models.galerkin.mesh import DEFAULT_RTOL, ENERGY_SPAN, SMALLEST_ELEMENT, located_end
 from fretting.models.galerkin.quadrature import (
     assemble,
     hat_cos_integrals,
@@ -285,12 +285,19 @@ class GalerkinModel(Method4Model):
 
 
 def _validated_mesh(theta):
-    """`theta` [rad] as a float array, checked to be a mesh: finite, strictly increasing from 0 to pi."""
+    """`theta` [rad] as a float array, checked to be a mesh: finite, strictly increasing from 0 to pi,
+    no element below `SMALLEST_ELEMENT`."""
     theta = np.array(theta, dtype=float)
     if theta.ndim != 1 or theta.size < 3:
         raise ValueError(f"theta must be a 1-D mesh of at least 3 nodes, found shape {theta.shape}")
     if theta[0] != 0.0 or theta[-1] != np.pi or not np.all(np.diff(theta) > 0):  # NaN fails the comparison
         raise ValueError(f"theta must increase strictly from 0 to pi, found {_shown(theta)}")
+    k = int(np.argmin(np.diff(theta)))
+    if theta[k + 1] - theta[k] < SMALLEST_ELEMENT:
+        raise ValueError(
+            f"theta's elements must span at least {SMALLEST_ELEMENT:g} rad "
+            f"(fretting.models.galerkin.mesh.SMALLEST_ELEMENT), found theta[{k}:{k + 2}] = {theta[k : k + 2].tolist()}"
+        )
     return theta
 
 
