@@ -243,3 +243,11 @@ def test_a_class_is_found_by_its_name_only_where_it_is_one():
     assert profile_class("RoundedFlat") is fr.RoundedFlat and profile_class("Pad") is None
     twins = _user_profile(), _user_profile()  # two classes of one name: neither is the one meant
     assert profile_class("Cylinder") is None and twins[0] is not twins[1]
+
+
+def test_contact_nu_is_a_poisson_ratio_or_unknown():
+    assert fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P).nu is None
+    contact = fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P, nu=0.3)
+    assert contact.nu == 0.3 and repr(contact).endswith("specimen=2, nu=0.3)")
+    with pytest.raises(ValueError, match=re.escape("nu must be in (-1, 0.5]")):
+        fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P, nu=0.7)
