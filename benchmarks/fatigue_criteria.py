@@ -1,4 +1,4 @@
-"""Speed of `fretting.fatigue.apply` over a field, beside the error of its plane search.
+"""Speed of `fretting.analysis.fatigue.apply` over a field, beside the error of its plane search.
 
 The field is a non-proportional plane-strain stress history on a ``z`` x ``x`` grid (three harmonics
 with random amplitudes, phases and means at each point: no contact solution is needed to time the
@@ -18,7 +18,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from fretting.fatigue import Material, apply
+from fretting.analysis.fatigue import Material, apply
 
 MATERIAL = Material(E=210e9, nu=0.3, sigma_limit=500e6, tau_limit=320e6, fs_k=0.6, sigma_y=1e9)
 

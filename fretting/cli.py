@@ -16,6 +16,8 @@ from tqdm import tqdm
 from fretting import __version__
 from fretting._validate import positive
 from fretting.analysis import nucleation
+from fretting.analysis.fatigue import CRITERIA, Material, MaterialFileError, apply, line_method, point_method
+from fretting.analysis.stress import COMPONENTS, field
 from fretting.engine.choice import MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.engine.recorder import (
     CYCLE_FIELDS_EXPECTED,
@@ -26,14 +28,12 @@ from fretting.engine.recorder import (
 )
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
-from fretting.fatigue import CRITERIA, Material, MaterialFileError, apply, line_method, point_method
 from fretting.loading.examples import examples, resolve_history
 from fretting.loading.history_file import read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL
 from fretting.results.io import ResultError, load, save
-from fretting.stress import COMPONENTS, field
 from fretting.studies.sweeps import add_arguments as add_sweep_arguments
 from fretting.studies.sweeps import run as run_sweep
 
@@ -207,7 +207,7 @@ def _stress_parser(commands, common):
     stress.add_argument(
         "--material",
         metavar="FILE",
-        help="material file (TOML, keys of fretting.fatigue.Material): map fatigue criteria over the steps, "
+        help="material file (TOML, keys of fretting.analysis.fatigue.Material): map fatigue criteria over the steps, "
         "taken as one cycle, and read them at the critical distance when it gives critical_distance",
     )
     stress.add_argument(
@@ -399,7 +399,7 @@ def _stress_criteria(args):
 
 
 def _criterion_map(stresses, name, material, path):
-    """`fretting.fatigue.apply` over the field's steps, its variables renamed ``<name>`` (the parameter)
+    """`fretting.analysis.fatigue.apply` over the field's steps, its variables renamed ``<name>`` (the parameter)
     and ``<name>_<variable>``, the parameter's attributes holding its critical distances."""
     try:
         maps = apply(stresses, name, material)
@@ -411,7 +411,7 @@ def _criterion_map(stresses, name, material, path):
 
 
 def _distances(parameter, material, path):
-    """The surface hot spot, and the point and line methods below it (`fretting.fatigue`) when the material
+    """The surface hot spot, and the point and line methods below it (`fretting.analysis.fatigue`) when the material
     gives ``L``, as attributes [the parameter's units, m]."""
     surface = parameter.isel(z=0)
     hot = int(np.nanargmax(surface.values))

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from fretting.fatigue import (
+from fretting.analysis.fatigue import (
     Material,
     MaterialFileError,
     apply,
@@ -33,7 +33,7 @@ ZERO = np.zeros(T)
 COARSE = 2 * np.pi * np.arange(16) / 16
 #: Relative shortfall of the sampled maximum of a sinusoid (module docstring).
 SAMPLED = 1 - math.cos(math.pi / T)
-#: Relative error of a quantity read on a plane located to about 1e-8 rad (`fretting.fatigue.XTOL`) that is
+#: Relative error of a quantity read on a plane located to about 1e-8 rad (`fretting.analysis.fatigue.XTOL`) that is
 #: not stationary there (MWCM's sigma_n,max on the plane of largest tau_a): first order, 10 times 1e-8.
 PLANE_FIRST_ORDER = 1e-7
 

@@ -15,9 +15,9 @@ import pytest
 from scipy import integrate
 
 import fretting as fr
-from fretting import cli, fatigue, stress
-from fretting.analysis import nucleation
-from fretting.fatigue import Material
+from fretting import cli
+from fretting.analysis import fatigue, nucleation, stress
+from fretting.analysis.fatigue import Material
 from fretting.loading.examples import EXAMPLES
 from fretting.physics import closed_forms as cf
 from fretting.results.io import save
@@ -387,5 +387,5 @@ def test_stress_map_marks_the_contact_and_the_stick_zone(contact):
 
 
 def test_import_does_not_load_matplotlib():
-    code = "import sys, fretting.stress; print('matplotlib' in sys.modules)"
+    code = "import sys, fretting.analysis.stress; print('matplotlib' in sys.modules)"
     assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout == "False\n"

@@ -756,7 +756,7 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
     ----------
     field : xarray.Dataset
         ``sigma_xx``, ``sigma_zz``, ``tau_xz`` [Pa] (and ``sigma_yy``; plane strain when absent) on dims
-        ``step`` and the points' dims, e.g. ``(step, z, x)`` as `fretting.stress.field` returns.
+        ``step`` and the points' dims, e.g. ``(step, z, x)`` as `fretting.analysis.stress.field` returns.
     criterion : str
         A key of `CRITERIA`: ``swt``, ``findley``, ``fatemi_socie``, ``mwcm``, ``crossland``.
     material : Material
