@@ -203,7 +203,7 @@ def _stress_parser(commands, common):
     stress.add_argument(
         "--body", choices=("specimen", "pad"), default="specimen", help="body of the field (default: the specimen)"
     )
-    stress.add_argument("--nu", type=float, help="Poisson's ratio (default: the nu of the result's history file)")
+    stress.add_argument("--nu", type=float, help="Poisson's ratio (default: the nu the result records)")
     stress.add_argument(
         "--material",
         metavar="FILE",
