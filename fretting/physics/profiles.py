@@ -491,28 +491,32 @@ def profile_class(name: str | None) -> type[Profile] | None:
 def recorded_profile(attrs: Mapping[str, object]) -> tuple[str | None, dict[str, object]]:
     """The class name and the parameters of the profile that a result's attributes `attrs` record.
 
-    A result records ``profile_class`` and ``profile_<name>`` (`Profile.attributes`). One written
-    before it did has only its ``profile``, the profile's repr, which is read instead: the class's
-    name and the keyword arguments whose values are numbers or lists of them, such as
-    ``Hertz(R=0.05)`` or ``Gap.from_table(x=[...], h0=[...], breakpoints=[...])``; the name alone
-    where they are not (a `Gap` of functions), and None for a repr of no class.
+    A result records ``profile_class`` and ``profile_<name>`` (`Profile.attributes`); one written
+    before it did has only ``profile``, the profile's repr, read instead by `_read_repr`.
 
     Examples
     --------
-    >>> recorded_profile({"profile": "RoundedFlat(b=0.002, R=0.05)"})
-    ('RoundedFlat', {'b': 0.002, 'R': 0.05})
     >>> import fretting as fr
     >>> recorded_profile(fr.Hertz(0.05).attributes())
     ('Hertz', {'R': 0.05})
+    >>> recorded_profile({"profile": "RoundedFlat(b=0.002, R=0.05)"})  # a result written before the facts
+    ('RoundedFlat', {'b': 0.002, 'R': 0.05})
     """
-    if "profile_class" in attrs:
-        parameters = {
-            name.removeprefix(PARAMETER_PREFIX): value
-            for name, value in attrs.items()
-            if name.startswith(PARAMETER_PREFIX) and name != "profile_class"
-        }
-        return str(attrs["profile_class"]), parameters
-    text = str(attrs["profile"])
+    if "profile_class" not in attrs:
+        return _read_repr(str(attrs["profile"]))
+    parameters = {
+        name.removeprefix(PARAMETER_PREFIX): value
+        for name, value in attrs.items()
+        if name.startswith(PARAMETER_PREFIX) and name != "profile_class"
+    }
+    return str(attrs["profile_class"]), parameters
+
+
+def _read_repr(text: str) -> tuple[str | None, dict[str, object]]:
+    """The class name and parameters in a profile's repr, such as ``Hertz(R=0.05)`` or
+    ``Gap.from_table(x=[...], h0=[...], breakpoints=[...])``: the keyword arguments whose values are
+    numbers or lists of them; the name alone where the repr is no expression (a `Gap` of functions),
+    and None for a repr of no class."""
     try:
         call = ast.parse(text, mode="eval").body
     except SyntaxError:
