@@ -73,8 +73,9 @@ COMPONENTS = {
     "sigma_yy": ("Pa", "direct stress out of the plane", "nu (sigma_xx + sigma_zz), plane strain"),
 }
 
-#: Largest difference, relative to ``f p0``, between the exact model's recorded traction and its
-#: elliptical reconstruction for the reconstruction to be used (rounding is ~1e-15).
+#: Largest difference, relative to ``f p0``, between the recorded traction and the exact model's
+#: elliptical reconstruction for the reconstruction to be used: the exact model's traction meets it
+#: to rounding (~1e-15), a discretised model's by its own error, far above this.
 RECONSTRUCTION_RTOL = 1e-9
 
 #: Nodes closer than this to an edge, in ``|t| = |x - centre| / a``, are taken as the edge itself (a Galerkin
