@@ -1,4 +1,4 @@
-"""Time of `fretting.stress.field` on a 200 x 100 grid over a cycle of 64 steps, beside its error.
+"""Time of `fretting.analysis.stress.field` on a 200 x 100 grid over a cycle of 64 steps, beside its error.
 
 A Hertz contact (R = 50 mm, E = 210 GPa, nu = 0.3, f = 0.6, P = 100 N/mm) is loaded to Q* = 0.6 f P
 and cycled once to -Q* and back in 64 steps. The field of the specimen over |x| <= 2a, z <= 2a is
@@ -21,7 +21,7 @@ import numpy as np
 from scipy import integrate
 
 import fretting as fr
-from fretting import stress
+from fretting.analysis import stress
 from fretting.physics import closed_forms as cf
 
 CONTACT = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.6, 1e5)

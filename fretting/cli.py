@@ -16,6 +16,8 @@ from tqdm import tqdm
 from fretting import __version__
 from fretting._validate import positive
 from fretting.analysis import nucleation
+from fretting.analysis.fatigue import CRITERIA, Material, MaterialFileError, apply, line_method, point_method
+from fretting.analysis.stress import COMPONENTS, field
 from fretting.engine.recorder import (
     CYCLE_FIELDS_EXPECTED,
     CYCLE_FIELDS_STORED,
@@ -25,14 +27,12 @@ from fretting.engine.recorder import (
 )
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
-from fretting.fatigue import CRITERIA, Material, MaterialFileError, apply, line_method, point_method
 from fretting.loading.examples import examples, resolve_history
 from fretting.loading.history_file import read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.results.io import ResultError, load, save
-from fretting.stress import COMPONENTS, field
 from fretting.studies.sweeps import add_arguments as add_sweep_arguments
 from fretting.studies.sweeps import run as run_sweep
 
@@ -202,11 +202,11 @@ def _stress_parser(commands, common):
     stress.add_argument(
         "--body", choices=("specimen", "pad"), default="specimen", help="body of the field (default: the specimen)"
     )
-    stress.add_argument("--nu", type=float, help="Poisson's ratio (default: the nu of the result's history file)")
+    stress.add_argument("--nu", type=float, help="Poisson's ratio (default: the nu the result records)")
     stress.add_argument(
         "--material",
         metavar="FILE",
-        help="material file (TOML, keys of fretting.fatigue.Material): map fatigue criteria over the steps, "
+        help="material file (TOML, keys of fretting.analysis.fatigue.Material): map fatigue criteria over the steps, "
         "taken as one cycle, and read them at the critical distance when it gives critical_distance",
     )
     stress.add_argument(
@@ -398,7 +398,7 @@ def _stress_criteria(args):
 
 
 def _criterion_map(stresses, name, material, path):
-    """`fretting.fatigue.apply` over the field's steps, its variables renamed ``<name>`` (the parameter)
+    """`fretting.analysis.fatigue.apply` over the field's steps, its variables renamed ``<name>`` (the parameter)
     and ``<name>_<variable>``, the parameter's attributes holding its critical distances."""
     try:
         maps = apply(stresses, name, material)
@@ -410,7 +410,7 @@ def _criterion_map(stresses, name, material, path):
 
 
 def _distances(parameter, material, path):
-    """The surface hot spot, and the point and line methods below it (`fretting.fatigue`) when the material
+    """The surface hot spot, and the point and line methods below it (`fretting.analysis.fatigue`) when the material
     gives ``L``, as attributes [the parameter's units, m]."""
     surface = parameter.isel(z=0)
     hot = int(np.nanargmax(surface.values))

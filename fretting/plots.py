@@ -295,7 +295,7 @@ def stress_map(data, result, step=None, ax=None, levels=STRESS_LEVELS):
     ----------
     data : xarray.DataArray
         A variable on dims (z, x) or (step, z, x), ``z`` the depth [m] (a component of
-        `fretting.stress.field`, or any map on its points, e.g. a fatigue parameter); its
+        `fretting.analysis.stress.field`, or any map on its points, e.g. a fatigue parameter); its
         ``long_name`` and ``units`` label the colour bar.
     result : xarray.Dataset
         The result the field was computed from: its ``a``, ``centre`` and stick zones.

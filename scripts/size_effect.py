@@ -4,7 +4,7 @@ Imported by scripts/make_validation.py (``--only size-effect``), which stamps an
 figure. For contact half-widths ``a`` from `SIZES` times the material's critical distance ``L``, at the
 same peak pressure ``p0``, ``Q/(f P)`` and bulk stress amplitude, it runs one steady cycle of shear force
 and bulk stress in phase, maps the Smith-Watson-Topper parameter over the specimen
-(`fretting.stress.field`, `fretting.fatigue.apply`) and reads it at the surface hot spot, by the point
+(`fretting.analysis.stress.field`, `fretting.analysis.fatigue.apply`) and reads it at the surface hot spot, by the point
 method and by the line method (Araujo & Nowell 2002, who observed the size effect this shows).
 """
 
@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import fretting as fr
-from fretting import fatigue, stress
+from fretting.analysis import fatigue, stress
 from fretting.loading.examples import EXAMPLES
 
 #: The material: the illustrative steel shipped with the package (its critical distance L = 50 um).
@@ -121,7 +121,7 @@ material is the illustrative steel of `fretting/examples/materials/steel.toml`
 
 For each size the script runs the history with the default model, computes the specimen's stress field over
 the cycle on {NX} x {NZ} points (`|x| <= {SPAN:g} a`, depth 0 to `2 L`; [stress under the surface](stress.md)),
-maps the Smith-Watson-Topper parameter on its critical plane (`fretting.fatigue.apply`) and reads it at the
+maps the Smith-Watson-Topper parameter on its critical plane (`fretting.analysis.fatigue.apply`) and reads it at the
 surface hot spot, at `L/2` below it (point method) and averaged over `2 L` below it (line method), with the
 life of each from the strain-life curve (`swt_life`).
 

@@ -8,6 +8,7 @@ import pytest
 #: The modules whose docstrings hold Examples of the public API.
 MODULES = [
     "fretting.analysis.methods",
+    "fretting.analysis.stress",
     "fretting.engine.choice",
     "fretting.engine.recorder",
     "fretting.engine.runner",
@@ -19,7 +20,6 @@ MODULES = [
     "fretting.physics.contact",
     "fretting.physics.profiles",
     "fretting.results.io",
-    "fretting.stress",
 ]
 
 

@@ -5,13 +5,18 @@ Where the maximum over time of a sinusoid ``R cos(t - t0)`` falls between sample
 is at least ``R cos(pi / T)``: the tolerance `SAMPLED` below.
 """
 
+import argparse
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
 
-from fretting.fatigue import (
+from fretting import cli
+from fretting.analysis.fatigue import (
+    CRITERIA,
     Material,
     MaterialFileError,
     apply,
@@ -33,7 +38,7 @@ ZERO = np.zeros(T)
 COARSE = 2 * np.pi * np.arange(16) / 16
 #: Relative shortfall of the sampled maximum of a sinusoid (module docstring).
 SAMPLED = 1 - math.cos(math.pi / T)
-#: Relative error of a quantity read on a plane located to about 1e-8 rad (`fretting.fatigue.XTOL`) that is
+#: Relative error of a quantity read on a plane located to about 1e-8 rad (`fretting.analysis.fatigue.XTOL`) that is
 #: not stationary there (MWCM's sigma_n,max on the plane of largest tau_a): first order, 10 times 1e-8.
 PLANE_FIRST_ORDER = 1e-7
 
@@ -373,6 +378,30 @@ def test_apply_maps_a_criterion_over_a_field():
         apply(dataset, "dang_van", STEEL)
     with pytest.raises(ValueError, match="field: expected a variable tau_xz"):
         apply(dataset.drop_vars("tau_xz"), "swt", STEEL)
+
+
+def test_one_registry_declares_every_criterion():
+    """`CRITERIA` is the one declaration of the criteria: the command line accepts exactly its names (for
+    ``--criterion`` and ``--figure``), `apply` maps each with the units and names it declares, and the
+    guides list each."""
+    stress = next(action for action in cli._parser()._actions if isinstance(action, argparse._SubParsersAction))
+    options = {action.dest: action.choices for action in stress.choices["stress"]._actions}
+    assert list(options["criterion"]) == list(CRITERIA) and set(CRITERIA) <= set(options["figure"])
+    assert cli.DEFAULT_CRITERION in CRITERIA
+    tension = 100e6 * np.sin(COARSE)[:, None, None] * np.ones((1, 2, 3))
+    field = xr.Dataset(
+        {name: (("step", "z", "x"), tension * (name == "sigma_xx")) for name in ("sigma_xx", "sigma_zz", "tau_xz")}
+    )
+    for name, criterion in CRITERIA.items():
+        maps = apply(field, name, STEEL)
+        declared = (criterion.units, criterion.long_name, criterion.amplitude_units, criterion.amplitude_name)
+        assert (criterion.name, maps.attrs["criterion"]) == (name, name)
+        assert tuple(maps[v].attrs[k] for v in ("parameter", "amplitude") for k in ("units", "long_name")) == declared
+    guides = Path(__file__).parents[1] / "docs" / "guide"
+    table = re.findall(r"^\| `(\w+)` \|", (guides / "fatigue.md").read_text(), re.MULTILINE)
+    assert table == list(CRITERIA)
+    row = next(line for line in (guides / "cli.md").read_text().splitlines() if line.startswith("| `--criterion"))
+    assert re.findall(r"`(\w+)`", row.split("|")[2].split("(")[0]) == list(CRITERIA)
 
 
 def test_material_checks_its_constants():

@@ -10,6 +10,7 @@ import pytest
 import xarray as xr
 
 import fretting as fr
+from fretting.physics.profiles import profile_class, recorded_profile
 from fretting.results.io import CYCLE_CHUNK_ROWS, ResultError, join_results, load, save, save_joined
 
 NODES = 48
@@ -182,3 +183,30 @@ def test_parts_saved_and_joined_on_disk_equal_the_join_in_memory(tmp_path, histo
         assert file["w"].maxshape == (None, NODES) and file["w"].shape == (5, NODES)
         assert file["cycle_dissipation"].chunks == (CYCLE_CHUNK_ROWS,) and file["w"].compression == "gzip"
         np.testing.assert_array_equal(file["cycle_dissipation"][:], whole.cycle_dissipation.values)
+
+
+@pytest.mark.parametrize(
+    ("contact_table", "facts"),
+    [
+        ('profile = "rounded_flat"\nb = 2e-3\nR = 0.05\nE = 210e9\nnu = 0.28', {"b": 2e-3, "R": 0.05}),
+        ('profile = "gap"\ntable = "gap.csv"\nbreakpoints = [-1e-4, 1e-4]\nE_star = 115e9', {}),
+    ],
+    ids=["rounded_flat", "gap_table"],
+)
+def test_a_result_file_records_the_profile_and_nu_as_facts(tmp_path, contact_table, facts):
+    """The class, each parameter and nu, read back from the file, rebuild the contact's profile bit for bit;
+    nu is recorded where the history file gives it, and absent where it gives E_star alone."""
+    x = np.linspace(-1e-3, 1e-3, 41).tolist()
+    rows = [f"{v!r},{max(abs(v) - 1e-4, 0.0) ** 2 / 0.1!r}\n" for v in x]  # a flat of half-width 0.1 mm
+    (tmp_path / "gap.csv").write_text("x,h0\n" + "".join(rows))
+    path = tmp_path / "run.toml"
+    loading = "[[loading]]\nkind = 'linear'\nQ = [3e3]\nsteps_per_segment = 2\n"
+    path.write_text(f"[contact]\n{contact_table}\nf = 0.6\nP = 2e4\n\n{loading}")
+    contact = fr.read_history(path)[0]
+    fr.run_file(path, tmp_path / "run.h5", fr.models.Grid(16))
+    attrs = load(tmp_path / "run.h5").attrs
+    name, parameters = recorded_profile(attrs)
+    assert name == attrs["profile_class"] == type(contact.profile).__name__
+    assert repr(profile_class(name).from_parameters(parameters)) == repr(contact.profile) == attrs["profile"]
+    assert {key: parameters[key] for key in facts} == facts
+    assert attrs.get("nu") == (0.28 if "nu" in contact_table else None)

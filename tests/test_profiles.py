@@ -7,6 +7,7 @@ import pytest
 from scipy import integrate
 
 import fretting as fr
+from fretting.physics.profiles import profile_class, recorded_profile
 
 E_STAR, P = 115e9, 3e5
 
@@ -157,3 +158,96 @@ def test_a_hollow_pad_is_refused_where_its_pressure_is_negative():
 def test_contact_specimen_is_body_1_or_2(specimen):
     with pytest.raises(ValueError, match="specimen must be 1"):
         fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P, specimen=specimen)
+
+
+# What a profile must give, and its facts
+
+
+def _user_profile(*omitted, **flags):
+    """A user's Hertz-like profile of R = 50 mm lacking the methods `omitted`, with the class attributes `flags`."""
+    R = 0.05
+    methods = {
+        "half_width": lambda self, P, E_star: (np.sqrt(4 * P * R / (np.pi * E_star)), 0.0),
+        "pressure": lambda self, t, a, centre, P, E_star: 2 * P / (np.pi * a) * np.sqrt(1 - t**2),
+        "load": lambda self, a, E_star: np.pi * E_star * np.square(a) / (4 * R),
+        "load_slope": lambda self, a, E_star: np.pi * E_star * np.asarray(a) / (2 * R),
+    }
+    body = {name: method for name, method in methods.items() if name not in omitted}
+    return type("Cylinder", (fr.Profile,), {"SYMMETRIC": True} | body | flags)
+
+
+def test_a_symmetric_profile_without_its_load_slope_is_refused_when_constructed():
+    """The user's profile fails at once, in one line naming what it lacks, what it returns and its units, not
+    deep in the exact model with an AttributeError."""
+    with pytest.raises(TypeError) as refused:
+        _user_profile("load_slope")()
+    assert str(refused.value) == (
+        "Cylinder lacks load_slope(a, E_star) -> dP/da [N/m^2], which a symmetric profile whose contact grows "
+        "with the load (SYMMETRIC and VANISHING_EDGES) must give"
+    )
+    with pytest.raises(TypeError, match=r"^Cylinder lacks pressure\(t, a, centre, P, E_star\) -> p \[Pa\], which"):
+        _user_profile("pressure")()
+
+
+def test_what_a_profile_must_give_follows_its_kind():
+    """Given whole, the user's profile runs on the exact model as Hertz does (by quadrature of its gap, not
+    the closed form: to 1e-9 f p0); an asymmetric one, or a symmetric one whose contact keeps its width (as
+    the flat punch's), needs no load; the base defines none, so that a profile has `load` only where it
+    gives it."""
+    contact = fr.Contact(_user_profile()(), E_STAR, 0.5, P)
+    history = fr.History.piecewise_linear([0.0, 0.5 * contact.f * P, 0.0], None, 4)
+    hertz = fr.simulate(fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P), history, fr.models.Exact(32))
+    on_user = fr.simulate(contact, history, fr.models.Exact(32))
+    np.testing.assert_allclose(on_user.q, hertz.q, rtol=0, atol=1e-9 * contact.f * contact.p0)
+    _user_profile("load", "load_slope", SYMMETRIC=False)()
+    _user_profile("load", "load_slope", VANISHING_EDGES=False)()
+    assert not hasattr(fr.FlatPunch(1e-3), "load") and not hasattr(fr.Profile, "load_slope")
+
+
+GAP_X = np.linspace(-1e-3, 1e-3, 21) + 1e-7 / 3
+
+PROFILES = [
+    fr.Hertz(0.05),
+    fr.FlatPunch(1e-3),
+    fr.RoundedFlat(b=2e-3, R=0.05),
+    fr.Gap.from_table(GAP_X, GAP_X**2 / 0.1, breakpoints=[1e-4 / 3]),
+    fr.Gap.from_table(GAP_X, GAP_X**2 / 0.1),
+]
+
+
+@pytest.mark.parametrize("profile", PROFILES, ids=repr)
+def test_facts_rebuild_the_profile(profile):
+    """The class's name and the parameters rebuild the same profile, every value to the last bit; a result
+    written before they were recorded states the same facts in its repr."""
+    name, parameters = recorded_profile(profile.attributes())
+    assert name == type(profile).__name__
+    again = profile_class(name).from_parameters(parameters)
+    assert repr(again) == repr(profile)
+    before = recorded_profile({"profile": repr(profile)})
+    assert before[0] == name and before[1].keys() == parameters.keys()
+    for key, value in before[1].items():
+        np.testing.assert_array_equal(value, parameters[key])
+
+
+def test_a_gap_of_functions_records_what_it_can():
+    profile = fr.Gap(lambda x: x**2 / 0.1, breakpoints=[1e-4])
+    name, parameters = recorded_profile(profile.attributes())
+    assert name == "Gap" and parameters.keys() == {"breakpoints"}
+    with pytest.raises(ValueError, match="found only breakpoints: a Gap of functions h0.x. records none"):
+        fr.Gap.from_parameters(parameters)
+    assert recorded_profile({"profile": repr(profile)}) == ("Gap", {})
+    assert recorded_profile({"profile": "<mine.Pad object at 0x7f>"}) == (None, {})
+
+
+def test_a_class_is_found_by_its_name_only_where_it_is_one():
+    assert profile_class("RoundedFlat") is fr.RoundedFlat and profile_class("Pad") is None
+    twins = _user_profile(), _user_profile()  # two classes of one name: neither is the one meant
+    assert profile_class("Cylinder") is None and twins[0] is not twins[1]
+
+
+def test_contact_nu_is_a_poisson_ratio_or_unknown():
+    assert fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P).nu is None
+    contact = fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P, nu=0.3)
+    assert contact.nu == 0.3 and repr(contact).endswith("specimen=2, nu=0.3)")
+    with pytest.raises(ValueError, match=re.escape("nu must be in (-1, 0.5]")):
+        fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P, nu=0.7)

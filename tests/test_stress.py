@@ -12,12 +12,13 @@ import sys
 import matplotlib
 import numpy as np
 import pytest
+import xarray as xr
 from scipy import integrate
 
 import fretting as fr
-from fretting import cli, fatigue, stress
-from fretting.analysis import nucleation
-from fretting.fatigue import Material
+from fretting import cli
+from fretting.analysis import fatigue, nucleation, stress
+from fretting.analysis.fatigue import Material
 from fretting.loading.examples import EXAMPLES
 from fretting.physics import closed_forms as cf
 from fretting.results.io import save
@@ -235,10 +236,51 @@ def test_nu_of_the_history_file_is_used(tmp_path):
         '[[loading]]\nkind = "linear"\nQ = [20e3]\nsteps_per_segment = 4\n'
     )
     result = fr.run_file(path, tmp_path / "hertz.h5").result
-    field = stress.field(result, [0.0], [1e-4])
-    assert field.attrs["nu"] == 0.25
-    with pytest.raises(ValueError, match="nu = 0.3 differs from the nu = 0.25 of the result's history file"):
-        stress.field(result, [0.0], [1e-4], nu=0.3)
+    assert result.attrs["nu"] == 0.25
+    for written in (result, written_before_the_facts(result)):  # the attribute, or the history file
+        assert stress.field(written, [0.0], [1e-4]).attrs["nu"] == 0.25
+        with pytest.raises(ValueError, match="nu = 0.3 differs from the nu = 0.25 the result records"):
+            stress.field(written, [0.0], [1e-4], nu=0.3)
+
+
+def written_before_the_facts(result):
+    """`result` as written before the profile's class and parameters and nu were recorded: the repr alone."""
+    before = result.copy()
+    before.attrs = {key: value for key, value in result.attrs.items() if not key.startswith("profile_") and key != "nu"}
+    return before
+
+
+@pytest.mark.parametrize(
+    ("profile", "model", "kind"),
+    [
+        (fr.Hertz(0.05), fr.models.Exact(64), "elliptical"),
+        (fr.Hertz(0.05), fr.models.Grid(32), "piecewise linear"),
+        (fr.RoundedFlat(2e-4, 0.05), fr.models.Exact(64), "piecewise linear"),
+    ],
+    ids=["hertz_exact", "hertz_grid", "rounded_flat_exact"],
+)
+def test_a_result_written_before_the_facts_gives_the_same_field(profile, model, kind):
+    """The field reads the profile's class from the repr of a result that lacks ``profile_class``, and gives
+    the same field, bit for bit, integrated in the same way; the traction is elliptical where it is the exact
+    model's on Hertz."""
+    contact = fr.Contact(profile, fr.plane_strain_modulus(210e9, NU), 0.6, 1e5, nu=NU)
+    fP = contact.f * contact.P
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, 0.6 * fP, 0.1 * fP], None, 4), model)
+    before = written_before_the_facts(result)
+    assert "profile_class" in result.attrs and "profile_class" not in before.attrs and "nu" not in before.attrs
+    x, z = grid(contact, 9, 5)
+    field = stress.field(result, x, z)
+    assert field.attrs["traction"] == kind and field.attrs["nu"] == NU
+    xr.testing.assert_identical(stress.field(before, x, z, nu=NU), field)
+
+
+def test_a_profile_of_a_class_not_defined_here_is_integrated_piecewise_linearly(contact):
+    """A result of the user's profile read where its class is not defined: its Hertz pressure is not known to
+    be elliptical, and the field is that of the recorded loads interpolated."""
+    result = fr.simulate(contact, fr.History.piecewise_linear([0.0, 1e4], None, 2), fr.models.Exact(32))
+    unknown = result.assign_attrs(profile_class="PadOfAnotherSession")
+    field = stress.field(unknown, *grid(contact, 9, 5), nu=NU)
+    assert field.attrs["pressure"] == field.attrs["traction"] == "piecewise linear"
 
 
 @pytest.mark.parametrize(
@@ -263,8 +305,9 @@ def test_bad_input(contact, options, message):
 def test_flat_punch_is_refused():
     punch = fr.Contact(fr.FlatPunch(1e-3), 1e11, 0.6, 1e5)
     result = fr.simulate(punch, fr.History.piecewise_linear([0.0, 1e4], None, 2), nodes=16)
-    with pytest.raises(ValueError, match="flat punch's pressure is unbounded"):
-        stress.field(result, [0.0], [1e-4], nu=NU)
+    for written in (result, written_before_the_facts(result)):
+        with pytest.raises(ValueError, match="pressure of a FlatPunch is unbounded"):
+            stress.field(written, [0.0], [1e-4], nu=NU)
 
 
 # The command and the figure
@@ -387,5 +430,5 @@ def test_stress_map_marks_the_contact_and_the_stick_zone(contact):
 
 
 def test_import_does_not_load_matplotlib():
-    code = "import sys, fretting.stress; print('matplotlib' in sys.modules)"
+    code = "import sys, fretting.analysis.stress; print('matplotlib' in sys.modules)"
     assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout == "False\n"

@@ -303,6 +303,8 @@ class Recorder:
             "P": contact.P,
             "centre": contact.centre,
             "profile": repr(contact.profile),
+            **contact.profile.attributes(),
+            **({} if contact.nu is None else {"nu": contact.nu}),
             "specimen": contact.specimen,
             "nodes": self.model.x.size,
             "model_description": spec.description,

@@ -204,16 +204,18 @@ def _contact(table):
     table.reject_unknown(CONTACT_KEYS + keys)
     if "E_star" in table.data and ("E" in table.data or "nu" in table.data):
         raise table.error("E_star", "found E_star with E or nu, expected either E_star or both E and nu")
+    nu = None
     if "E_star" in table.data:
         E_star = table.get("E_star", _positive)
     elif "E" in table.data or "nu" in table.data:
-        E_star = plane_strain_modulus(table.get("E", _positive), table.get("nu", _poisson))
+        E, nu = table.get("E", _positive), table.get("nu", _poisson)
+        E_star = plane_strain_modulus(E, nu)
     else:
         raise table.error(None, "missing key 'E_star', expected E_star or both E and nu")
     profile, f, P = read_profile(table), table.get("f", _positive), table.get("P", _positive)
     specimen = table.get("specimen", _choice((1, 2)), SPECIMEN)
     try:
-        return Contact(profile, E_star, f, P, specimen)
+        return Contact(profile, E_star, f, P, specimen, nu)
     except ValueError as error:
         key = "table" if isinstance(profile, Gap) else None
         raise table.error(key, f"found no admissible contact for this profile and load: {error}") from None

@@ -8,7 +8,7 @@ from numpy.typing import ArrayLike
 from fretting._validate import finite, positive
 from fretting.physics.profiles import Profile
 
-__all__ = ["POISSON_RANGE", "SPECIMEN", "Contact", "plane_strain_modulus"]
+__all__ = ["POISSON_RANGE", "SPECIMEN", "Contact", "plane_strain_modulus", "poisson_ratio"]
 
 #: Poisson's ratios of an isotropic elastic material, ``-1 < nu <= 0.5``: its bulk and shear moduli are
 #: positive for ``-1 < nu < 0.5``, and 0.5 is the incompressible limit, where ``E_star`` stays finite.
@@ -17,6 +17,24 @@ POISSON_RANGE = (-1.0, 0.5)
 #: The body that is the specimen when none is named: body 2, which carries the traction ``-q`` and,
 #: since ``sigma = sigma_b2 - sigma_b1``, the bulk tension ``sigma`` of a pad that carries none.
 SPECIMEN = 2
+
+
+def poisson_ratio(nu: float) -> float:
+    """`nu` as a float, checked to be a Poisson's ratio.
+
+    Raises
+    ------
+    ValueError
+        Unless `nu` is a number in `POISSON_RANGE`, ``(-1, 0.5]``.
+    """
+    nu = finite("nu", nu)
+    low, high = POISSON_RANGE
+    if not low < nu <= high:
+        raise ValueError(
+            f"nu must be in ({low:g}, {high:g}] (isotropic: positive bulk and shear moduli, 0.5 incompressible), "
+            f"found {nu!r}"
+        )
+    return nu
 
 
 def plane_strain_modulus(E: float, nu: float) -> float:
@@ -34,13 +52,7 @@ def plane_strain_modulus(E: float, nu: float) -> float:
     >>> round(plane_strain_modulus(210e9, 0.3) / 1e9, 2)
     115.38
     """
-    E, nu = positive("E", E), finite("nu", nu)
-    low, high = POISSON_RANGE
-    if not low < nu <= high:
-        raise ValueError(
-            f"nu must be in ({low:g}, {high:g}] (isotropic: positive bulk and shear moduli, 0.5 incompressible), "
-            f"found {nu!r}"
-        )
+    E, nu = positive("E", E), poisson_ratio(nu)
     return E / (2 * (1 - nu**2))
 
 
@@ -63,6 +75,11 @@ class Contact:
         bulk tension ``S`` under an unstressed pad is body 2 with ``sigma = S`` (the default,
         `SPECIMEN`), or body 1 with ``sigma = -S``. It changes no mechanics: the nucleation
         quantities and figures are those of the specimen, with its bulk stress.
+    nu : float, optional
+        Poisson's ratio of the bodies [-], where it is known (a history file that gives ``E`` and
+        ``nu``). It changes no mechanics, which `E_star` sets: a result records it (attribute
+        ``nu``) for the stress out of the plane, ``sigma_yy = nu (sigma_xx + sigma_zz)``
+        (`fretting.analysis.stress.field`).
 
     Attributes
     ----------
@@ -91,7 +108,9 @@ class Contact:
     0.0
     """
 
-    def __init__(self, profile: Profile, E_star: float, f: float, P: float, specimen: int = SPECIMEN) -> None:
+    def __init__(
+        self, profile: Profile, E_star: float, f: float, P: float, specimen: int = SPECIMEN, nu: float | None = None
+    ) -> None:
         if not isinstance(profile, Profile):
             raise ValueError(f"profile must be a fretting Profile, found {profile!r}")
         if isinstance(specimen, bool) or specimen not in (1, 2):
@@ -101,13 +120,16 @@ class Contact:
         self.f = positive("f", f)
         self.P = positive("P", P)
         self.specimen = int(specimen)
+        self.nu = None if nu is None else poisson_ratio(nu)
         self.a, self.centre = (float(v) for v in profile.half_width(self.P, self.E_star))
         profile.check(self.a, self.centre, self.P, self.E_star)
         self.p0 = float(profile.peak_pressure(self.a, self.centre, self.P, self.E_star))
 
     def __repr__(self):
+        nu = "" if self.nu is None else f", nu={self.nu!r}"
         return (
-            f"Contact({self.profile!r}, E_star={self.E_star!r}, f={self.f!r}, P={self.P!r}, specimen={self.specimen!r})"
+            f"Contact({self.profile!r}, E_star={self.E_star!r}, f={self.f!r}, P={self.P!r}, "
+            f"specimen={self.specimen!r}{nu})"
         )
 
     def pressure(self, x: ArrayLike) -> np.ndarray:

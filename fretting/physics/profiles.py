@@ -9,7 +9,9 @@ Positions inside the contact are written ``x = centre + a t`` with ``-1 <= t <= 
 from __future__ import annotations
 
 import abc
-from collections.abc import Callable, Iterable, Sequence
+import ast
+import re
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import NoReturn
 
 import numpy as np
@@ -18,7 +20,7 @@ from scipy import fft, optimize, special
 
 from fretting._validate import positive
 
-__all__ = ["Profile", "Hertz", "RoundedFlat", "FlatPunch", "Gap"]
+__all__ = ["Profile", "Hertz", "RoundedFlat", "FlatPunch", "Gap", "profile_class", "recorded_profile"]
 
 #: A gap ``h0(x)`` [m] or its slope [-] at positions ``x`` [m] (vectorised).
 GapFunction = Callable[[np.ndarray], np.ndarray]
@@ -26,22 +28,86 @@ GapFunction = Callable[[np.ndarray], np.ndarray]
 # Root-finding tolerance on lengths and angles, relative: well inside the 1e-10 asked of a.
 _RTOL = 4 * np.finfo(float).eps
 
+#: What every profile gives: method -> its signature and what it returns [units].
+_EVERY_PROFILE = {
+    "half_width": "half_width(P, E_star) -> (a, centre) [m]",
+    "pressure": "pressure(t, a, centre, P, E_star) -> p [Pa]",
+}
+
+#: What a symmetric profile whose contact grows with the load gives besides.
+_GROWING = {"load": "load(a, E_star) -> P [N/m]", "load_slope": "load_slope(a, E_star) -> dP/da [N/m^2]"}
+_GROWING_KIND = "a symmetric profile whose contact grows with the load (SYMMETRIC and VANISHING_EDGES)"
+
+#: Dataset attributes ``profile_<name>`` hold the profile's parameters (`Profile.attributes`).
+PARAMETER_PREFIX = "profile_"
+
 
 class Profile(abc.ABC):
-    """Base class: a profile gives the contact interval and the pressure for a normal load."""
+    """Base class: a profile gives the contact interval and the pressure for a normal load.
+
+    Every profile gives `half_width` and `pressure`; a symmetric one whose contact grows with the
+    load (`SYMMETRIC` and `VANISHING_EDGES`) also gives `load` and `load_slope`. A subclass that
+    lacks one of them is refused when it is constructed, by a ``TypeError`` naming what it lacks.
+
+    A profile states its facts, which a result records (`attributes`): its class's name and its
+    `parameters`, from which `from_parameters` builds it again.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import fretting as fr
+    >>> class Cylinder(fr.Profile):
+    ...     SYMMETRIC = True
+    ...     def half_width(self, P, E_star):
+    ...         return np.sqrt(4 * P * 0.05 / (np.pi * E_star)), 0.0
+    ...     def pressure(self, t, a, centre, P, E_star):
+    ...         return 2 * P / (np.pi * a) * np.sqrt(1 - t**2)
+    >>> Cylinder()
+    Traceback (most recent call last):
+    ...
+    TypeError: Cylinder lacks load(a, E_star) -> P [N/m] and load_slope(a, E_star) -> dP/da [N/m^2], which ...
+    """
 
     #: The gap, and so the pressure, is even about the centre of the contact. A symmetric profile
-    #: whose contact grows with the load gives ``load_slope(a, E_star)``, ``dP/da`` [N/m^2], from
-    #: which `fretting.models.exact` builds the gap outside a contact, and ``load(a, E_star)``, the
-    #: load ``P`` [N/m] of half-width ``a``, at which `fretting.models.normal` lets nodes enter
-    #: (`Hertz`, `RoundedFlat`; the sharp `FlatPunch`, whose contact does not grow, needs neither).
+    #: whose contact grows with the load gives `load_slope`, from which `fretting.models.exact` builds
+    #: the gap outside a contact, and `load`, at which `fretting.models.normal` lets nodes enter
+    #: (`Hertz`, `RoundedFlat`; the sharp `FlatPunch`, whose contact does not grow, gives neither).
     SYMMETRIC = False
     #: Positions [m] where the gap's curvature jumps: the pressure's derivative is singular there.
     breakpoints = ()
     #: The pressure vanishes at the edges of the contact (it is bounded there, eq 1), where the
-    #: fully stuck traction is unbounded: any change of the loads slips a zone at each edge. Not so
-    #: under the sharp `FlatPunch`, whose pressure is unbounded there as the traction is.
+    #: fully stuck traction is unbounded: any change of the loads slips a zone at each edge. Such a
+    #: contact grows with the load. Not so under the sharp `FlatPunch`, whose pressure is unbounded
+    #: there as the traction is, and whose contact keeps its width.
     VANISHING_EDGES = True
+    #: The pressure is Hertz's ellipse ``p0 sqrt(1 - t^2)`` at every load, whose stress field has
+    #: McEwen's closed form (`fretting.analysis.stress.mcewen`).
+    ELLIPTICAL = False
+
+    #: ``load(a, E_star) -> P`` [N/m]: the load of the contact of half-width ``a`` [m] and modulus
+    #: ``E_star`` [Pa], vectorised in ``a``. Given by a symmetric profile whose contact grows with the
+    #: load, and by no other: the base class declares it and defines none, so that a profile has it
+    #: only where it holds.
+    load: Callable[[ArrayLike, float], np.ndarray]
+    #: ``load_slope(a, E_star) -> dP/da`` [N/m^2], the derivative of `load`; given where `load` is.
+    load_slope: Callable[[ArrayLike, float], np.ndarray]
+
+    def __new__(cls, *args, **kwargs):
+        """Refuse a class that lacks a method it must give (`required`), naming them and what they return."""
+        missing = {
+            kind: [text for name, text in methods.items() if _lacks(cls, name)]
+            for kind, methods in cls.required().items()
+        }
+        problems = [f"{' and '.join(texts)}, which {kind} must give" for kind, texts in missing.items() if texts]
+        if problems:
+            raise TypeError(f"{cls.__name__} lacks {'; and '.join(problems)}")
+        return super().__new__(cls)
+
+    @classmethod
+    def required(cls) -> dict[str, dict[str, str]]:
+        """What the class must give: ``{which profiles: {method: its signature and what it returns [units]}}``."""
+        growing = cls.SYMMETRIC and cls.VANISHING_EDGES
+        return {"every profile": _EVERY_PROFILE} | ({_GROWING_KIND: _GROWING} if growing else {})
 
     @abc.abstractmethod
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
@@ -50,6 +116,26 @@ class Profile(abc.ABC):
     @abc.abstractmethod
     def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
         """Contact pressure [Pa] at the normalised positions ``t`` in (-1, 1)."""
+
+    def parameters(self) -> dict[str, float | np.ndarray]:
+        """The numbers that define the profile [m], by the names of its constructor's arguments.
+
+        The base class knows none: a profile of the user's that gives them has them recorded in a
+        result and rebuilt by `from_parameters`.
+        """
+        return {}
+
+    @classmethod
+    def from_parameters(cls, parameters: Mapping[str, float | np.ndarray]) -> Profile:
+        """The profile of `parameters` (`parameters` of one of this class): ``cls(**parameters)``."""
+        return cls(**parameters)
+
+    def attributes(self) -> dict[str, str | float | np.ndarray]:
+        """The profile's facts as dataset attributes: ``profile_class``, the class's name, and
+        ``profile_<name>`` for each of its `parameters` (read back by `recorded_profile`)."""
+        return {"profile_class": type(self).__name__} | {
+            f"{PARAMETER_PREFIX}{name}": value for name, value in self.parameters().items()
+        }
 
     def check(self, a: float, centre: float, P: float, E_star: float) -> None:  # noqa: B027 (a default: closed-form profiles pass)
         """Raise ValueError unless the pressure of the contact `a`, `centre` is admissible.
@@ -87,12 +173,16 @@ class Hertz(Profile):
     """
 
     SYMMETRIC = True
+    ELLIPTICAL = True
 
     def __init__(self, R: float) -> None:
         self.R = positive("R", R)
 
     def __repr__(self) -> str:
         return f"Hertz(R={self.R!r})"
+
+    def parameters(self) -> dict[str, float]:
+        return {"R": self.R}
 
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         return np.sqrt(4 * P * self.R / (np.pi * E_star)), 0.0
@@ -128,6 +218,9 @@ class FlatPunch(Profile):
     def __repr__(self) -> str:
         return f"FlatPunch(a={self.a!r})"
 
+    def parameters(self) -> dict[str, float]:
+        return {"a": self.a}
+
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         return self.a, 0.0
 
@@ -162,6 +255,9 @@ class RoundedFlat(Profile):
 
     def __repr__(self) -> str:
         return f"RoundedFlat(b={self.b!r}, R={self.R!r})"
+
+    def parameters(self) -> dict[str, float]:
+        return {"b": self.b, "R": self.R}
 
     def load(self, a: ArrayLike, E_star: float) -> np.ndarray:
         """``P = E_star a^2 (2e - sin 2e) / (4R)`` [N/m], the load of the contact of half-width `a` [m],
@@ -277,6 +373,26 @@ class Gap(Profile):
         profile.table = (x, h0)
         return profile
 
+    def parameters(self) -> dict[str, np.ndarray]:
+        """``breakpoints`` [m], and the table's ``x`` and ``h0`` [m] of a profile made by `from_table`.
+
+        The functions of a profile made from them are not numbers: its parameters are only its
+        breakpoints, and `from_parameters` refuses them.
+        """
+        table = {} if self.table is None else {"x": self.table[0].copy(), "h0": self.table[1].copy()}
+        return table | {"breakpoints": np.array(self.breakpoints, dtype=float)}
+
+    @classmethod
+    def from_parameters(cls, parameters: Mapping[str, float | np.ndarray]) -> Gap:
+        """The tabulated profile of `parameters` (`from_table`); a ValueError for a profile of functions."""
+        if "x" not in parameters or "h0" not in parameters:
+            raise ValueError(
+                f"a Gap is rebuilt from its table x, h0 [m], found only {', '.join(parameters) or 'no parameters'}: "
+                "a Gap of functions h0(x) records none"
+            )
+        x, h0, breakpoints = (np.atleast_1d(parameters.get(name, ())) for name in ("x", "h0", "breakpoints"))
+        return cls.from_table(x, h0, breakpoints.tolist())
+
     def check(self, a: float, centre: float, P: float, E_star: float) -> None:  # noqa: B027 (a default: closed-form profiles pass)
         """Raise ValueError naming where the contact fails: outside the table, or a negative pressure.
 
@@ -352,6 +468,74 @@ def _x_minus_sin(x: ArrayLike) -> np.ndarray:
     x = np.asarray(x, dtype=float)
     series = np.polynomial.polynomial.polyval(x**2, _X_MINUS_SIN) * x**3
     return np.where(x < 0.5, series, x - np.sin(x))
+
+
+def _lacks(cls: type, name: str) -> bool:
+    """The class has no method `name`, or only the abstract one of its base."""
+    method = getattr(cls, name, None)
+    return not callable(method) or getattr(method, "__isabstractmethod__", False)
+
+
+def profile_class(name: str | None) -> type[Profile] | None:
+    """The profile class called `name`: this package's, or one defined in this session; None where
+    no class, or more than one, has that name."""
+    found, classes = set(), [Profile]
+    while classes:
+        cls = classes.pop()
+        classes += cls.__subclasses__()
+        if cls.__name__ == name:
+            found.add(cls)
+    return found.pop() if len(found) == 1 else None
+
+
+def recorded_profile(attrs: Mapping[str, object]) -> tuple[str | None, dict[str, object]]:
+    """The class name and the parameters of the profile that a result's attributes `attrs` record.
+
+    A result records ``profile_class`` and ``profile_<name>`` (`Profile.attributes`); one written
+    before it did has only ``profile``, the profile's repr, read instead by `_read_repr`.
+
+    Examples
+    --------
+    >>> import fretting as fr
+    >>> recorded_profile(fr.Hertz(0.05).attributes())
+    ('Hertz', {'R': 0.05})
+    >>> recorded_profile({"profile": "RoundedFlat(b=0.002, R=0.05)"})  # a result written before the facts
+    ('RoundedFlat', {'b': 0.002, 'R': 0.05})
+    """
+    if "profile_class" not in attrs:
+        return _read_repr(str(attrs["profile"]))
+    parameters = {
+        name.removeprefix(PARAMETER_PREFIX): value
+        for name, value in attrs.items()
+        if name.startswith(PARAMETER_PREFIX) and name != "profile_class"
+    }
+    return str(attrs["profile_class"]), parameters
+
+
+def _read_repr(text: str) -> tuple[str | None, dict[str, object]]:
+    """The class name and parameters in a profile's repr, such as ``Hertz(R=0.05)`` or
+    ``Gap.from_table(x=[...], h0=[...], breakpoints=[...])``: the keyword arguments whose values are
+    numbers or lists of them; the name alone where the repr is no expression (a `Gap` of functions),
+    and None for a repr of no class."""
+    try:
+        call = ast.parse(text, mode="eval").body
+    except SyntaxError:
+        call = None
+    if not isinstance(call, ast.Call):
+        named = re.match(r"(\w+)[.(]", text)
+        return (named.group(1) if named else None), {}
+    function = call.func.value if isinstance(call.func, ast.Attribute) else call.func
+    parameters = {}
+    for keyword in call.keywords:
+        try:
+            value = ast.literal_eval(keyword.value)
+        except ValueError:
+            continue
+        if isinstance(value, int | float):
+            parameters[keyword.arg] = value
+        elif isinstance(value, list) and all(isinstance(item, int | float) for item in value):
+            parameters[keyword.arg] = np.array(value, dtype=float)
+    return getattr(function, "id", None), parameters
 
 
 def _floats(values: Iterable[float]) -> str:

@@ -21,13 +21,20 @@ The integrals are taken in closed form, so the field is exact for the traction e
 representation gives:
 
 - elliptical (Hertz-shaped) distributions ``p0 sqrt(1 - (x - e)^2 / c^2)`` by McEwen's closed
-  forms [2]_ (`mcewen`): the Hertz pressure, and the traction of the exact model on a Hertz
-  contact, a sum of such distributions (Ciavarella-Jaeger and Masing's rule,
-  `fretting.models.exact`), so that its field is exact to rounding;
+  forms [2]_ (`mcewen`): the pressure of a profile that says it is Hertz's
+  (`fretting.physics.profiles.Profile.ELLIPTICAL`), and on it a traction that is the exact
+  model's, a sum of such distributions (Ciavarella-Jaeger and Masing's rule,
+  `fretting.models.exact`) rebuilt from the load path and held against the recorded traction,
+  so that its field is exact to rounding;
 - otherwise pressure and traction interpolated linearly between the nodes and zero at the
   contact edges (`polygon`): integrated twice by parts, a continuous piecewise-linear load
   ``g`` gives ``int g(s) K(x - s) ds = sum_k (g'_k+ - g'_k-) F(x - s_k)`` over its knots
   ``s_k``, with ``F'' = K``; the field is that of this interpolant.
+
+The profile is known from the facts the result records, its class ``profile_class``
+(`fretting.physics.profiles.recorded_profile`, which reads the ``profile`` repr of a result
+written before them); a class this session does not define is taken as one whose pressure
+vanishes at the edges, and is integrated piecewise linearly.
 
 References
 ----------
@@ -45,11 +52,11 @@ import numpy as np
 import xarray as xr
 from scipy import special
 
-from fretting._validate import finite, finite_array
+from fretting._validate import finite_array
 from fretting.analysis.nucleation import body_bulk, body_role
-from fretting.engine.recorder import recorded_spec
 from fretting.physics.closed_forms import masing_increment, masing_origin
-from fretting.physics.contact import POISSON_RANGE
+from fretting.physics.contact import poisson_ratio
+from fretting.physics.profiles import profile_class, recorded_profile
 
 __all__ = ["COMPONENTS", "field", "mcewen", "polygon"]
 
@@ -66,8 +73,9 @@ COMPONENTS = {
     "sigma_yy": ("Pa", "direct stress out of the plane", "nu (sigma_xx + sigma_zz), plane strain"),
 }
 
-#: Largest difference, relative to ``f p0``, between the exact model's recorded traction and its
-#: elliptical reconstruction for the reconstruction to be used (rounding is ~1e-15).
+#: Largest difference, relative to ``f p0``, between the recorded traction and the exact model's
+#: elliptical reconstruction for the reconstruction to be used: the exact model's traction meets it
+#: to rounding (~1e-15), a discretised model's by its own error, far above this.
 RECONSTRUCTION_RTOL = 1e-9
 
 #: Nodes closer than this to an edge, in ``|t| = |x - centre| / a``, are taken as the edge itself (a Galerkin
@@ -184,8 +192,9 @@ def field(result, x, z, step=None, body=None, nu=None):
         (`fretting.analysis.nucleation.specimen`). The specimen carries the bulk stress, the pad
         none (`fretting.physics.surface.bulk_stress`).
     nu : float, optional
-        Poisson's ratio, for ``sigma_yy``; by default the ``nu`` of the history file the
-        result records (``history_toml``), which a result run from ``E_star`` does not have.
+        Poisson's ratio, for ``sigma_yy``; by default the ``nu`` the result records (its
+        attribute, or for a result written before it, the ``[contact]`` of its ``history_toml``),
+        which a result run from ``E_star`` alone does not have.
 
     Returns
     -------
@@ -194,7 +203,8 @@ def field(result, x, z, step=None, body=None, nu=None):
         (`COMPONENTS`; sign conventions in the module docstring). Attributes: ``body``,
         ``role`` (specimen or pad), ``nu``, the contact's ``a``, ``centre``, ``p0``, ``f``, and
         ``traction``, how the loads were integrated: ``"elliptical"`` (McEwen's closed forms:
-        the exact model on a Hertz contact) or ``"piecewise linear"``, and ``pressure`` likewise.
+        the exact model's traction on a Hertz contact) or ``"piecewise linear"``, and
+        ``pressure`` likewise (``"elliptical"`` on a Hertz contact).
 
     Examples
     --------
@@ -213,7 +223,7 @@ def field(result, x, z, step=None, body=None, nu=None):
     ValueError
         On negative or non-finite depths, steps the result does not record, an unknown `body`,
         a missing or invalid `nu`, or a contact whose pressure is unbounded at its edges (the
-        flat punch).
+        flat punch: `fretting.physics.profiles.Profile.VANISHING_EDGES`).
     """
     x, z = finite_array("x", x), finite_array("z", z)
     if np.any(z < 0):
@@ -221,13 +231,18 @@ def field(result, x, z, step=None, body=None, nu=None):
     body, role = body_role(result, body)
     nu = _poisson(result, nu)
     attrs = result.attrs
-    if attrs["profile"].startswith("FlatPunch"):
-        raise ValueError("the flat punch's pressure is unbounded at the contact edges: its field is not integrated")
+    profile = profile_class(recorded_profile(attrs)[0])
+    if profile is not None and not profile.VANISHING_EDGES:
+        raise ValueError(
+            f"the pressure of a {profile.__name__} is unbounded at the contact edges: its field is not integrated"
+        )
+    elliptical = profile is not None and profile.ELLIPTICAL
     rows = _rows(result, step)
     a, centre = attrs["a"], attrs["centre"]
     t, depth = np.meshgrid((x - centre) / a, z / a)  # normalised: every kernel is homogeneous of degree -1
     t, depth = t.ravel(), depth.ravel()
-    (pressure, pressure_kind), (traction, loads, traction_kind) = _pressure(result), _traction(result, rows)
+    pressure, pressure_kind = _pressure(result, elliptical)
+    traction, loads, traction_kind = _traction(result, rows, elliptical)
     sign = 1.0 if body == 1 else -1.0
     stress = np.empty((3, rows.size, t.size))
     knots, inside = _knots(result)
@@ -255,23 +270,23 @@ def field(result, x, z, step=None, body=None, nu=None):
 
 
 def _poisson(result, nu):
-    """`nu`, or the one of the result's history file; checked, and the two equal when both are known."""
+    """`nu`, or the one the result records; checked, and the two equal when both are known."""
     recorded = _recorded_poisson(result)
     if nu is None and recorded is None:
         raise ValueError(
             "nu is needed for sigma_yy = nu (sigma_xx + sigma_zz): the result records no Poisson's ratio, pass nu"
         )
-    nu = finite("nu", recorded if nu is None else nu)
-    low, high = POISSON_RANGE
-    if not low < nu <= high:
-        raise ValueError(f"nu must be in ({low:g}, {high:g}], found {nu!r}")
+    nu = poisson_ratio(recorded if nu is None else nu)
     if recorded is not None and nu != recorded:
-        raise ValueError(f"nu = {nu!r} differs from the nu = {recorded!r} of the result's history file")
+        raise ValueError(f"nu = {nu!r} differs from the nu = {recorded!r} the result records")
     return nu
 
 
 def _recorded_poisson(result):
-    """The ``nu`` of the ``[contact]`` table of the history file the result records, or None."""
+    """The result's ``nu``: its attribute, else (a result written before it) the ``nu`` of the
+    ``[contact]`` table of the history file it records; None when neither is there."""
+    if "nu" in result.attrs:
+        return float(result.attrs["nu"])
     text = result.attrs.get("history_toml")
     try:
         return None if text is None else tomllib.loads(text).get("contact", {}).get("nu")
@@ -296,14 +311,10 @@ def _rows(result, step):
     return np.searchsorted(recorded, steps)
 
 
-def _hertz(result):
-    return result.attrs["profile"].startswith("Hertz(")
-
-
-def _pressure(result):
+def _pressure(result, elliptical):
     """Field of the pressure, ``(t, depth, influence) -> (3, points)`` [Pa] in normalised coordinates
-    (`influence`: `polygon` at the knots of `_knots`), and its kind."""
-    if _hertz(result):
+    (`influence`: `polygon` at the knots of `_knots`), and its kind; `elliptical`: Hertz's pressure."""
+    if elliptical:
         p0 = result.attrs["p0"]
         return (lambda t, depth, influence: p0 * mcewen(t, depth, 1.0)[0]), "elliptical"
     p = result.p.values[_knots(result)[1]]
@@ -318,12 +329,12 @@ def _knots(result):
     return np.concatenate([[-1.0], t[inside], [1.0]]), inside
 
 
-def _traction(result, rows):
+def _traction(result, rows, elliptical):
     """Field of the shear traction on body 1 per unit basis load, ``(t, depth, influence) -> (3, points, B)``
-    (as `_pressure`), the loads (steps, B) [Pa] and its kind."""
-    elliptical = _elliptical_traction(result, rows)
-    if elliptical is not None:
-        widths, loads = elliptical
+    (as `_pressure`), the loads (steps, B) [Pa] and its kind; `elliptical`: under Hertz's pressure."""
+    ellipses = _elliptical_traction(result, rows) if elliptical else None
+    if ellipses is not None:
+        widths, loads = ellipses
         unit = lambda t, depth, influence: np.stack([mcewen(t, depth, c)[1] for c in widths], axis=-1)  # noqa: E731
         return unit, loads, "elliptical"
     inside = _knots(result)[1]
@@ -331,10 +342,10 @@ def _traction(result, rows):
 
 
 def _elliptical_traction(result, rows):
-    """The exact model's traction on a Hertz contact at `rows` as elliptical loads: half-widths
-    ``c / a`` (B,) and peaks (steps, B) [Pa]; None for any other result, or where the
-    reconstruction does not meet the recorded traction to `RECONSTRUCTION_RTOL` (a run continued
-    from a state whose memory the result does not record).
+    """The traction at `rows` of a result on a Hertz contact as the exact model's elliptical loads:
+    half-widths ``c / a`` (B,) and peaks (steps, B) [Pa]; None where they do not meet the recorded
+    traction to `RECONSTRUCTION_RTOL`: a traction the exact model did not give (a discretised
+    model's), or a run continued from a state whose memory the result does not record.
 
     The open turning points at each step follow from Masing's rule along the load path, its
     vertices and the recorded steps (between two of them ``Q`` is monotonic); each branch from
@@ -343,8 +354,6 @@ def _elliptical_traction(result, rows):
     seed for the corrective load ``P - |Q - Q_k| / (m f)``; `fretting.models.exact`).
     """
     attrs = result.attrs
-    if recorded_spec(result).name != "exact" or not _hertz(result):
-        return None
     path = dict(zip(result.vertex_step.values.tolist(), result.vertex_Q.values.tolist(), strict=True))
     path |= dict(zip(result.step.values.tolist(), result.Q.values.tolist(), strict=True))
     if path.get(0) != 0.0:

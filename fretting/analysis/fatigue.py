@@ -55,10 +55,12 @@ References
 
 from __future__ import annotations
 
+import abc
 import math
 import os
 import re
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import NamedTuple
@@ -77,6 +79,7 @@ __all__ = [
     "PEAKS",
     "SAMPLES",
     "XTOL",
+    "Criterion",
     "CriticalDistance",
     "Invariant",
     "Material",
@@ -381,16 +384,54 @@ def _terms(history, material, phi, theta, strain):
 
 
 @dataclass(frozen=True)
-class _Criterion:
+class Criterion(abc.ABC):
+    """A fatigue criterion, declared once, in `CRITERIA`: what it computes and the names of its results.
+
+    Attributes
+    ----------
+    name : str
+        Its key in `CRITERIA`, the name `apply` and ``fretting stress --criterion`` take.
+    units, long_name : str
+        Of its parameter.
+    amplitude_units, amplitude_name : str
+        Of its amplitude.
+    """
+
+    name: str
+    units: str
+    long_name: str
+    amplitude_units: str
+    amplitude_name: str
+
+    @abc.abstractmethod
+    def evaluate(self, history: _History, material: Material, planes: str) -> Plane | Invariant:
+        """The criterion at every point of `history` (`_history`), on `planes` where it has a plane."""
+
+
+@dataclass(frozen=True)
+class _OnPlane(Criterion):
     """A critical-plane criterion: its parameter and amplitude from `_Terms`, and what its plane maximises."""
 
-    parameter: object
-    amplitude: object
+    parameter: Callable[[_Terms, Material], np.ndarray]
+    amplitude: Callable[[_Terms, Material], np.ndarray]
     strain: bool = False  # reads eps_a, not tau_a
     plane_by_shear: bool = False  # the plane of largest tau_a (ties: largest sigma_n_max), not of the parameter
 
+    def evaluate(self, history, material, planes):
+        return _critical_plane(self, history, material, planes)
+
     def searched(self, terms, material):
         return terms.tau_a if self.plane_by_shear else self.parameter(terms, material)
+
+
+@dataclass(frozen=True)
+class _Invariant(Criterion):
+    """A criterion of stress invariants, on no plane: `invariant` gives it from `_History`."""
+
+    invariant: Callable[[_History, Material], Invariant]
+
+    def evaluate(self, history, material, planes):
+        return self.invariant(history, material)
 
 
 def _critical_plane(criterion, history, material, planes):
@@ -518,10 +559,85 @@ def _mwcm(terms, material):
     return np.where(sheared, terms.tau_a + kappa * rho, 0.0)
 
 
-_SWT = _Criterion(_swt, lambda terms, material: terms.eps_a, strain=True)
-_FINDLEY = _Criterion(_findley, lambda terms, material: terms.tau_a)
-_FATEMI_SOCIE = _Criterion(_fatemi_socie, lambda terms, material: terms.tau_a / material.G)
-_MWCM = _Criterion(_mwcm, lambda terms, material: terms.tau_a, plane_by_shear=True)
+def _crossland(history, material):
+    alpha, _ = material.crossland_constants()
+    sigma_h = (2 * history.mean + history.sigma_yy) / 3
+    xx, zz = history.mean + history.half, history.mean - history.half
+    deviator = [(part - sigma_h) / math.sqrt(2) for part in (xx, zz, history.sigma_yy)] + [history.tau_xz]
+    amplitude = _half_longest_chord(deviator)
+    sigma_h_max = sigma_h.max(axis=0)
+    return Invariant(*(v.reshape(history.shape) for v in (amplitude + alpha * sigma_h_max, amplitude, sigma_h_max)))
+
+
+def _eps_a(terms, material):
+    return terms.eps_a
+
+
+def _tau_a(terms, material):
+    return terms.tau_a
+
+
+def _gamma_a(terms, material):
+    return terms.tau_a / material.G
+
+
+#: Every criterion, by name: what `apply`, the functions below and ``fretting stress --criterion`` evaluate.
+CRITERIA = {
+    criterion.name: criterion
+    for criterion in (
+        _OnPlane(
+            "swt",
+            "Pa",
+            "Smith-Watson-Topper parameter sigma_n,max eps_a",
+            "1",
+            "normal strain amplitude eps_a",
+            parameter=_swt,
+            amplitude=_eps_a,
+            strain=True,
+        ),
+        _OnPlane(
+            "findley",
+            "Pa",
+            "Findley parameter tau_a + k sigma_n,max",
+            "Pa",
+            "shear stress amplitude tau_a",
+            parameter=_findley,
+            amplitude=_tau_a,
+        ),
+        _OnPlane(
+            "fatemi_socie",
+            "1",
+            "Fatemi-Socie parameter gamma_a/2 (1 + k sigma_n,max/sigma_y)",
+            "1",
+            "engineering shear strain amplitude gamma_a",
+            parameter=_fatemi_socie,
+            amplitude=_gamma_a,
+        ),
+        _OnPlane(
+            "mwcm",
+            "Pa",
+            "MWCM equivalent shear tau_a + kappa rho",
+            "Pa",
+            "shear stress amplitude tau_a",
+            parameter=_mwcm,
+            amplitude=_tau_a,
+            plane_by_shear=True,
+        ),
+        _Invariant(
+            "crossland",
+            "Pa",
+            "Crossland parameter sqrt(J2)_a + alpha sigma_h,max",
+            "Pa",
+            "sqrt(J2) amplitude",
+            invariant=_crossland,
+        ),
+    )
+}
+
+
+def _evaluate(name, sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes):
+    """The criterion `name` of `CRITERIA` on a stress history given as arrays (`swt`)."""
+    return CRITERIA[name].evaluate(_history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
 
 
 def swt(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
@@ -545,7 +661,7 @@ def swt(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") 
     -------
     Plane
     """
-    return _critical_plane(_SWT, _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
+    return _evaluate("swt", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes)
 
 
 def findley(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
@@ -553,7 +669,7 @@ def findley(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plan
 
     ``k`` is `Material.findley_constant`; the fatigue limit is ``t_-1 sqrt(1 + k^2)``. Arguments as `swt`.
     """
-    return _critical_plane(_FINDLEY, _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
+    return _evaluate("findley", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes)
 
 
 def fatemi_socie(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
@@ -562,7 +678,7 @@ def fatemi_socie(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in
     ``gamma_a`` is the elastic engineering shear strain amplitude ``tau_a / G``; the critical plane is the one
     of largest parameter. Needs `Material.fs_k` and `Material.sigma_y`. Arguments as `swt`.
     """
-    return _critical_plane(_FATEMI_SOCIE, _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
+    return _evaluate("fatemi_socie", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes)
 
 
 def mwcm(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
@@ -574,7 +690,7 @@ def mwcm(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane")
     is sheared (``tau_a = 0``) the parameter is 0: the method ties damage to cyclic shear. `Plane.amplitude`
     is ``tau_a``, so ``rho = sigma_n_max / amplitude``. Arguments as `swt`.
     """
-    return _critical_plane(_MWCM, _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu), material, planes)
+    return _evaluate("mwcm", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes)
 
 
 def crossland(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None) -> Invariant:
@@ -586,14 +702,7 @@ def crossland(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None) -> Invariant:
     sigma_zz) / 3``. The fatigue limit is reached where the parameter reaches ``beta``. Arguments as `swt`
     (no planes).
     """
-    history = _history(sigma_xx, sigma_zz, tau_xz, sigma_yy, material.nu)
-    alpha, _ = material.crossland_constants()
-    sigma_h = (2 * history.mean + history.sigma_yy) / 3
-    xx, zz = history.mean + history.half, history.mean - history.half
-    deviator = [(part - sigma_h) / math.sqrt(2) for part in (xx, zz, history.sigma_yy)] + [history.tau_xz]
-    amplitude = _half_longest_chord(deviator)
-    sigma_h_max = sigma_h.max(axis=0)
-    return Invariant(*(v.reshape(history.shape) for v in (amplitude + alpha * sigma_h_max, amplitude, sigma_h_max)))
+    return _evaluate("crossland", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes=None)
 
 
 def swt_life(parameter, material):
@@ -726,21 +835,6 @@ def _critical_distance(parameter, L, direction, x_hot, fractions):
     return CriticalDistance(float(means[best]), float(x_hot), float(angles[inside][best]))
 
 
-#: criterion name -> (function, units of its parameter, its long name, units of its amplitude, its long name).
-CRITERIA = {
-    "swt": (swt, "Pa", "Smith-Watson-Topper parameter sigma_n,max eps_a", "1", "normal strain amplitude eps_a"),
-    "findley": (findley, "Pa", "Findley parameter tau_a + k sigma_n,max", "Pa", "shear stress amplitude tau_a"),
-    "fatemi_socie": (
-        fatemi_socie,
-        "1",
-        "Fatemi-Socie parameter gamma_a/2 (1 + k sigma_n,max/sigma_y)",
-        "1",
-        "engineering shear strain amplitude gamma_a",
-    ),
-    "mwcm": (mwcm, "Pa", "MWCM equivalent shear tau_a + kappa rho", "Pa", "shear stress amplitude tau_a"),
-    "crossland": (crossland, "Pa", "Crossland parameter sqrt(J2)_a + alpha sigma_h,max", "Pa", "sqrt(J2) amplitude"),
-}
-
 _COMMON = {
     "phi": ("rad", "critical plane normal, from +x toward +z"),
     "theta": ("rad", "critical plane normal, from +y (pi/2: the plane contains y)"),
@@ -756,12 +850,12 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
     ----------
     field : xarray.Dataset
         ``sigma_xx``, ``sigma_zz``, ``tau_xz`` [Pa] (and ``sigma_yy``; plane strain when absent) on dims
-        ``step`` and the points' dims, e.g. ``(step, z, x)`` as `fretting.stress.field` returns.
+        ``step`` and the points' dims, e.g. ``(step, z, x)`` as `fretting.analysis.stress.field` returns.
     criterion : str
         A key of `CRITERIA`: ``swt``, ``findley``, ``fatemi_socie``, ``mwcm``, ``crossland``.
     material : Material
     planes : {"in-plane", "all"}
-        As `swt` (ignored by ``crossland``).
+        As `swt` (ignored by a criterion on no plane, ``crossland``).
 
     Returns
     -------
@@ -772,18 +866,27 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
     """
     if criterion not in CRITERIA:
         raise ValueError(f"criterion: found {criterion!r}, expected one of: {', '.join(CRITERIA)}")
-    function, units, long_name, amplitude_units, amplitude_name = CRITERIA[criterion]
+    declared = CRITERIA[criterion]
     names = ["sigma_xx", "sigma_zz", "tau_xz"] + (["sigma_yy"] if "sigma_yy" in field else [])
     for name in names[:3]:
         if name not in field or "step" not in field[name].dims:
             raise ValueError(f"field: expected a variable {name} on dims including 'step', found {list(field)}")
     dims = ["step"] + [dim for dim in field["sigma_xx"].dims if dim != "step"]
     stresses = {name: field[name].transpose(*dims).values for name in names}
-    options = {} if criterion == "crossland" else {"planes": planes}
-    result = function(
-        stresses["sigma_xx"], stresses["sigma_zz"], stresses["tau_xz"], material, stresses.get("sigma_yy"), **options
+    result = _evaluate(
+        criterion,
+        stresses["sigma_xx"],
+        stresses["sigma_zz"],
+        stresses["tau_xz"],
+        material,
+        stresses.get("sigma_yy"),
+        planes,
     )
-    attributes = {"parameter": (units, long_name), "amplitude": (amplitude_units, amplitude_name), **_COMMON}
+    attributes = {
+        "parameter": (declared.units, declared.long_name),
+        "amplitude": (declared.amplitude_units, declared.amplitude_name),
+        **_COMMON,
+    }
     coords = {dim: field[dim] for dim in dims[1:] if dim in field.coords}
     variables = {
         name: xr.Variable(dims[1:], value, {"units": attributes[name][0], "long_name": attributes[name][1]})
