@@ -70,6 +70,7 @@ def test_short_histories_adapt_as_before(contact, monkeypatch):
     assert default.spec.sample is None
 
 
+@pytest.mark.slow
 def test_the_sample_is_recorded_and_said(contact, small_sample):
     history = in_phase_cycles(contact, 12, sigma_mean=0.05)
     with warnings.catch_warnings(record=True) as caught:
@@ -95,6 +96,7 @@ def ends(result):
     return np.stack([result.stick_start.values, result.stick_end.values])
 
 
+@pytest.mark.slow
 def test_steps_not_recorded_are_resolved_for_their_energy_alone(contact):
     """Recording the vertices only, the steps between need no located ends: a coarser mesh, the
     same energy to rtol, the vertices' stick ends as located as with every step recorded."""
@@ -146,6 +148,7 @@ def test_a_sampled_mesh_that_falls_back_says_both(contact, small_sample, monkeyp
     assert result.attrs["model_fallback"] in said and result.attrs["model_sample"] in said
 
 
+@pytest.mark.slow
 def test_an_energy_check_past_the_bound_runs_the_mesh_before_and_says_so(contact, monkeypatch):
     """Small cycles on a locked-in slip (tests/test_trajectories.py) refine the mesh that locates
     the ends until their energy per cycle settles; where that would pass the default's bound, the

@@ -62,6 +62,7 @@ def test_baseline_ratio_picks_the_baselines_at_equal_error():
 # -- The whole benchmark, quick ----------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_quick_benchmark_writes_its_files(tmp_path, monkeypatch):
     monkeypatch.setattr(harness, "long_targets", lambda quick=False: [_short(t) for t in _LONG(quick)])
     monkeypatch.setattr(harness, "LONG_RUNS", ("out_of_phase_long",))  # one child process: a few seconds

@@ -76,6 +76,7 @@ def test_run_writes_a_self_describing_result(workdir, capsys):
     assert sorted(path.name for path in workdir.iterdir()) == ["shear.h5", "shear.toml"]
 
 
+@pytest.mark.slow
 def test_validate_info_and_plot(workdir, capsys):
     write(workdir / "shear.toml", CONTACT + SHEAR)
     assert run("validate", "shear.toml") == 0
@@ -168,6 +169,7 @@ def test_bad_result_file(workdir, capsys):
     assert capsys.readouterr().err.startswith("fretting: error: notes.h5: ")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", [("--nodes", NODES), ("--rtol", "1e-3"), ()])
 def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeypatch, model):
     """Ctrl-C in the third chunk: a checkpoint of two chunks; --resume then equals an uninterrupted run
@@ -191,6 +193,7 @@ def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeyp
     assert not (workdir / "part.h5.checkpoint").exists()
 
 
+@pytest.mark.slow
 def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
     monkeypatch.setattr(runner, "CHUNK_STEPS", 20)
     history = write(workdir / "shear.toml", CONTACT + SHEAR)
@@ -208,6 +211,7 @@ def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
     assert "found a run of another version of shear.toml" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_long_runs_record_their_ends_and_every_cycle_and_resume(workdir, capsys, monkeypatch):
     """Past the recording threshold only the first and last steps keep their fields; energy and
     slip range per cycle cover every cycle; an interrupted run resumes to the same result."""
@@ -263,6 +267,7 @@ def _interrupt_after(chunks):
     return Interrupted
 
 
+@pytest.mark.slow
 def test_resume_after_a_killed_process_equals_an_uninterrupted_run(workdir):
     """SIGKILL a real `python -m fretting run` once its first checkpoint exists, then --resume it."""
     text = CONTACT + '[[loading]]\nkind = "sine"\nQ_amplitude = 35e3\nsigma_amplitude = 1e8\nphase_deg = 90\n'
@@ -335,6 +340,7 @@ with holding(sys.argv[1]):
 """
 
 
+@pytest.mark.slow
 def test_a_second_run_of_the_same_output_is_refused_while_the_first_holds_it(workdir, capsys):
     """Another process holds the output's lock: the run is refused at once, its checkpoint and the
     holder's temporaries untouched; once the holder is killed the lock is free again."""
@@ -358,6 +364,7 @@ def test_a_second_run_of_the_same_output_is_refused_while_the_first_holds_it(wor
     assert sorted(path.name for path in workdir.iterdir()) == ["shear.h5", "shear.toml"]
 
 
+@pytest.mark.slow
 def test_a_run_removes_the_temporaries_of_a_killed_run_of_its_output(workdir, capsys, monkeypatch):
     """A SIGKILL while a checkpoint or the result was being saved leaves their temporary files;
     the next run of that output (resumed or not) deletes them, and no file of another output."""

@@ -114,6 +114,7 @@ def test_sharp_flat_punch_never_slips():
     assert np.all(result.q.values[:, ~inner] == 0)
 
 
+@pytest.mark.slow
 def test_si_and_unit_free_inputs_agree(hertz, unit_hertz):
     """Normalised by a, f p0 and f p0 a / E_star, the two scenes are the same problem."""
     history = [0, 0.7, -0.4, 0.5], [0, 0.3, -0.2, 0.6]

@@ -93,6 +93,7 @@ def test_every_cycle_is_the_run_of_today_and_the_default_of_short_histories(hist
                 np.testing.assert_array_equal(result[name].values, variable.values, err_msg=name)
 
 
+@pytest.mark.slow
 def test_the_default_past_CYCLE_FIELDS_STORED_cycles(history_file, monkeypatch):
     assert CycleFields.parse("default", recorder.CYCLE_FIELDS_STORED).all
     assert str(CycleFields.parse("default", 3 * recorder.CYCLE_FIELDS_STORED + 1)) == "first,last,every=4,maxima"
@@ -106,6 +107,7 @@ def test_the_default_past_CYCLE_FIELDS_STORED_cycles(history_file, monkeypatch):
     assert {1, 2, 4, 14, 16} <= set(result.field_cycle.values.tolist()) and result.sizes["cycle_number"] == 16
 
 
+@pytest.mark.slow
 def test_a_resumed_run_stores_the_cycles_of_the_uninterrupted_one(history_file, some):
     output, calls = history_file.with_name("cut.h5"), []
 

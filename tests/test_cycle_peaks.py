@@ -95,6 +95,7 @@ def test_tallies_do_not_depend_on_the_recorded_steps(source, everything):
         np.testing.assert_array_equal(nu.per_cycle(few)[name].values, nu.per_cycle(everything)[name].values)
 
 
+@pytest.mark.slow
 def test_a_run_in_chunks_tallies_each_cycle_whole(source, everything, tmp_path, monkeypatch):
     """The runner cuts the run at steps 5, 15, 35, 75, 155 (chunks of 5 steps, doubling while fast), inside cycles."""
     monkeypatch.setattr(runner, "CHUNK_STEPS", 5)
@@ -122,6 +123,7 @@ def load_extreme_peak(result, number):
     return nu.surface_stress(result).values[extremes].max()
 
 
+@pytest.mark.slow
 def test_the_shipped_out_of_phase_example_peaks_between_the_load_extremes():
     """Issue 19: in cycle 8 of hertz_out_of_phase the specimen's sigma_xx peaks (at x = a) at a step
     between the load extremes, more than 10 % above the largest value at the load extremes."""

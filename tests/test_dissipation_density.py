@@ -18,6 +18,7 @@ def issue_contact():
     return contact
 
 
+@pytest.mark.slow
 def test_mesh_energy_density_is_within_a_thousandth_of_its_peak_everywhere(issue_contact):
     """w(x) of the last of three +-Q cycles (Q/fP = 0.45) on the adapted P1 mesh against the exact
     model at the same nodes: within 1e-3 of the peak at every node, the nodes next to the edges

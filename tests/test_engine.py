@@ -205,6 +205,7 @@ def test_dataset_contract(hertz):
     assert np.all(result.stick.values[0]) and np.all(result.slip.values[0] == 0)
 
 
+@pytest.mark.slow
 def test_off_centre_profile_follows_its_contact(hertz):
     """A cylinder displaced by x0, solved as a general gap, slips like the centred one."""
     x0 = 0.3 * hertz.a
@@ -238,6 +239,7 @@ def test_recording_a_subset_of_steps(hertz):
         fr.simulate(hertz, history, record=[3, 2])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tau", [0.0, 0.5])
 def test_vertex_states_do_not_depend_on_steps_per_segment(hertz, tau):
     """Along proportional segments (in-phase Q and sigma, same-direction slip) the state at a

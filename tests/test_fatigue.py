@@ -457,6 +457,7 @@ def dense_search(stress, planes=9000):
     return sigma_n.max(axis=1), np.ptp(tau, axis=1) / 2, np.ptp(eps_n, axis=1) / 2
 
 
+@pytest.mark.slow
 def test_the_search_finds_the_dense_maximum_of_non_proportional_histories():
     """200 points of random three-harmonic histories (32 instants), whose parameters can have twin peaks: with
     this seed, at some point the best sample lies next to the lower one (refining the best sampled peak

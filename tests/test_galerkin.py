@@ -473,6 +473,7 @@ def test_turning_points_cut_curved_stretches_only():
         circle.turning_points(0.0, units)
 
 
+@pytest.mark.slow
 def test_default_energy_of_a_90_degree_cycle(hertz):
     """Q = 0.5 fP sin, sigma = 0.8 f p0 sin(+90 deg), 2 cycles of 32 steps: 20 steps of a cycle slip
     between 0.64 a and 0.71 a from the centre, where no increment from one turning point to the
@@ -488,6 +489,7 @@ def test_default_energy_of_a_90_degree_cycle(hertz):
     assert errors["traction_fp0"] < 1e-3
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("psi", [1e-6, 0.001, 0.05, 0.2, 0.5, 0.95])
 def test_many_steps_per_cycle_at_the_default_rtol(hertz, psi):
     """Issue-4 targets at the default rtol with 64 steps per cycle: each cycle's energy is within
@@ -565,6 +567,7 @@ def test_the_increment_does_not_depend_on_the_solver_s_start(hertz, seed):
     assert np.max(np.abs(started.slip - plain.slip)) <= 1e-12 * np.max(np.abs(plain.slip))
 
 
+@pytest.mark.slow
 def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkeypatch):
     """Starting each pass's active sets from the directions the pass before found (the default)
     or from the increment before's (as `simulate` does) gives the same mesh, node for node, on

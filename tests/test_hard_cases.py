@@ -123,6 +123,7 @@ def proportional(contact, psi, tau=0.0, steps=8, **model):
 # Shear close to sliding: Hertz, Q/fP = 0.999 and 0.999999 (stick zone 0.032 a and 0.001 a)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", [{}, {"rtol": fr.DEFAULT_RTOL}], ids=["default", "rtol"])
 @pytest.mark.parametrize("psi", [0.999, 0.999999])
 def test_hertz_shear_close_to_sliding_resolves_the_stick_zone(hertz, psi, model):
@@ -313,6 +314,7 @@ def test_tiny_amplitude_energy_follows_the_cubic_law(hertz, psi, model):
 # Large bulk tension alone: eq (23) down to b = 0.05 a
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("b_over_a", [0.2, 0.1, 0.05])
 def test_large_bulk_tension_alone(hertz, b_over_a):
     """Eq (23): K(k) - E(k) = pi sigma / (8 f p0), k = sqrt(1 - (b/a)^2); b = 0.05 a needs
@@ -469,6 +471,7 @@ def slip_runs(ds):
     return signs[starts]
 
 
+@pytest.mark.slow
 def test_several_stick_zones_and_opposite_slip_side_by_side(hertz):
     """A diamond in the (Q, sigma) plane: increments with two stick zones and neighbouring slip
     zones slipping in opposite directions. Coulomb's law holds at every node of every step."""
@@ -509,6 +512,7 @@ def test_sharp_flat_punch_does_not_slip_until_sliding():
 # 1e5 cycles: the periodic state does not drift
 
 
+@pytest.mark.slow
 def test_periodic_state_does_not_drift_over_1e5_cycles(hertz):
     """Out-of-phase Q and sigma (0.5 fP, 0.5 f p0, 90 degrees, 64 steps per cycle): the state is
     periodic from cycle 5 (measured); after cycle 10 and after cycle 100000 the slip fields
@@ -534,6 +538,7 @@ def asymmetric_contact():
     return fr.Contact(fr.Gap(*asymmetric_flat()), 115e9, 0.5, 3e5)
 
 
+@pytest.mark.slow
 def test_vertex_states_do_not_depend_on_steps_per_segment_on_an_asymmetric_profile():
     """Q-only segments from the virgin state: every node slips one way per segment (Masing), so
     the vertex states are the same in 1, 8 or 1000 increments per segment."""
@@ -567,6 +572,7 @@ def test_tiny_increments_at_reversals(hertz):
     assert_friction_conditions(result, hertz)
 
 
+@pytest.mark.slow
 def test_repeated_vertices_change_nothing_on_a_non_proportional_path(hertz):
     """Zero-length segments (dwells) between non-proportional segments: they slip nowhere and
     dissipate exactly zero, and every later step equals the run without them, bit for bit."""
@@ -603,6 +609,7 @@ def scaled_contact(kind, length, E_star):
     return fr.Contact(profile, E_star, 0.6, P)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["hertz", "rounded_flat"])
 def test_si_and_unit_free_inputs_give_the_same_normalised_results(kind):
     """a from 1 um to 1 m with E_star 70 GPa to 400 GPa, against the unit-free scene: q / f p0,
@@ -652,6 +659,7 @@ def tabulated_asymmetric():
     return x, h0(x)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("given", "psi"), [("functions", 0.3), ("table", 0.8)])
 def test_asymmetric_profile_against_a_converged_reference(given, psi):
     """Flat with corners of radius 10 mm and 40 mm (Gap, and Gap.from_table of it), monotonic Q.
@@ -745,6 +753,7 @@ def test_gross_slip_mid_history_names_the_first_sliding_step(hertz, profile):
     assert np.isfinite(start[0]) and end[0] > start[0]
 
 
+@pytest.mark.slow
 def test_failed_cli_run_leaves_an_earlier_result_intact(tmp_path, monkeypatch, capsys):
     """A result saved with fretting.save; then a run of the same history name that reaches gross
     slip after several chunks and checkpoints: exit 3, the step named, the result untouched
@@ -773,6 +782,7 @@ def test_failed_cli_run_leaves_an_earlier_result_intact(tmp_path, monkeypatch, c
     assert sorted(p.name for p in path.parent.iterdir()) == ["slide.h5", "slide.toml"]
 
 
+@pytest.mark.slow
 def test_tension_reversed_in_one_step_keeps_a_stick_zone_narrower_than_an_element():
     """Q = 0.5 fP with sigma = -2.2 f p0, then Q = 0, sigma = 2 f p0 in one increment, on the
     asymmetric flat: the stick zone left is 6e-7 a wide, so on the first meshes of the adaptation
@@ -825,6 +835,7 @@ DWELL_STATES = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("state", sorted(DWELL_STATES))
 def test_a_dwell_after_a_hard_state_slips_nowhere(hertz, state):
     """Repeating the last vertex changes no load, so nothing may slip: each of three dwell

@@ -89,6 +89,7 @@ def test_a_closed_loop_dissipates_its_area():
     assert result.dissipation.values[cycle][1:].sum() == pytest.approx(area, rel=1e-6)
 
 
+@pytest.mark.slow
 def test_random_amplitudes_agree_with_method_4_on_a_fine_mesh():
     """Four random-amplitude in-phase cycles (nested loops opened and wiped): at every step, on the
     nodes of a uniform mesh of 4001 angles, the traction and the slip are method 4's to 1e-4 f p0

@@ -161,6 +161,7 @@ def test_parts_recording_some_steps_join_into_the_whole_run(history, record):
     xr.testing.assert_identical(join_results(parts), whole)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("splits", [[24, 25], [7, 30, 31, 58]])
 def test_parts_saved_and_joined_on_disk_equal_the_join_in_memory(tmp_path, history, whole, splits):
     """`save_joined` appends the per-cycle rows part by part (a cycle that spans parts rewritten by

@@ -195,6 +195,7 @@ def test_a_normal_load_that_lifts_off_is_named_at_its_first_step_as_for_the_expl
 SINES_AT_CONSTANT_P = "\n".join(line for line in SINES.splitlines() if not line.startswith("P"))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("loads", "cycles"), [(LOADS, 64), (SINES_AT_CONSTANT_P, 15)], ids=["straight", "sines"])
 def test_a_run_of_the_lazy_history_writes_the_arrays_of_the_run_of_the_explicit_one(
     tmp_path, monkeypatch, loads, cycles

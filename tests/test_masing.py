@@ -153,6 +153,7 @@ def test_quadrature_has_converged(monkeypatch, psi):
     np.testing.assert_allclose(coarse.slip, fine.slip, rtol=0, atol=1e-12 * np.abs(fine.slip).max())
 
 
+@pytest.mark.slow
 def test_method_4_converges_to_it():
     """Rounded flat, nested loops: the Galerkin meshes of rtol 1e-4 and 1e-5 give the exact
     model's total energy to within rtol (measured: 7.5e-6, 4.8e-8); the energy of each increment

@@ -109,6 +109,7 @@ def cycles(formed, Q_over_P, shift, count=4, steps=32, sigma_amplitude=0.0, befo
     return waves if before is None else History.concatenate([before, waves])
 
 
+@pytest.mark.slow
 def test_shakedown_in_phase_below_f():
     """Qa / Pa = 0.67 f in phase: nothing dissipated after the first cycle (Melan; Barber, Davies & Hills 2011)."""
     formed = contact(fr.Hertz(0.05))
@@ -117,6 +118,7 @@ def test_shakedown_in_phase_below_f():
     assert np.all(energy[1:] <= 1e-9 * energy[0])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("Q_over_P", "shift"), [(1.07, 0.0), (0.67, 0.3)])
 def test_no_shakedown_above_f_or_out_of_phase(Q_over_P, shift):
     """Qa / Pa = 1.07 f, or Q shifted by 0.3 rad: a steady energy per cycle, that does not vanish."""
@@ -126,6 +128,7 @@ def test_no_shakedown_above_f_or_out_of_phase(Q_over_P, shift):
     np.testing.assert_allclose(energy[-1], energy[-2], rtol=1e-6)
 
 
+@pytest.mark.slow
 def test_steady_energy_does_not_depend_on_the_path_before():
     """The same (P, Q, sigma) cycle reached directly or after a detour has the same steady energy per cycle."""
     formed = contact(fr.Hertz(0.05))
@@ -172,6 +175,7 @@ def test_constant_P_is_bit_for_bit_the_history_without_P():
     np.testing.assert_array_equal(without.dissipation.values, held.dissipation.values)
 
 
+@pytest.mark.slow
 def test_dataset_records_the_normal_load_and_a_split_run_continues_bit_for_bit():
     formed = contact(fr.Hertz(0.05))
     history = cycles(formed, 1.07, 0.3, count=2, steps=16)
@@ -232,6 +236,7 @@ def test_history_files_take_P(tmp_path):
     assert held.P is None  # the contact's constant P: no P column, the results of a history without P
 
 
+@pytest.mark.slow
 def test_dovetail_example_runs_the_varying_model():
     from fretting.loading.examples import example_path
     from fretting.loading.history_file import read_history
@@ -244,6 +249,7 @@ def test_dovetail_example_runs_the_varying_model():
     assert np.all(energy > 0)
 
 
+@pytest.mark.slow
 def test_figures_of_a_varying_P():
     import matplotlib
 
@@ -262,6 +268,7 @@ def test_figures_of_a_varying_P():
         plots.contact_edges(fr.simulate(formed, History.piecewise_linear([0.0, 1e3], None, 2)))
 
 
+@pytest.mark.slow
 def test_stepping_with_P_equals_the_run():
     formed = contact(fr.Hertz(0.05))
     history = cycles(formed, 1.07, 0.3, count=1, steps=16)
@@ -274,6 +281,7 @@ def test_stepping_with_P_equals_the_run():
         stepper.step(0.0, 0.0, P=-1.0)
 
 
+@pytest.mark.slow
 def test_surface_stress_of_a_varying_P_is_the_engine_tally():
     """`nucleation.surface_stress` of each recorded step (the pressure of that step) peaks as the engine's tally."""
     from fretting.analysis import nucleation
@@ -287,6 +295,7 @@ def test_surface_stress_of_a_varying_P_is_the_engine_tally():
     )
 
 
+@pytest.mark.slow
 def test_nucleation_of_a_varying_P_uses_each_step_or_refuses():
     """Ruiz from the recorded steps (pressure of each step) equals the engine's tally; what would assume the
     contact formed (w and slip amplitude without their tally, loop work) is refused."""
@@ -321,6 +330,7 @@ def random_walk():
     return fr.simulate(formed, history), fr.simulate(formed, history, model=finer)
 
 
+@pytest.mark.slow
 def test_default_stick_ends_follow_a_finer_run_at_every_step(random_walk):
     """Issue 22 test 6, stick ends: at every step of the walk, within 1e-3 a of the finer run (its edges
     recede and grow; benchmarks/normal_load.py: the table)."""
@@ -332,6 +342,7 @@ def test_default_stick_ends_follow_a_finer_run_at_every_step(random_walk):
         assert np.nanmax(error) < 1e-3
 
 
+@pytest.mark.slow
 def test_default_energy_converges_on_a_random_history(random_walk):
     """Issue 22 test 6, energy: the default's total energy within 1e-4 (relative) of the finer run."""
     default, finer = random_walk
@@ -377,6 +388,7 @@ def test_slip_to_traction_is_the_dense_one_and_symmetric(n):
         slip_to_traction(column[:-1], np.ones(n - 1) / (n - 1))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("shift", [1.001, 1.002])
 def test_slip_zone_stops_at_a_former_edge(shift):
     """A slip zone that advances onto a former edge of the contact ends there (`fretting.models.normal.pinned`).

@@ -1,6 +1,7 @@
 """The parts of a run that stores the fields of some cycles only: bounded by the fields they hold."""
 
 import numpy as np
+import pytest
 from conftest import HERTZ_TOML
 
 import fretting as fr
@@ -24,6 +25,7 @@ def _run(tmp_path, monkeypatch, name, part_cycles, scalar_cycles):
     return fr.load(run.output), saved
 
 
+@pytest.mark.slow
 def test_parts_are_bounded_by_the_fields_and_the_scalars_they_hold(tmp_path, monkeypatch):
     """With the fields of two cycles of 12 stored, a part holds more cycles than PART_CYCLES (it
     holds fewer fields) but never more than PART_SCALAR_CYCLES; the result is the run saved in

@@ -1,6 +1,7 @@
 """The runner's result against a run in one piece and against its history."""
 
 import numpy as np
+import pytest
 from conftest import HERTZ_TOML
 
 import fretting as fr
@@ -45,6 +46,7 @@ def test_a_run_in_chunks_keeps_the_loads_at_every_vertex(tmp_path, monkeypatch):
     assert chunked.vertex_Q.attrs["units"] == "N/m" and chunked.vertex_sigma.attrs["units"] == "Pa"
 
 
+@pytest.mark.slow
 def test_a_run_saved_in_parts_equals_the_run_in_one_piece(tmp_path, monkeypatch):
     """Parts of at most PART_CYCLES cycles, each saved as it fills and never held again: the
     result joined from them is the run in one piece; the checkpoint folder is gone after."""
@@ -85,6 +87,7 @@ def test_a_skipping_run_in_chunks_equals_the_whole_skipping_run(tmp_path, monkey
             np.testing.assert_array_equal(chunked[name].values, variable.values, err_msg=name)
 
 
+@pytest.mark.slow
 def test_chunks_begin_at_most_CHUNK_CYCLES_and_parts_never_exceed_PART_CYCLES(tmp_path, monkeypatch):
     """A part is saved before a chunk could take it past PART_CYCLES, and chunks larger in steps
     than CHUNK_CYCLES cycles are cut: every part saved holds at most PART_CYCLES cycles, and the

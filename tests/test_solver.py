@@ -81,6 +81,7 @@ def test_the_solves_leave_slipping_nodes_well_within_the_rounding_allowance(mode
         assert 0 < worst <= solver.ROUNDING / 10
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("moving", "power"), [("Q", 3), ("sigma", 1)])
 def test_small_cycles_on_a_large_locked_in_slip_keep_their_law(moving, power):
     """After loading to (0.3 f P, 0.2 f p0), cycles of 1e-7 of f P (Q, sigma held) or of f p0 (sigma,

@@ -98,6 +98,7 @@ def test_the_command_line_says_when_the_default_falls_back(tmp_path, capsys, mon
     assert fr.load(tmp_path / "oop.h5").attrs["model_fallback"] in notes[0]
 
 
+@pytest.mark.slow
 def test_a_continued_run_refines_the_mesh_its_new_loads_need(hertz):
     """Small Q/sigma cycles, then larger ones continued from the state (issue 18): the state's
     mesh, adapted to the small cycles, is refined for the new loads, the slip carried over
@@ -119,6 +120,7 @@ def test_a_continued_run_refines_the_mesh_its_new_loads_need(hertz):
     assert abs(float(tail.total_dissipation) / float(whole.total_dissipation) - 1) < 1e-6
 
 
+@pytest.mark.slow
 def test_a_state_whose_mesh_notes_the_solvers_floor_is_still_refined_for_new_loads(hertz):
     """A first part that ends in a cycle of 1e-10 f P, which the solver's rounding allowance holds
     stuck, has that said in its mesh's ``fallback`` (tests/test_trajectories.py); the note is not a

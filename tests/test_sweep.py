@@ -66,6 +66,7 @@ def direct(folder, Q, sigma):
         return error
 
 
+@pytest.mark.slow
 def test_every_case_is_a_direct_simulate_of_its_scene(swept, tmp_path):
     base, output, cases = swept
     assert list(cases.dims) == [Q_KEY, SIGMA_KEY]
@@ -88,6 +89,7 @@ def test_every_case_is_a_direct_simulate_of_its_scene(swept, tmp_path):
     xr.testing.assert_identical(xr.load_dataset(output, engine="h5netcdf").drop_attrs(), cases.drop_attrs())
 
 
+@pytest.mark.slow
 def test_resume_runs_only_the_cases_without_a_file(swept, cluster):
     base, output, cases = swept
     files = sorted(output.with_suffix(".cases").iterdir())
@@ -135,6 +137,7 @@ def test_bad_grids_are_one_line_errors_naming_file_and_key(tmp_path, grid, messa
     assert "\n" not in str(error.value)
 
 
+@pytest.mark.slow
 def test_command_line_on_a_local_cluster(tmp_path, capsys):
     write(tmp_path / "base.toml", BASE.format(Q=20e3, sigma=0.0))
     grid = f'[grid]\n"{Q_KEY}" = [10e3, 80e3]\ncontact.f = [0.7]\n'
@@ -181,6 +184,7 @@ def test_malformed_scheduler_address_exits_2(tmp_path, capsys):
     )
 
 
+@pytest.mark.slow
 def test_without_dask_distributed_a_sweep_names_the_extra(tmp_path, capsys, monkeypatch):
     """Without the extra ``fretting[sweep]``, `fretting.sweep` and ``fretting sweep`` fail with one
     line naming it (exit code 2), and nothing else needs it: ``import fretting`` loads no dask."""
@@ -211,6 +215,7 @@ def test_inline_base_and_keys_inside_repeated_blocks(tmp_path):
     assert plan.base.path == plan.origin == tmp_path / "inline.toml" and set(plan.base.data) == {"contact", "loading"}
 
 
+@pytest.mark.slow
 def test_shipped_fretting_map(swept, tmp_path):
     plan = read_sweep(EXAMPLES / "sweeps" / "hertz_fretting_map.toml")
     assert plan.base.path.name == "hertz_fretting_fatigue.toml"

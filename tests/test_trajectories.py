@@ -40,6 +40,7 @@ def scores():
     return out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("quantity", list(TARGETS))
 @pytest.mark.parametrize("name", list(histories()))
 def test_every_step_of_the_default_within_the_targets(scores, name, quantity):
@@ -47,6 +48,7 @@ def test_every_step_of_the_default_within_the_targets(scores, name, quantity):
     assert value <= TARGETS[quantity], f"{quantity} {value:.2e} at step {step}"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", list(histories()))
 def test_default_runs_a_galerkin_mesh_that_locates_every_step(scores, name):
     """Each history leaves the straight line through the origin (tests/test_inphase.py has those),
@@ -75,6 +77,7 @@ def last_cycle_energy(contact, history, **settings):
     return float(result.dissipation.values[history.vertex_step[-2] + 1 :].sum()), result
 
 
+@pytest.mark.slow
 def test_energy_of_small_cycles_on_a_locked_in_slip():
     """Cycles of 1e-4 f P and 1e-4 f p0 about (0.3 f P, 0.2 f p0), 90 degrees apart, drive each slip
     zone of the loading on through the slip locked in there, a little more every cycle (a ratchet:
