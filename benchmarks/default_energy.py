@@ -4,7 +4,7 @@ Sine cycles of 64 steps, three of them; cycles 2 and 3 against the Mindlin-Deres
 closed form, `fretting.physics.closed_forms.mindlin_deresiewicz_energy`, with the nodes and the
 wall time of each run. The default runs Q alone on this symmetric profile with the exact model
 (fretting.models.exact); method 4 runs on the Galerkin mesh adapted to the default rtol (adaptation included).
-tests/test_masing.py holds the first to 1e-12 (+ 1e-15 / psi), tests/test_galerkin.py six of
+tests/models/test_masing.py holds the first to 1e-12 (+ 1e-15 / psi), tests/models/test_galerkin.py six of
 these amplitudes of the second to 1e-4.
 
 Run:  python benchmarks/default_energy.py   (a few seconds)

@@ -15,8 +15,10 @@ solver the field writes by hand, is timed beside the engine. Errors are those of
 Only the public interface is used: ``fretting.simulate(contact, history, **kwargs)`` and its
 dataset, so any model the engine offers is measured the same way.
 
-Also here, shared by the scripts and the tests: the profile families of the property tests
-(`SHAPES`, `family_contact`) and the Galerkin mesh's adaptive loop written out by hand (`adapt`).
+Also here, the one support module that the scripts and the tests share (the tests find it through
+pytest's ``pythonpath``): their scenes (`hertz_contact`, `hard_rounded_flat`, `asymmetric_flat`,
+the profile families of the property tests `SHAPES`, `family_contact`), the Galerkin mesh's
+adaptive loop written out by hand (`adapt`) and the band of the in-phase comparison (`END_BAND`).
 """
 
 import functools
@@ -192,6 +194,16 @@ class LongTarget:
 def hertz_contact():
     """R = 50 mm, E = 210 GPa, nu = 0.3, f = 0.6, P = 100 N/mm (a = 0.235 mm, p0 = 271 MPa)."""
     return fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.6, 1e5)
+
+
+def hard_rounded_flat():
+    """Flat of half-width 1 mm, corners of radius 20 mm, E_star = 115 GPa, f = 0.5, P = 300 N/mm: a = 1.14 b."""
+    return fr.Contact(fr.RoundedFlat(b=1e-3, R=0.02), 115e9, 0.5, 3e5)
+
+
+#: Band [a] around the stick ends of a history outside which the exact in-phase model and method 4
+#: on a fine mesh are compared (tests/models/test_inphase.py, benchmarks/inphase_accuracy.py).
+END_BAND = 0.01
 
 
 def rounded_flat_contact():

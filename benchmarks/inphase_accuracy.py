@@ -1,6 +1,6 @@
 """The exact model of in-phase Q and sigma against method 4 on uniform meshes in theta: errors, convergence, time.
 
-The random-amplitude in-phase history of tests/test_inphase.py (Hertz, 4 cycles up to 0.8 f P,
+The random-amplitude in-phase history of tests/models/test_inphase.py (Hertz, 4 cycles up to 0.8 f P,
 ``sigma = 0.9 * 4 / (pi a) * Q``, regime A) runs on `fretting.models.InPhase` and on method 4
 (``mesh=``) at the same nodes, uniform meshes of 1001 to 4001 angles. Printed, each the largest
 over all steps: the traction [f p0] at the nodes farther than 0.01 a from every stick end of the
@@ -18,20 +18,16 @@ Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/inphase_accuracy.py [--service-li
 """
 
 import argparse
-import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
+import service_life
+from harness import END_BAND, hertz_contact
 
 import fretting as fr
 from fretting.models.inphase import InPhase, regime_bound
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-import service_life  # noqa: E402
-from conftest import hertz_si  # noqa: E402
-from test_inphase import END_BAND  # noqa: E402
 
 MESHES = (1001, 2001, 4001)
 
@@ -67,7 +63,7 @@ def errors(contact, exact, reference):
 
 
 def main():
-    contact = hertz_si()
+    contact = hertz_contact()
     loads, k = history(contact)
     print(f"{len(loads) - 1} steps, sigma/Q = {k:.6g} 1/m (regime A bound {regime_bound(contact):.6g} 1/m)")
     header = None

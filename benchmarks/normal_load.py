@@ -2,7 +2,7 @@
 
 A random walk of (P, Q, sigma) on the Hertz scene of benchmarks/engine_speed.py (P between 0.7
 and 1.3 of the contact's, Q within 0.4 f P0, sigma within 0.4 f p0, independent draws, 16 steps
-per segment; `--walk test`: the scene and walk of tests/test_normal_load.py, f = 0.5, four segments).
+per segment; `--walk test`: the scene and walk of tests/models/test_normal_load.py, f = 0.5, four segments).
 
 Speed against error: the walk on 64 to `DEFAULT_CELLS` cells at the default ``load_part``, then
 on the default cells with other parts. For each the CPU time (best of `--repeats`), the total

@@ -1,12 +1,10 @@
-"""Shared scenes: the SI Hertz contact of the issue, and its unit-free twin."""
+"""Fixtures: the SI Hertz contact of the issue (`harness.hertz_contact`), and its unit-free twin.
+
+The scenes the tests share with the benchmarks are in benchmarks/harness.py, the checks the tests
+share in tests/checks.py; pytest finds both through ``pythonpath`` (pyproject.toml).
+"""
 
 import os
-import sys
-from pathlib import Path
-
-#: The benchmark harness (benchmarks/harness.py) is not in the package; tests of it, and tests
-#: that share its scenes, import it from there.
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 
 # One BLAS thread, set before NumPy loads OpenBLAS: on 2 cores its two threads make the dense
 # solves of a few hundred nodes up to ten times slower (benchmarks/blas_threads.py).
@@ -14,10 +12,10 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+from harness import hertz_contact  # noqa: E402
 from hypothesis import settings  # noqa: E402
 
 import fretting as fr  # noqa: E402
-from fretting.physics.contact import plane_strain_modulus  # noqa: E402
 
 # Under CI the property tests draw one fixed sequence of examples, so that `CI=true pytest`
 # reproduces a red CI. Recent Hypothesis does this by itself; the lowest version the project
@@ -25,8 +23,6 @@ from fretting.physics.contact import plane_strain_modulus  # noqa: E402
 if os.environ.get("CI"):
     settings.register_profile("fixed-examples", derandomize=True, database=None)
     settings.load_profile("fixed-examples")
-
-E_SI, NU_SI = 210e9, 0.3
 
 #: The contact table of a history file for a Hertz scene (f = 0.7).
 HERTZ_TOML = """\
@@ -40,14 +36,9 @@ P = 1e5
 """
 
 
-def hertz_si():
-    """R = 50 mm, E = 210 GPa, nu = 0.3, P = 100 N/mm, f = 0.6."""
-    return fr.Contact(fr.Hertz(0.05), plane_strain_modulus(E_SI, NU_SI), 0.6, 1e5)
-
-
 @pytest.fixture
 def hertz():
-    return hertz_si()
+    return hertz_contact()
 
 
 @pytest.fixture

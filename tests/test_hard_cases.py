@@ -8,7 +8,7 @@ the engine itself. A failure is a bug in the engine, never a reason to loosen a 
 strip ``c - b`` between a stick-zone end and the end of a flat, a slip zone of width ``w``) is
 located to 1 % of its own size, and never more loosely than the project's 1e-3 a. Tractions
 and slips away from stick/slip boundaries keep the project's 1e-3 (of ``f p0``, of the largest
-slip) of tests/test_closed_forms.py.
+slip) of tests/physics/test_closed_forms.py.
 """
 
 import functools
@@ -17,8 +17,20 @@ import warnings
 import numpy as np
 import pytest
 import xarray as xr
+from checks import (
+    BOUNDARY_BAND,
+    PROJECT,
+    RESOLVED,
+    assert_friction_conditions,
+    assert_zone_ends_are_consistent,
+    assert_zones,
+    away_from,
+    increments,
+    simulate_as_a_user,
+    zones,
+)
 from conftest import HERTZ_TOML
-from harness import asymmetric_flat
+from harness import asymmetric_flat, hard_rounded_flat
 from scipy import integrate, interpolate, optimize, special
 
 import fretting as fr
@@ -26,86 +38,6 @@ from fretting import cli
 from fretting.engine import runner
 from fretting.models.galerkin import initial_theta
 from fretting.physics import closed_forms as cf
-
-RESOLVED = 1e-2  # of the feature's own size
-PROJECT = 1e-3  # of a (ends), of f p0 (traction), of the largest slip
-BOUNDARY_BAND = 0.02  # [a] excluded around stick/slip boundaries for traction checks (square-root kink)
-ROUNDING = 1e-10  # of f p0: rounding allowance of the friction conditions
-
-
-def simulate_as_a_user(contact, history, **options):
-    """`fr.simulate` where the default may fall back to the grid: if it does, it says so once in a
-    `ModelFallbackWarning` and in the dataset's ``model_fallback``, and never otherwise."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", fr.ModelFallbackWarning)
-        result = fr.simulate(contact, history, **options)
-    said = [warning for warning in caught if issubclass(warning.category, fr.ModelFallbackWarning)]
-    assert len(said) == ("model_fallback" in result.attrs)
-    assert all(result.attrs["model_fallback"] in str(warning.message) for warning in said)
-    return result
-
-
-# ----------------------------------------------------------------------------------------------
-# helpers
-
-
-def zones(result):
-    """Stick zones of the increment ending at `result`'s step, as (start, end) rows [m]."""
-    pairs = np.stack([result.stick_start.values, result.stick_end.values], axis=-1)
-    return pairs[~np.isnan(pairs[:, 0])]
-
-
-def assert_zones(result, expected, tolerance):
-    found = zones(result)
-    assert found.shape == np.shape(expected), f"stick zones {found.tolist()}, expected {np.asarray(expected).tolist()}"
-    np.testing.assert_allclose(found, expected, rtol=0, atol=tolerance)
-
-
-def increments(result):
-    """Slip increment of every step [m] (step 0: the slip itself, zero from a virgin start)."""
-    return np.diff(result.slip.values, axis=0, prepend=0.0)
-
-
-def assert_friction_conditions(result, contact):
-    """|q| <= f p; q = f p sign(ds) where a node slips; ds = 0 exactly where it sticks; dissipation
-    >= 0, and exactly 0 where the stick zone is the whole contact. (Where every node sticks the
-    exact model of Q alone may still slip beyond the outermost node, 5e-13 a from the edge.)"""
-    fp = contact.f * result.p.values
-    rounding = ROUNDING * np.maximum(contact.f * contact.p0, fp)  # the sharp flat punch: p unbounded at the ends
-    q, stick, ds = result.q.values, result.stick.values, increments(result)
-    assert np.all(np.abs(q) <= fp + rounding), "|q| > f p"
-    assert np.all((np.abs(q - fp * np.sign(ds)) <= rounding)[~stick]), "q != f p sign(ds) where slipping"
-    assert np.all(ds[stick] == 0), "a node marked stuck moved"
-    assert np.all(ds[~stick] != 0), "a node marked slipping did not move"
-    assert np.all(result.dissipation.values >= 0)
-    edges = result.attrs["centre"] + result.attrs["a"] * np.array([-1.0, 1.0])
-    whole = (result.stick_start.values[:, 0] == edges[0]) & (result.stick_end.values[:, 0] == edges[1])
-    assert np.all(result.dissipation.values[whole] == 0), "the whole contact stuck, yet energy was dissipated"
-
-
-def assert_zone_ends_are_consistent(result):
-    """At every step: one stick zone per run of stuck nodes, in order along x; ``start <= end``;
-    each zone overlaps its run and lies between the slipping nodes around it (or the contact's
-    ends), so zones do not overlap and lie within the contact."""
-    x = result.x.values
-    edge = np.array([-1.0, 1.0]) * result.attrs["a"] + result.attrs["centre"]
-    bounded = np.concatenate([[edge[0]], x, [edge[1]]])  # a slipping node's place, or the contact's end
-    for step, stick in enumerate(result.stick.values):
-        runs = np.flatnonzero(np.diff(np.concatenate([[0], stick.astype(np.int8), [0]]))).reshape(-1, 2)
-        first, last = runs[:, 0], runs[:, 1] - 1
-        start, end = result.stick_start.values[step], result.stick_end.values[step]
-        recorded = ~np.isnan(start)
-        assert np.array_equal(recorded, ~np.isnan(end)) and np.count_nonzero(recorded) == first.size, f"step {step}"
-        start, end = start[recorded], end[recorded]
-        assert np.all(start <= end), f"step {step}: inverted zones {np.stack([start, end], axis=-1).tolist()}"
-        assert np.all(end[:-1] <= start[1:]), f"step {step}: overlapping zones"
-        assert np.all(bounded[first] <= start) and np.all(end <= bounded[last + 2]), f"step {step}: past a slip node"
-        assert np.all(start <= x[last]) and np.all(x[first] <= end), f"step {step}: a zone misses its stuck nodes"
-        assert edge[0] <= start.min() and end.max() <= edge[1], f"step {step}: outside the contact"
-
-
-def away_from(x, ends, a):
-    return np.all(np.abs(np.subtract.outer(x, np.asarray(ends))) > BOUNDARY_BAND * a, axis=-1)
 
 
 def proportional(contact, psi, tau=0.0, steps=8, **model):
@@ -151,17 +83,12 @@ def test_hertz_shear_close_to_sliding_resolves_the_stick_zone(hertz, psi, model)
 # Rounded flat punch close to sliding: the stick zone tends to the flat, not to zero
 
 
-def rounded_flat():
-    """Flat of half-width 1 mm, corners of radius 20 mm: a = 1.14 b."""
-    return fr.Contact(fr.RoundedFlat(b=1e-3, R=0.02), 115e9, 0.5, 3e5)
-
-
 @pytest.mark.parametrize("psi", [0.999, 0.999999])
 def test_ciavarella_jaeger_stick_zone_tends_to_the_flat(psi):
     """Check of the reference used below (fretting.physics.closed_forms): the stick zone is the contact
     of P_c = P - Q/f; for small P_c, with pi/2 - phi0 = e, P_c = E_star b^2 (2e - sin 2e) / (4R)
     -> E_star b^2 e^3 / (3R) and c - b -> b e^2 / 2, so c - b shrinks like (fP - Q)^(2/3)."""
-    contact = rounded_flat()
+    contact = hard_rounded_flat()
     flat, R = contact.profile.b, contact.profile.R
     Q = psi * contact.f * contact.P
     c = cf.ciavarella_jaeger(contact, Q, np.zeros(1))[1].a
@@ -185,15 +112,15 @@ MODELS_CLOSE_TO_SLIDING = [(CLOSE_TO_SLIDING[0], "rtol"), *((psi, "default") for
 
 @functools.cache
 def rounded_flat_close_to_sliding(psi, model="default"):
-    """Last step of `proportional` to ``Q = psi f P`` on `rounded_flat()`, at the default settings
+    """Last step of `proportional` to ``Q = psi f P`` on `hard_rounded_flat()`, at the default settings
     or (`model` "rtol") on the mesh of the default rtol."""
     keywords = {"rtol": fr.DEFAULT_RTOL} if model == "rtol" else {}
-    return proportional(rounded_flat(), psi, **keywords).isel(step=-1)
+    return proportional(hard_rounded_flat(), psi, **keywords).isel(step=-1)
 
 
 def strip_beyond_the_flat(psi):
     """``c - b`` [m] of the default's stick zone at ``Q = psi f P`` (mean of its two ends) and of Ciavarella-Jaeger."""
-    contact = rounded_flat()
+    contact = hard_rounded_flat()
     start, end = zones(rounded_flat_close_to_sliding(psi))[0]
     c = cf.ciavarella_jaeger(contact, psi * contact.f * contact.P, np.zeros(1))[1].a
     return (end - start) / 2 - contact.profile.b, c - contact.profile.b
@@ -204,7 +131,7 @@ def test_rounded_flat_shear_close_to_sliding_sticks_beyond_the_flat(psi, model):
     """Ciavarella-Jaeger (its reference checked above): the stick zone is [-c, c] with c > b, the
     strip c - b located to 1 % of itself; the traction within 1e-3 f p0 of q = f (p(P) - p(P_c))
     away from the stick/slip boundaries."""
-    contact = rounded_flat()
+    contact = hard_rounded_flat()
     result = rounded_flat_close_to_sliding(psi, model)
     x = result.x.values
     q_exact, corrective = cf.ciavarella_jaeger(contact, psi * contact.f * contact.P, x)
@@ -237,7 +164,7 @@ def test_grid_friction_force_is_f_P(hertz, profile, shortfall):
     polynomial (Hertz: degree 2; the sharp flat punch: degree 0), `shortfall` of P below it on
     the rounded flat, whose pressure has a singular derivative at the flat's ends (measured). The
     grid's discrete pressure is scaled to carry P on all three, its friction force is f P."""
-    contact = {"hertz": lambda: hertz, "rounded_flat": rounded_flat, "flat_punch": flat_punch}[profile]()
+    contact = {"hertz": lambda: hertz, "rounded_flat": hard_rounded_flat, "flat_punch": flat_punch}[profile]()
     scene = fr.models.Grid().build(contact)
     quadrature = scene.w * contact.pressure_weighted(scene.t).sum()
     assert 1 - quadrature / contact.P == pytest.approx(shortfall, rel=1e-3, abs=1e-15)
@@ -251,8 +178,8 @@ GRID_CLOSE_TO_SLIDING = (0.99999, 0.999999)
 
 @functools.cache
 def grid_close_to_sliding(psi):
-    """Every step of `proportional` to ``Q = psi f P`` on `rounded_flat()`, on the default grid."""
-    return proportional(rounded_flat(), psi, nodes=fr.DEFAULT_NODES)
+    """Every step of `proportional` to ``Q = psi f P`` on `hard_rounded_flat()`, on the default grid."""
+    return proportional(hard_rounded_flat(), psi, nodes=fr.DEFAULT_NODES)
 
 
 @pytest.mark.parametrize("psi", GRID_CLOSE_TO_SLIDING)
@@ -261,7 +188,7 @@ def test_grid_close_to_sliding_keeps_one_stick_zone(psi):
     at every node against the contact's pressure (the grid reports the discrete utilisation
     times the contact's f p)."""
     result = grid_close_to_sliding(psi)
-    assert_friction_conditions(result, rounded_flat())
+    assert_friction_conditions(result, hard_rounded_flat())
     assert_zone_ends_are_consistent(result)
     assert np.all(np.any(result.stick.values, axis=1))
     (start, end), *others = zones(result.isel(step=-1))
@@ -278,7 +205,7 @@ def test_grid_close_to_sliding_keeps_one_stick_zone(psi):
 def test_grid_close_to_sliding_sticks_over_the_flat(psi):
     """Ciavarella-Jaeger: the stick zone [-c, c] covers the flat, c > b, however close to fP."""
     (start, end), *_ = zones(grid_close_to_sliding(psi).isel(step=-1))
-    flat = rounded_flat().profile.b
+    flat = hard_rounded_flat().profile.b
     assert start < -flat and end > flat
 
 
@@ -740,7 +667,7 @@ def test_gap_normal_contact_against_adaptive_quadrature():
 def test_gross_slip_mid_history_names_the_first_sliding_step(hertz, profile):
     """Two cycles, then a slow rise through fP (steps of 1e-5 fP): GrossSlipError names the
     first step with |Q| >= fP, and the history up to the step before runs."""
-    contact = hertz if profile == "hertz" else rounded_flat()
+    contact = hertz if profile == "hertz" else hard_rounded_flat()
     fP = contact.f * contact.P
     psi = np.array([0, 0.5, -0.5, 0.5, -0.5, 0.9999, 1.0001])
     history = fr.History.piecewise_linear(psi * fP, None, [8, 16, 16, 16, 16, 20])
@@ -845,7 +772,7 @@ def test_a_dwell_after_a_hard_state_slips_nowhere(hertz, state):
     profile, psi, tau = DWELL_STATES[state]
     contact = {
         "hertz": lambda: hertz,
-        "rounded_flat": rounded_flat,
+        "rounded_flat": hard_rounded_flat,
         "flat_punch": flat_punch,
         "asymmetric_flat": lambda: fr.Contact(fr.Gap(*asymmetric_flat()), 115e9, 0.3, 3e4),
     }[profile]()

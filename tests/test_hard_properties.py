@@ -8,10 +8,10 @@ with non-proportional closed cycles for the loop work and nested reversals for t
 
 import numpy as np
 import pytest
+from checks import assert_friction_conditions, assert_zone_ends_are_consistent, simulate_as_a_user
 from harness import SHAPES, SMOOTH, family_contact
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_hard_cases import assert_friction_conditions, assert_zone_ends_are_consistent, simulate_as_a_user
 
 import fretting as fr
 

@@ -5,17 +5,12 @@ run here; benchmarks/trajectories.py shows that such meshes agree with twice as 
 to well below the targets, and scores about 30 histories of these kinds.
 """
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
+from trajectories import TARGETS, ellipse, fields_of, hertz, path, score, walk
 
 import fretting as fr
 from fretting.physics import closed_forms as cf
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-from trajectories import TARGETS, ellipse, fields_of, hertz, path, score, walk  # noqa: E402
 
 REFERENCE_ELEMENTS = 2000
 
@@ -51,7 +46,7 @@ def test_every_step_of_the_default_within_the_targets(scores, name, quantity):
 @pytest.mark.slow
 @pytest.mark.parametrize("name", list(histories()))
 def test_default_runs_a_galerkin_mesh_that_locates_every_step(scores, name):
-    """Each history leaves the straight line through the origin (tests/test_inphase.py has those),
+    """Each history leaves the straight line through the origin (tests/models/test_inphase.py has those),
     and its run on the mesh that locates every step's stick ends is within `MAX_DEFAULT_WORK`."""
     attrs = scores[name][0].attrs
     assert attrs["model"] == "mesh" and "model_fallback" not in attrs

@@ -254,7 +254,7 @@ def monotonic_dissipation(contact: Contact, Q: float, ratio: float = 0.0) -> flo
     quadrature. Each slip zone, from its stick end ``L`` to the contact edge ``E``, is mapped by
     ``x = L + (E - L) sin^2(phi / 2)``: the ``(x - L)^(3/2)`` of the slip and the ``sqrt(E - x)``
     of the pressure become analytic in ``phi``, so Gauss-Legendre of `SLIP_WORK_ORDER` points
-    converges exponentially (tests/test_accuracy.py::test_slip_work_by_quadrature_is_the_closed_form).
+    converges exponentially (tests/analysis/test_accuracy.py::test_slip_work_by_quadrature_is_the_closed_form).
 
     Parameters
     ----------

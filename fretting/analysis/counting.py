@@ -24,7 +24,7 @@ Jaeger hold: from a reversal the change of traction is -2 times the monotonic on
 load change, and a closed loop restores the state it started from (Mindlin & Deresiewicz,
 J. Appl. Mech. 20 (1953) 327-344; Jaeger, J. Tribol. 120 (1998) 677-684, who state them for
 symmetric profiles; the engine obeys them to rounding on asymmetric ones too, see
-tests/test_counting.py). Every full cycle of range ``DeltaQ`` then dissipates exactly the
+tests/analysis/test_counting.py). Every full cycle of range ``DeltaQ`` then dissipates exactly the
 energy of constant-amplitude cycling of that range, whatever its mean and whatever surrounds
 it, and the decomposition is exact. With sigma it is an approximation: the state at a reversal
 then depends on more than the counted load (beyond the Nowell-Hills regime
@@ -32,7 +32,7 @@ then depends on more than the counted load (beyond the Nowell-Hills regime
 virgin curves), and on non-proportional paths the reversals of Q and sigma
 differ while the counting follows one of them. Measured against ``4 D(DeltaQ / 2)`` along the
 path's direction (random histories, 64 nodes): proportional paths ``sigma / (f p0) = k Q / (f P)``
-keep the rule for ``|k| <= 2`` (regime A; tests/test_counting.py::test_proportional_loads_in_regime_A_keep_the_rule)
+keep the rule for ``|k| <= 2`` (regime A; tests/analysis/test_counting.py::test_proportional_loads_in_regime_A_keep_the_rule)
 and nearly for ``|k| <= 3``; with a sigma
 mean, or where Q reverses and sigma does not, a small loop can be off by a factor of two or more.
 """

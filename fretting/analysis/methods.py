@@ -49,16 +49,16 @@ __all__ = ["METHODS", "partial_slip", "comparison_figure"]
 #: Sine modes of the pressure (methods 1 and 3): a pressure whose slope has kinks (rounded
 #: flat) converges slowly in them, and half as many leave method 3's traction visibly farther
 #: from method 1's (both held against Ciavarella-Jaeger by
-#: tests/test_methods.py::test_rounded_flat_ciavarella_jaeger).
+#: tests/analysis/test_methods.py::test_rounded_flat_ciavarella_jaeger).
 MODES = 4096
 
 #: Gauss-Chebyshev nodes in the stick zone (method 2): enough for the closed forms of
-#: tests/test_methods.py (test_hertz_cattaneo_mindlin, test_rounded_flat_ciavarella_jaeger).
+#: tests/analysis/test_methods.py (test_hertz_cattaneo_mindlin, test_rounded_flat_ciavarella_jaeger).
 QUADRATURE = 256
 
 #: Gauss-Legendre points in each slip zone (method 2): the integrand is smooth in ``theta``. On the
 #: rounded flat 32 points give method 1's traction as closely as 128
-#: (tests/test_methods.py::test_rounded_flat_ciavarella_jaeger).
+#: (tests/analysis/test_methods.py::test_rounded_flat_ciavarella_jaeger).
 ORDER = 32
 
 #: Load increments of method 4: under monotonic loading the stick zone only shrinks, so the

@@ -356,7 +356,7 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     for ``q`` constant on each cell, with the pressure of each step
     (`fretting.models.normal.CellSurfaceStress`). Its error against
     Cattaneo-Mindlin away from the stick/slip boundaries is held by
-    tests/test_nucleation.py::test_surface_stress_of_cattaneo_mindlin; at a boundary the stress has a
+    tests/analysis/test_nucleation.py::test_surface_stress_of_cattaneo_mindlin; at a boundary the stress has a
     square-root profile with a vertical tangent that no fixed grid resolves, so the error is largest
     there.
 

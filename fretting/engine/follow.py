@@ -11,13 +11,13 @@ path solved only where they are recorded (`skippable`): along a straight (propor
 every node slips one way only, so one increment from the stretch's start reaches the state at
 its end, and its energy, energy density and slip range are those of the steps it spans, to
 rounding. ``q`` is monotonic along such a stretch, so the largest ``|q|`` over it is at one of
-its ends, but the surface ``sigma_xx`` is not (tests/test_skipping.py): the specimen's
+its ends, but the surface ``sigma_xx`` is not (tests/engine/test_skipping.py): the specimen's
 ``sigma_xx`` peaks are then not tallied (NaN), only ``q_peak`` is.
 
 A model that steps several increments as rows (`ExactModel.window`: the exact model of ``Q``
 alone) has the solved steps that nothing records or copies taken a window at a time
 (`_Run._window`), with the tallies and each node's episode formed as step by step would, bit for
-bit (tests/test_window.py).
+bit (tests/engine/test_window.py).
 """
 
 from dataclasses import dataclass, replace

@@ -21,7 +21,7 @@ punch), and the gap at ``X`` is zero once the contact reaches it:
 
 (Hertz: ``g_0 = X^2 / (2R)``). The slope ``P' = dP/dc'`` (`Profile.load_slope`), rather than
 differences of ``P``, keeps the relative precision in the thinnest slip zones: those of a tiny
-reversal dissipate Masing's energy (tests/test_masing.py::test_tiny_reversal_slips_by_the_cubic_law).
+reversal dissipate Masing's energy (tests/models/test_masing.py::test_tiny_reversal_slips_by_the_cubic_law).
 
 On Hertz a branch is a closed form instead (`ExactModel._hertz_branches`): the slip is Cattaneo-Mindlin's
 in a form without cancellation (`fretting.physics.closed_forms.hertz_slip_shape`), the energy and
@@ -57,16 +57,16 @@ __all__ = ["Exact", "ExactModel", "gap", "nodes_theta"]
 
 #: Gauss-Legendre points of each quadrature (the gap along ``c'``, the energy and ``delta_Q``
 #: along ``X``): on Hertz the slip meets the closed form to rounding
-#: (tests/test_masing.py::test_gap_of_hertz_is_cattaneo_mindlin), and on the rounded flat more
+#: (tests/models/test_masing.py::test_gap_of_hertz_is_cattaneo_mindlin), and on the rounded flat more
 #: points change neither the slip, the energy nor delta_Q, also close to sliding
-#: (tests/test_masing.py::test_quadrature_has_converged).
+#: (tests/models/test_masing.py::test_quadrature_has_converged).
 GAUSS = 64
 _U, _WEIGHTS = np.polynomial.legendre.leggauss(GAUSS)
 
 #: Nodes added toward each edge, per halving of the distance in ``theta``, below the first node
 #: of the Gauss-Chebyshev grid, and the halvings: slip zones down to ``a (2^-12 pi / 2N)^2 / 2``,
 #: ``8e-12 a`` at 384 nodes, hold 4 nodes or more
-#: (tests/test_masing.py::test_nodes_hold_thin_slip_zones_and_small_stick_zones).
+#: (tests/models/test_masing.py::test_nodes_hold_thin_slip_zones_and_small_stick_zones).
 EDGE_NODES_PER_OCTAVE = 4
 EDGE_OCTAVES = 12
 

@@ -88,7 +88,7 @@ def _zone(t, ds, first, last, end):
 #: How far inside the last stuck node [its spacing to the first slipping node] a stick end may be
 #: placed. Where a zone grows monotonically the discrete stick zone overshoots the true one by
 #: part of a spacing, and the ``d^(3/2)`` law places the end inside it (exact in-phase model
-#: against method 4 on a fine mesh: tests/test_inphase.py); where the law fails (a slip zone
+#: against method 4 on a fine mesh: tests/models/test_inphase.py); where the law fails (a slip zone
 #: growing into slip locked in before) the extrapolation runs further in while the converged end
 #: lies beyond the stuck node (references with the elements at their ends bisected:
 #: benchmarks/trajectories.py, `BANDED`, which scores the stick ends of both kinds).

@@ -90,7 +90,7 @@ __all__ = [
     "slip_to_traction",
 ]
 
-#: Cells over the largest contact of `Varying()`: the closed forms of tests/test_normal_load.py hold
+#: Cells over the largest contact of `Varying()`: the closed forms of tests/models/test_normal_load.py hold
 #: to 1e-3 at this many, and the energy of a random history to 1e-4 of a finer run wherever the
 #: cells lie against the contact's edges, which at fewer cells it does not (benchmarks/normal_load.py
 #: prints the convergence and the shifted cells).

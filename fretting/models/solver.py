@@ -49,7 +49,7 @@ __all__ = ["ChebyshevGrid", "Increment", "Stiffness", "chebyshev_angles", "held_
 
 #: Rounding allowance on the friction limit, relative to the largest term of the traction: the
 #: solves leave slipping nodes off the limit by a few units of rounding of that term, at least ten
-#: times less than this on an out-of-phase path near sliding (tests/test_solver.py). A load cycle
+#: times less than this on an out-of-phase path near sliding (tests/models/test_solver.py). A load cycle
 #: on a large locked-in slip whose traction changes by less dissipates nothing, so the allowance
 #: is held no larger than that margin asks (benchmarks/small_loops.py).
 ROUNDING = 2e-14
@@ -67,7 +67,7 @@ COMPLEMENT = 0.25
 
 #: Rounds of iterative refinement of a solve through the stuck nodes, against ``G_SS`` itself: the
 #: inverse ``B`` carries rounding of the size of its condition number, and one round brings the
-#: residual to that of a Cholesky factor of ``G_SS`` (tests/test_solver.py).
+#: residual to that of a Cholesky factor of ``G_SS`` (tests/models/test_solver.py).
 REFINEMENT_ROUNDS = 1
 
 

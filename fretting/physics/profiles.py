@@ -324,7 +324,7 @@ class Gap(Profile):
     breakpoints : sequence of float, optional
         Positions [m] where the curvature of ``h0`` jumps (the ends of a flat, say). The
         pressure's derivative is log-singular there; the Galerkin mesh resolves the traction
-        about them (tests/test_galerkin.py::test_rounded_flat), which it cannot do for jumps it is
+        about them (tests/models/test_galerkin.py::test_rounded_flat), which it cannot do for jumps it is
         not told of.
 
     Notes
@@ -463,7 +463,7 @@ def _x_minus_sin(x: ArrayLike) -> np.ndarray:
 
     Below 0.5 its Taylor series to ``x^17`` (the next term is ``1e-21`` of the sum there), above
     it the difference; both are held to rounding against a 60-digit sum of the series by
-    tests/test_profiles.py::test_x_minus_sin_keeps_its_relative_precision.
+    tests/physics/test_profiles.py::test_x_minus_sin_keeps_its_relative_precision.
     """
     x = np.asarray(x, dtype=float)
     series = np.polynomial.polynomial.polyval(x**2, _X_MINUS_SIN) * x**3

@@ -15,7 +15,7 @@ the singularities of ``Cl1`` that combination cancels, and a Taylor series about
 rectangle's centre takes over: a polynomial in ``cot^2`` of half the centre's argument whose
 coefficients depend on the two element sizes only, so that both kernels share them. The means
 lose accuracy in proportion to the ratio of the two sizes, which the grading of the meshes
-bounds (tests/test_galerkin.py::test_pair_means_against_quadrature). Each mean is computed from
+bounds (tests/models/test_galerkin.py::test_pair_means_against_quadrature). Each mean is computed from
 its own two elements alone, in operations that do not depend on the other elements, so that the
 scene of a refined mesh copies the means of the pairs of elements it shares with the scene
 before (`GalerkinModel`'s ``previous``) and its stiffness equals, bit for bit, one assembled

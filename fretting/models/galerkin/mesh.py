@@ -72,7 +72,7 @@ BOUNDARY_SPAN = 10.0
 ENERGY_SPAN = 50.0
 #: Elements at a pressure breakpoint span this fraction of ``BOUNDARY_SPAN rtol a``: with a
 #: larger span the traction's ``d ln d`` there errs most at the node nearest the end of a rounded
-#: flat (tests/test_galerkin.py::test_rounded_flat).
+#: flat (tests/models/test_galerkin.py::test_rounded_flat).
 BREAKPOINT_SPAN = 0.5
 #: Around a boundary elements grow at most like this fraction of their distance from it, so
 #: that the square-root kink of the traction is seen through gently graded elements.

@@ -2,7 +2,7 @@
 each on the default model (`fretting.models.Varying` is chosen where the history varies P).
 
 Traction is compared within 1e-3 f p0 away (0.02 a) from the points where it has a square-root kink,
-as in tests/test_closed_forms.py: the edges of the contacts met and the stick/slip boundaries.
+as in tests/physics/test_closed_forms.py: the edges of the contacts met and the stick/slip boundaries.
 """
 
 import numpy as np

@@ -133,7 +133,7 @@ def test_an_unloading_step_below_the_solvers_floor_dissipates_exactly_zero(hertz
     its edge elements until its edge nodes reach their limit (`adaptation._unseen_edges`), by less
     than the solver's rounding allowance, which holds them: nothing slips either, and the dataset
     and a warning say that the step's energy is lost. The exact model slips there, by the cubic law
-    (tests/test_masing.py)."""
+    (tests/models/test_masing.py)."""
     fP = hertz.f * hertz.P
     history = fr.History.piecewise_linear(np.array([0, 0.5, 0.5 - 1e-9]) * fP, None, [4, 1])
     adapted = "rtol" in model

@@ -397,7 +397,7 @@ def test_one_registry_declares_every_criterion():
         declared = (criterion.units, criterion.long_name, criterion.amplitude_units, criterion.amplitude_name)
         assert (criterion.name, maps.attrs["criterion"]) == (name, name)
         assert tuple(maps[v].attrs[k] for v in ("parameter", "amplitude") for k in ("units", "long_name")) == declared
-    guides = Path(__file__).parents[1] / "docs" / "guide"
+    guides = Path(__file__).parents[2] / "docs" / "guide"
     table = re.findall(r"^\| `(\w+)` \|", (guides / "fatigue.md").read_text(), re.MULTILINE)
     assert table == list(CRITERIA)
     row = next(line for line in (guides / "cli.md").read_text().splitlines() if line.startswith("| `--criterion"))

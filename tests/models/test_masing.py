@@ -7,8 +7,9 @@ of nested loops.
 
 import numpy as np
 import pytest
+from checks import assert_friction_conditions
+from harness import hard_rounded_flat
 from scipy import integrate
-from test_hard_cases import assert_friction_conditions, rounded_flat
 
 import fretting as fr
 from fretting.loading.loads import LoadBlock
@@ -85,7 +86,7 @@ def test_gap_of_the_rounded_flat_solves_eq_1(psi):
     ``g(X) = h0(X) - h0(c) - (2 / (pi E_star)) (L(X) - L(c))``; by adaptive quadrature of ``L``
     it is the model's gap to 1e-9 at 0.1, 0.5 and 1 of the way from ``c`` to ``a``, also where
     ``c`` is 1.5e-8 m beyond the flat."""
-    contact = rounded_flat()
+    contact = hard_rounded_flat()
     b, R, E_star = contact.profile.b, contact.profile.R, contact.E_star
     corrective = cf.ciavarella_jaeger(contact, psi * contact.f * contact.P, np.zeros(1))[1]
     c = corrective.a
@@ -120,7 +121,7 @@ def test_cycle_energy_and_delta_Q_of_hertz(hertz, psi):
 
 def test_tiny_reversal_slips_by_the_cubic_law(hertz):
     """0.5 fP, then back by 1e-9 fP: the reversed slip zones are 2.5e-10 a wide (method 4 sees
-    none, tests/test_engine.py); the energy is half a Masing cycle of amplitude 5e-10 fP, and the
+    none, tests/engine/test_engine.py); the energy is half a Masing cycle of amplitude 5e-10 fP, and the
     outermost nodes slip backward."""
     fP = hertz.f * hertz.P
     result = exact(hertz, fr.History.piecewise_linear(np.array([0, 0.5, 0.5 - 1e-9]) * fP, None, [4, 1]))
@@ -135,7 +136,7 @@ def test_tiny_reversal_slips_by_the_cubic_law(hertz):
 def test_quadrature_has_converged(monkeypatch, psi):
     """Rounded flat: 256 Gauss-Legendre points instead of `masing.GAUSS` change the slip, the energy
     and delta_Q of a branch by less than 1e-12 of them."""
-    contact = rounded_flat()
+    contact = hard_rounded_flat()
     P_c = contact.P - psi * contact.P
 
     history = fr.History.piecewise_linear([0.0, psi * contact.f * contact.P], None, 1)
@@ -159,7 +160,7 @@ def test_method_4_converges_to_it():
     model's total energy to within rtol (measured: 7.5e-6, 4.8e-8); the energy of each increment
     and delta_Q come 10 times closer on the finer mesh (energy: 1.3e-4 and 7.8e-6 of the largest
     increment's, the worst just after the first reversal); at 1e-4 the stick ends are within 2e-3 a."""
-    contact = rounded_flat()
+    contact = hard_rounded_flat()
     history = nested(contact)
     reference = exact(contact, history)
     dissipation, delta_Q = reference.dissipation.values, reference.delta_Q.values
@@ -184,7 +185,7 @@ def test_friction_conditions_and_memory(hertz, profile):
     """Nested loops: Coulomb's law at every node, and each loop that closes restores the state of its
     first visit bit for bit (the slip is summed over the open branches in one order)."""
     flat_punch = fr.Contact(fr.FlatPunch(2e-3), 115e9, 0.5, 3e5)
-    contact = {"hertz": hertz, "rounded_flat": rounded_flat(), "flat_punch": flat_punch}[profile]
+    contact = {"hertz": hertz, "rounded_flat": hard_rounded_flat(), "flat_punch": flat_punch}[profile]
     psi = np.array([0.0, 0.8, -0.5, 0.6, -0.2, 0.6, -0.5, 0.8])
     history = fr.History.piecewise_linear(psi * contact.f * contact.P, None, 4)
     result = exact(contact, history)
@@ -284,7 +285,7 @@ def test_closed_forms_of_an_array_are_those_of_each_load(hertz):
 
 def test_prepared_loads_past_gross_slip_are_left_to_the_run(hertz):
     """`prepare` stops its walk at the first load of ``|Q| >= f P`` (no corrective contact there:
-    the run stops with a GrossSlipError naming the step, tests/test_engine.py), having solved the
+    the run stops with a GrossSlipError naming the step, tests/engine/test_engine.py), having solved the
     branches before it."""
     model = masing.Exact(64).resolved_for(hertz, None).build(hertz)
     with np.errstate(all="raise"):

@@ -12,8 +12,7 @@ import harness
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import hertz_si
-from harness import adapt, cycle_energy, cycles, ends, increments, monotonic
+from harness import adapt, cycle_energy, cycles, ends, hertz_contact, increments, monotonic
 from scipy import integrate, special
 
 import fretting as fr
@@ -415,7 +414,7 @@ def test_a_slip_zone_at_one_edge_node_is_refined():
 
 def test_settled_mesh_resolves_tiny_stick_zone():
     """Q = 0.999999 f P: the stick zone of half-width 0.001 a has several elements."""
-    contact = hertz_si()
+    contact = hertz_contact()
     Q = 0.999999 * contact.f * contact.P
     scene, ds, _, _ = adapt(contact, monotonic(Q)[0])
     stuck = np.flatnonzero(ds.sum(axis=0) == 0)
@@ -495,7 +494,7 @@ def test_many_steps_per_cycle_at_the_default_rtol(hertz, psi):
     """Issue-4 targets at the default rtol with 64 steps per cycle: each cycle's energy is within
     1e-4 of the Masing reference, also at 1e-6 fP, where the steps near the peaks move the slip
     zones of 5e-7 a by loads 1e-13 of f P (measured: 2e-5 or better). (Q alone on Hertz runs the
-    exact model by default, tests/test_masing.py; the mesh is asked for here.)"""
+    exact model by default, tests/models/test_masing.py; the mesh is asked for here.)"""
     Q_star = psi * hertz.f * hertz.P
     result = fr.simulate(hertz, fr.History.sinusoidal(Q_star, cycles=3, steps_per_cycle=64), rtol=gk.DEFAULT_RTOL)
     assert result.attrs["rtol"] == gk.DEFAULT_RTOL

@@ -8,9 +8,8 @@ fine mesh at every step of a random-amplitude history.
 
 import numpy as np
 import pytest
-from conftest import hertz_si
+from harness import END_BAND, hard_rounded_flat, hertz_contact
 from scipy import integrate
-from test_hard_cases import rounded_flat
 
 import fretting as fr
 from fretting.engine.recorder import recorded_spec
@@ -24,7 +23,6 @@ from fretting.physics import closed_forms as cf
 #: from every stick end of the history its nodal traction is compared: within that band the
 #: traction's square root at the end errs by about 1e-2 f p0 on that mesh.
 FINE = np.linspace(0, np.pi, 4001)
-END_BAND = 0.01
 
 
 def in_phase(contact, loads, share, steps):
@@ -39,7 +37,7 @@ def test_first_loading_is_nowell_hills(sign, share):
     """Q rising from zero to 0.6 f P (or falling to -0.6 f P) in phase with sigma: the traction at every
     node is Nowell-Hills's to 1e-12 f p0, the stick zone is ``[e - b, e + b]``, the slip is ``f`` times
     the gap outside the shifted corrective contact, and delta_sigma and delta_Q are quadratures of it."""
-    contact = hertz_si()
+    contact = hertz_contact()
     history = in_phase(contact, [0.0, sign * 0.6], share, 5)
     result = fr.simulate(contact, history)
     assert result.attrs["model"] == InPhase.name
@@ -68,7 +66,7 @@ def test_first_loading_is_nowell_hills(sign, share):
 
 def test_without_sigma_it_is_mindlin():
     """ratio 0: the energy of a first loading to 0.7 f P and delta_Q are Mindlin's closed forms to 1e-12."""
-    contact = hertz_si()
+    contact = hertz_contact()
     Q = 0.7 * contact.f * contact.P
     model = InPhase(ratio=0.0).resolved_for(contact, None).build(contact)
     branch = model._solved(contact.P - Q / contact.f)
@@ -80,7 +78,7 @@ def test_a_closed_loop_dissipates_its_area():
     """An in-phase cycle between 0.7 and -0.4 f P after the first loading: the energy it dissipates is the area
     ``loop Q d(delta_Q) + sigma d(delta_sigma)`` of its loop (docs/theory/conventions.md), by the
     trapezoidal rule over 2000 steps a branch (its error ~1e-7 of the area)."""
-    contact = hertz_si()
+    contact = hertz_contact()
     result = fr.simulate(contact, in_phase(contact, [0.0, 0.7, -0.4, 0.7], 0.8, [1, 2000, 2000]))
     cycle = slice(1, 4002)
     Q, sigma = result.Q.values[cycle], result.sigma.values[cycle]
@@ -97,7 +95,7 @@ def test_random_amplitudes_agree_with_method_4_on_a_fine_mesh():
     energy of each increment, delta_Q and delta_sigma to 1e-6 of their largest, the stick ends to
     1e-4 a. (At the nodes next to a stick end the mesh's slip errs by about 1e-5 of the largest,
     falling as the mesh is refined: benchmarks/inphase_accuracy.py.)"""
-    contact = hertz_si()
+    contact = hertz_contact()
     k = 0.9 * regime_bound(contact)
     history = fr.History.random_amplitude(4, 0.8 * contact.f * contact.P, 0.0, seed=3, steps_per_segment=2)
     history = fr.History.piecewise_linear(history.Q, k * history.Q, 1)
@@ -119,7 +117,7 @@ def test_random_amplitudes_agree_with_method_4_on_a_fine_mesh():
 def test_the_default_takes_it_in_regime_a_and_records_it():
     """In phase through the origin in regime A: the default is `InPhase` with the history's ratio,
     recorded in the dataset (name, description, ratio) and read back from it."""
-    contact = hertz_si()
+    contact = hertz_contact()
     result = fr.simulate(contact, in_phase(contact, [0.0, 0.5, -0.5, 0.3], 1.0, 4))
     assert result.attrs["model"] == "inphase"
     assert result.attrs["model_description"] == InPhase.description
@@ -140,7 +138,7 @@ def test_the_default_takes_it_in_regime_a_and_records_it():
 def test_the_default_does_not_take_it_off_regime_a_or_off_the_line(history, reason):
     """Past regime A, or a load path that is not one straight line through the origin: method 4's
     mesh, and `InPhase.holds_for` says why."""
-    contact = hertz_si()
+    contact = hertz_contact()
     found = history(contact)
     assert reason in InPhase().holds_for(contact, found)
     assert fr.choose_model(contact, found).name == "mesh"
@@ -148,13 +146,13 @@ def test_the_default_does_not_take_it_off_regime_a_or_off_the_line(history, reas
 
 def test_it_holds_only_for_hertz():
     """A rounded flat under in-phase loads: not Hertz, said."""
-    contact = rounded_flat()
+    contact = hard_rounded_flat()
     assert "not a Hertz profile" in InPhase().holds_for(contact, in_phase(contact, [0.0, 0.5], 0.5, 2))
 
 
 def test_an_increment_off_the_line_is_refused():
     """An increment to loads off ``sigma = ratio Q``: a ValueError that says so."""
-    contact = hertz_si()
+    contact = hertz_contact()
     model = InPhase(ratio=regime_bound(contact)).resolved_for(contact, None).build(contact)
     state = State.virgin(model)
     with pytest.raises(ValueError, match="not in phase"):
@@ -164,7 +162,7 @@ def test_an_increment_off_the_line_is_refused():
 def test_a_continued_run_equals_the_whole_run(tmp_path):
     """Cut at a vertex, saved, loaded and continued from its state (the ratio and the open turning points
     read back): the same slip, delta_sigma and energy, bit for bit. Loads off the line are refused."""
-    contact = hertz_si()
+    contact = hertz_contact()
     history = in_phase(contact, [0.0, 0.8, -0.5, 0.6, -0.2, 0.9, -0.9], 0.7, 3)
     whole = fr.simulate(contact, history)
     cut = int(history.vertex_step[4])
@@ -203,7 +201,7 @@ def test_the_ratio_is_read_block_by_block(monkeypatch):
 def test_a_ratio_past_the_largest_float_is_not_in_phase():
     """``Q`` of 4e-301 N/m with ``sigma`` of 1e8 Pa: ``sigma / Q`` is no float, so the history is not
     in phase; the default says so and takes method 4's mesh (no invalid arithmetic on the way)."""
-    contact = hertz_si()
+    contact = hertz_contact()
     history = fr.History.piecewise_linear([0.0, 4.1e-301], [0.0, 1e8], 1)
     assert proportional_ratio(history) is None
     assert "not proportional" in InPhase().holds_for(contact, history)
