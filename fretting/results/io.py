@@ -30,6 +30,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ENGINE",
+    "LEGACY_UNITS",
     "Joiner",
     "ResultError",
     "join_results",
@@ -41,6 +42,7 @@ __all__ = [
     "save",
     "save_joined",
     "source_attributes",
+    "with_current_units",
 ]
 
 #: The xarray backend, named explicitly so that files never depend on what else is installed.
@@ -64,6 +66,10 @@ TOKEN_BYTES = 6
 
 #: Distributions whose versions a result records.
 DEPENDENCIES = ("fretting", "numpy", "scipy", "xarray", "h5netcdf", "h5py")
+
+#: Units as the files of fretting 0.1.0 spell them -> as they are spelled now, which both pint and UDUNITS
+#: parse (pint takes ``m2`` for a unit named "m2"). Files are read (`open_result`) with the new spelling.
+LEGACY_UNITS = {"m2": "m^2", "Pa2": "Pa^2", "J/m2": "J/m^2", "Pa J/m2": "Pa J/m^2"}
 
 #: Variables and attributes that every result has.
 REQUIRED_VARIABLES = ("Q", "sigma", "p", "q", "slip", "stick", "dissipation", "delta_Q", "vertex_step", "state_slip")
@@ -152,14 +158,14 @@ def joined_steps(parts: Sequence[str | os.PathLike]) -> xr.Dataset:
     joiner = Joiner()
     for part in parts:
         with xr.open_dataset(part, engine=ENGINE) as opened:
-            joiner.add(opened.drop_vars(_per_cycle(opened)).load())
+            joiner.add(with_current_units(opened.drop_vars(_per_cycle(opened)).load()))
     return joiner.result()
 
 
 def _rows(part):
     """The per-cycle variables of the result file `part`, read into memory."""
     with xr.open_dataset(part, engine=ENGINE) as opened:
-        return opened[_per_cycle(opened)].load()
+        return with_current_units(opened[_per_cycle(opened)].load())
 
 
 def _per_cycle(result, dims=CYCLE_DIMS):
@@ -259,7 +265,17 @@ def open_result(path: str | os.PathLike) -> xr.Dataset:
     if missing:
         result.close()
         raise ResultError(f"{path}: found no {missing[0]}, expected a result of fretting")
-    return result
+    return with_current_units(result)
+
+
+def with_current_units(dataset: xr.Dataset) -> xr.Dataset:
+    """`dataset` with the units of its variables spelled as they are now: those of `LEGACY_UNITS`
+    replaced, in place (a lazily opened dataset stays open); the dataset is returned."""
+    for variable in dataset.variables.values():
+        units = variable.attrs.get("units")
+        if isinstance(units, str) and units in LEGACY_UNITS:
+            variable.attrs["units"] = LEGACY_UNITS[units]
+    return dataset
 
 
 def join_results(parts: Sequence[xr.Dataset]) -> xr.Dataset:

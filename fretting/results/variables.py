@@ -38,7 +38,7 @@ _PEAKS = {
         "largest |q| so far in the cycle in progress",
     ),
     "sigma_xx_q_peak": _Field(
-        "Pa2",
+        "Pa^2",
         "largest product of the specimen's surface direct stress and |q| over the steps of each load cycle",
         "largest sigma_xx |q| of the specimen so far in the cycle in progress",
     ),
@@ -51,7 +51,7 @@ CYCLE_PEAKS = tuple(_PEAKS)
 #: Per-cycle field -> `_Field`: the peaks, and the energy density and slip amplitude of each cycle.
 _FIELDS = {
     "w": _Field(
-        "J/m2",
+        "J/m^2",
         "energy dissipated per unit area in each load cycle",
         "energy dissipated per unit area so far in the cycle in progress",
         "energy dissipated per unit area, summed over every complete load cycle",
@@ -89,7 +89,7 @@ _DECLARED = {
     "stick_end": (("step", "zone"), "m", "upper end of each stick zone of the increment (sub-grid)"),
     "dissipation": (("step",), "J/m", "energy dissipated in the increment ending at this step"),
     "delta_Q": (("step",), "m", "slip part of the generalized displacement conjugate to Q"),
-    "delta_sigma": (("step",), "m2", "slip part of the generalized displacement conjugate to sigma"),
+    "delta_sigma": (("step",), "m^2", "slip part of the generalized displacement conjugate to sigma"),
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
     "vertex_Q": (("vertex",), "N/m", "shear force at each vertex of the load path"),
     "vertex_sigma": (("vertex",), "Pa", "bulk tension at each vertex of the load path"),
@@ -125,7 +125,8 @@ _DECLARED = {
     "step": (("step",), "1", "load step (0 is the starting state)"),
 }
 
-#: name -> (dims, units, long_name). Units assume SI inputs; any consistent set works.
+#: name -> (dims, units, long_name). Units assume SI inputs; any consistent set works. They are written
+#: as pint and UDUNITS both parse them: ``m^2``, not ``m2`` (`fretting.results.io.LEGACY_UNITS`).
 VARIABLES = (
     _DECLARED
     | {name: (("cycle_number", "x"), field.units, field.long_name) for name, field in _FIELDS.items()}

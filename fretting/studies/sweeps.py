@@ -41,7 +41,7 @@ from fretting.analysis import nucleation
 from fretting.engine.simulation import simulate
 from fretting.errors import GrossSlipError, MissingDependencyError
 from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
-from fretting.results.io import ENGINE, save
+from fretting.results.io import ENGINE, save, with_current_units
 
 __all__ = [
     "REGIMES",
@@ -89,7 +89,7 @@ VARIABLES = {
         "(NaN: no load cycles, or gross slip)",
     ),
     "w_max": (
-        "J/m2",
+        "J/m^2",
         "peak dissipated energy density of the last load cycle",
         "max over x of w(x) of the last cycle, w the energy dissipated per unit area in it "
         "(fretting.analysis.nucleation.peak_dissipation_density; NaN: no load cycles, or gross slip)",
@@ -444,7 +444,7 @@ def _finished(file, base, case):
     """The case variables in `file` if it holds this case of this base history, else None."""
     if file is None or not file.is_file():
         return None
-    summary = xr.load_dataset(file, engine=ENGINE)
+    summary = with_current_units(xr.load_dataset(file, engine=ENGINE))  # a case file of fretting 0.1.0 too
     identity = _identity(base, case)
     return summary if all(summary.attrs.get(name) == value for name, value in identity.items()) else None
 
