@@ -1,18 +1,138 @@
-"""The files of `fretting` as the tools of its users read them: units that pint parses, and files
-of fretting 0.1.0 (units ``m2``, ``Pa2``, ``J/m2``) read with today's spelling."""
+"""The files of `fretting` as the tools of its users read them: CF-1.11 (no fill values on
+coordinates, ``Conventions``, ``title``, ``history``, axes that cf_xarray finds), units that pint
+parses, no path of the machine that wrote them; and files of fretting 0.1.0 (units ``m2``,
+``Pa2``, ``J/m2``) read with today's spelling."""
 
+import datetime
+from pathlib import Path
+
+import cf_xarray  # noqa: F401 (the accessor ds.cf)
 import h5py
 import numpy as np
 import pint
 import pytest
+import xarray as xr
+from conftest import HERTZ_TOML
 
 import fretting as fr
+from fretting import cli
 from fretting.analysis import nucleation
-from fretting.results.io import LEGACY_UNITS, load, save, save_joined
+from fretting.loading.examples import EXAMPLES
+from fretting.results.io import CONVENTIONS, LEGACY_UNITS, load, recorded_path, save, save_joined
 from fretting.results.variables import VARIABLES
 from fretting.studies import sweeps
 
 UNITS = pint.UnitRegistry()
+
+#: A short cyclic history of the Hertzian contact of conftest (f P = 70 kN/m).
+SINE = (
+    HERTZ_TOML
+    + """
+[[loading]]
+kind = "sine"
+Q_amplitude = 30e3
+sigma_amplitude = 20e6
+cycles = 2
+steps_per_cycle = 16
+"""
+)
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    """Kind -> a file of each kind, written as a user writes them: a result of ``fretting run`` (its
+    parts joined) and one written again by `fretting.save`, a stress field with a criterion's maps, and
+    a sweep over two keys of the contact; every path given absolute."""
+    folder = tmp_path_factory.mktemp("files")
+    history, sweep = folder / "sine.toml", folder / "map.toml"
+    history.write_text(SINE)
+    sweep.write_text('history = "sine.toml"\n[grid]\ncontact.f = [0.6, 0.7]\ncontact.P = [1e5, 1.2e5]\n')
+    found = {kind: folder / f"{kind}.h5" for kind in KINDS}
+    material = EXAMPLES / "materials" / "steel.toml"
+    for command in [
+        ["run", str(history), "-o", str(found["result"]), "--nodes", "32"],
+        [
+            "stress",
+            str(found["result"]),
+            "-o",
+            str(found["stress"]),
+            *"--nx 21 --nz 6 --material".split(),
+            str(material),
+        ],
+        ["sweep", str(sweep), "-o", str(found["sweep"])],
+    ]:
+        assert cli.main(command) == 0
+    save(load(found["result"]), found["saved"])
+    return found
+
+
+KINDS = ("result", "saved", "stress", "sweep")
+
+
+def _opened(path):
+    return xr.open_dataset(path, engine="h5netcdf")
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_coordinates_have_no_fill_value(files, kind):
+    with _opened(files[kind]) as dataset:
+        coordinates = [name for name in dataset.dims if name in dataset.variables]
+    assert coordinates
+    with h5py.File(files[kind], "r") as file:
+        for name in coordinates:
+            assert "_FillValue" not in file[name].attrs, name
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_global_attributes_say_conventions_title_source_and_history(files, kind):
+    with _opened(files[kind]) as dataset:
+        attrs = dataset.attrs
+    assert attrs["Conventions"] == CONVENTIONS == "CF-1.11"
+    assert attrs["title"].startswith("fretting ") and attrs["source"] == f"fretting {fr.__version__}"
+    lines = attrs["history"].split("\n")
+    assert len(lines) == (2 if kind in ("result", "saved") else 1) + (kind == "saved")  # a line per write
+    for line in lines:
+        time, wrote = line.split(" ", 1)
+        assert datetime.datetime.fromisoformat(time).tzinfo == datetime.UTC
+        assert wrote.startswith("fretting.") and wrote.endswith(f"(fretting {fr.__version__})")
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_unit_parses_in_pint(files, kind):
+    with _opened(files[kind]) as dataset:
+        units = {
+            name: variable.attrs["units"] for name, variable in dataset.variables.items() if "units" in variable.attrs
+        }
+    assert units
+    for name, text in units.items():
+        assert UNITS.parse_units(text) is not None, name
+
+
+@pytest.mark.parametrize(("kind", "axes"), [("result", ["X"]), ("saved", ["X"]), ("stress", ["X", "Z"])])
+def test_cf_xarray_finds_the_axes(files, kind, axes):
+    with _opened(files[kind]) as dataset:
+        assert sorted(dataset.cf.axes) == axes
+        assert dataset.cf["X"].name == "x" and dataset.x.attrs["axis"] == "X"
+        if "Z" in axes:
+            assert dataset.cf["Z"].name == "z" and dataset.z.attrs["positive"] == "down"
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_no_path_of_the_machine_in_the_file(files, kind):
+    folder = str(files[kind].parent)
+    with _opened(files[kind]) as dataset:
+        texts = [value for value in dataset.attrs.values() if isinstance(value, str)]
+        texts += [v for variable in dataset.variables.values() for v in variable.attrs.values() if isinstance(v, str)]
+        recorded = dataset.attrs.get("history_file")
+    assert texts and not [text for text in texts if folder in text]
+    if kind != "stress":
+        assert recorded == "sine.toml"
+
+
+def test_a_recorded_path_is_relative_as_given_or_the_name_alone(tmp_path):
+    assert recorded_path("runs/shear.toml") == "runs/shear.toml"
+    assert recorded_path(tmp_path / "runs" / "shear.toml") == "shear.toml"
+    assert recorded_path(Path("shear.toml")) == "shear.toml"
 
 
 @pytest.fixture(scope="module")

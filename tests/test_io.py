@@ -10,7 +10,15 @@ import pytest
 import xarray as xr
 
 import fretting as fr
-from fretting.results.io import CYCLE_CHUNK_ROWS, ResultError, join_results, load, save, save_joined
+from fretting.results.io import (
+    CYCLE_CHUNK_ROWS,
+    WRITTEN_ATTRIBUTES,
+    ResultError,
+    join_results,
+    load,
+    save,
+    save_joined,
+)
 
 NODES = 48
 
@@ -37,7 +45,7 @@ def _contact():
 def without_provenance(result):
     """`result` without the attributes that `save` adds."""
     copy = result.copy()
-    copy.attrs = {name: value for name, value in result.attrs.items() if name not in ("created", "versions")}
+    copy.attrs = {name: value for name, value in result.attrs.items() if name not in WRITTEN_ATTRIBUTES}
     return copy
 
 

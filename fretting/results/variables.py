@@ -9,7 +9,12 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
 
-__all__ = ["ACCUMULATED", "CYCLE_FIELDS", "CYCLE_PEAKS", "VARIABLES", "build_dataset", "variable"]
+__all__ = ["ACCUMULATED", "AXES", "CYCLE_FIELDS", "CYCLE_PEAKS", "VARIABLES", "build_dataset", "variable"]
+
+#: Coordinate name -> its CF attributes in every dataset of `fretting` that has it (results, stress
+#: fields): the axis it runs along, by which CF tools such as cf_xarray find the axes, and for the
+#: depth ``z`` into a body that it grows into the body. CF has a ``standard_name`` for neither.
+AXES = {"x": {"axis": "X"}, "z": {"axis": "Z", "positive": "down"}}
 
 
 class _Field(NamedTuple):
@@ -143,10 +148,12 @@ VARIABLES = (
 
 
 def variable(name: str, values: ArrayLike, dims: tuple[str, ...] | None = None) -> xr.Variable:
-    """The variable `name` of `VARIABLES` holding `values`, with its units and long name, on its
-    dims or on `dims` (a per-cycle field of chosen cycles: ``("field_cycle", "x")``)."""
+    """The variable `name` of `VARIABLES` holding `values`, with its units and long name (and its
+    `AXES` attributes), on its dims or on `dims` (a per-cycle field of chosen cycles:
+    ``("field_cycle", "x")``)."""
     declared, units, long_name = VARIABLES[name]
-    return xr.Variable(declared if dims is None else dims, np.asarray(values), {"units": units, "long_name": long_name})
+    attrs = {"units": units, "long_name": long_name} | AXES.get(name, {})
+    return xr.Variable(declared if dims is None else dims, np.asarray(values), attrs)
 
 
 def build_dataset(data: Mapping[str, ArrayLike], attrs: dict) -> xr.Dataset:

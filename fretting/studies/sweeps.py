@@ -41,7 +41,7 @@ from fretting.analysis import nucleation
 from fretting.engine.simulation import simulate
 from fretting.errors import GrossSlipError, MissingDependencyError
 from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
-from fretting.results.io import ENGINE, save, with_current_units
+from fretting.results.io import ENGINE, recorded_path, save, with_current_units
 
 __all__ = [
     "REGIMES",
@@ -422,7 +422,8 @@ def run_sweep(plan, scheduler=None, output=None):
                 k = futures[future]
                 summaries[k] = future.result()
                 if files[k] is not None:
-                    save(summaries[k].assign_attrs(_identity(plan.base, cases[k])), files[k])
+                    title = f"fretting sweep case: {json.dumps(cases[k])}"
+                    save(summaries[k].assign_attrs(_identity(plan.base, cases[k]), title=title), files[k])
     dataset = _combine(plan, summaries)
     if output is not None:
         save(dataset, output)
@@ -505,7 +506,8 @@ def _combine(plan, summaries):
     }
     coords = {key: (key, np.array(values), _key_attrs(key, values)) for key, values in plan.grid.items()}
     attrs = {
-        "history_file": str(plan.base.path),
+        "title": f"fretting sweep of {plan.base.path.name} over {' x '.join(plan.grid)}",
+        "history_file": recorded_path(plan.base.path),
         "history_toml": plan.base.text,
         "base_sha256": plan.base.sha256,
         "grid": json.dumps(plan.grid),
