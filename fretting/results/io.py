@@ -426,7 +426,8 @@ class Joiner:
         later = self._last is not None
         piece = part.isel(step=part.step.values > 0) if later else part
         stepwise = [name for name, variable in part.data_vars.items() if "step" in variable.dims]
-        self._pieces.append(piece[stepwise].assign_coords(step=piece.step + self._end))
+        step = piece.step.variable.copy(data=piece.step.values + self._end)  # its attributes kept in any xarray
+        self._pieces.append(piece[stepwise].assign_coords(step=step))
         self._add_vertices(part, later)
         self._end += part.attrs["steps"] - 1
         if self._first_attrs is None:
