@@ -1,6 +1,7 @@
 """fretting: partial-slip half-plane contacts under arbitrary shear and bulk-tension histories."""
 
 from fretting import models
+from fretting._version import __version__ as __version__
 from fretting.analysis.methods import partial_slip
 from fretting.engine.choice import ModelFallbackWarning, choose_model
 from fretting.engine.recorder import final_state
@@ -55,5 +56,3 @@ __all__ = [
     "simulate",
     "sweep",
 ]
-
-__version__ = "0.1.0"

@@ -18,7 +18,7 @@ import fretting as fr
 from fretting import cli, plots
 from fretting.engine import runner
 from fretting.loading.history_file import read_history
-from fretting.results.io import load
+from fretting.results.io import WRITTEN_ATTRIBUTES, load
 
 NODES = "32"
 
@@ -52,9 +52,10 @@ def run(*arguments):
 
 
 def data_of(result):
-    """`result` without what differs between runs: the time, the versions and which cycles were copied."""
+    """`result` without what differs between runs: what writing adds (the time, the versions, the history)
+    and which cycles were copied."""
     copy = result.drop_vars("cycle_copied", errors="ignore")
-    copy.attrs = {name: value for name, value in result.attrs.items() if name not in ("created", "versions")}
+    copy.attrs = {name: value for name, value in result.attrs.items() if name not in WRITTEN_ATTRIBUTES}
     return copy
 
 

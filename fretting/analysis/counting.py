@@ -32,9 +32,10 @@ then depends on more than the counted load (beyond the Nowell-Hills regime
 virgin curves), and on non-proportional paths the reversals of Q and sigma
 differ while the counting follows one of them. Measured against ``4 D(DeltaQ / 2)`` along the
 path's direction (random histories, 64 nodes): proportional paths ``sigma / (f p0) = k Q / (f P)``
-keep the rule for ``|k| <= 2`` (regime A; tests/analysis/test_counting.py::test_proportional_loads_in_regime_A_keep_the_rule)
-and nearly for ``|k| <= 3``; with a sigma
-mean, or where Q reverses and sigma does not, a small loop can be off by a factor of two or more.
+keep the rule for ``|k| <= 2`` (regime A;
+tests/analysis/test_counting.py::test_proportional_loads_in_regime_A_keep_the_rule) and nearly for
+``|k| <= 3``; with a sigma mean, or where Q reverses and sigma does not, a small loop can be off
+by a factor of two or more.
 """
 
 from __future__ import annotations

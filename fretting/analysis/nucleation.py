@@ -187,7 +187,7 @@ def dissipation_density(result: xr.Dataset) -> xr.DataArray:
                 values[k] = fp * np.abs(np.diff(slip[rows], axis=0)).sum(axis=0)
         w = xr.DataArray(values, coords={"cycle_number": result.cycle_number, "x": result.x})
     return w.rename("w").assign_attrs(
-        _attrs("J/m2", "energy dissipated per unit area in each load cycle", W_DEFINITION)
+        _attrs("J/m^2", "energy dissipated per unit area in each load cycle", W_DEFINITION)
     )
 
 
@@ -251,7 +251,7 @@ def peak_dissipation_density(result: xr.Dataset) -> xr.Dataset:
     """
     definition = "w_max = max over x of w_k(x), w the energy dissipated per unit area in cycle k"
     return _peak(
-        dissipation_density(result), "w_max", "J/m2", "peak dissipated energy density of the cycle", definition
+        dissipation_density(result), "w_max", "J/m^2", "peak dissipated energy density of the cycle", definition
     )
 
 
@@ -270,7 +270,7 @@ def accumulated_dissipation_density(result: xr.Dataset) -> xr.DataArray:
         "w_accumulated_k(x) = sum_{j <= k} w_j(x): the accumulated dissipated energy density of the "
         "energy approach (Fouvry, Duo & Perruchaut, Wear 257 (2004) 916-929), over the load cycles only"
     )
-    attrs = _attrs("J/m2", "energy dissipated per unit area, accumulated over the load cycles", definition)
+    attrs = _attrs("J/m^2", "energy dissipated per unit area, accumulated over the load cycles", definition)
     return w.cumsum("cycle_number").rename("w_accumulated").assign_attrs(attrs)
 
 
@@ -292,7 +292,7 @@ def fouvry(result: xr.Dataset) -> xr.Dataset:
     peak = _peak(
         accumulated_dissipation_density(result),
         "w_accumulated_max",
-        "J/m2",
+        "J/m^2",
         "peak accumulated dissipated energy density",
         "max over x of sum_{j <= k} w_j(x) (Fouvry, Duo & Perruchaut 2004)",
     )
@@ -465,9 +465,9 @@ def ruiz(result: xr.Dataset, body: int | None = None, bulk: ArrayLike | None = N
     F2, x_F2 = _largest(peaks["sigma_xx_q_peak"] * delta, x)
     convention = "over every step of the cycle and the nodes, delta(x) its slip amplitude"
     attrs = {
-        "F1": _attrs("J/m2", "Ruiz parameter F1", f"F1 = max |q| delta {convention} (Ruiz et al. 1984)"),
+        "F1": _attrs("J/m^2", "Ruiz parameter F1", f"F1 = max |q| delta {convention} (Ruiz et al. 1984)"),
         "F2": _attrs(
-            "Pa J/m2",
+            "Pa J/m^2",
             "Ruiz parameter F2",
             f"F2 = max sigma_xx |q| delta, sigma_xx of the {role} (body {body}), {convention} (Ruiz et al. 1984)",
         ),

@@ -1,6 +1,7 @@
 """Result files: datasets written through xarray and h5netcdf, compressed, and replaced atomically.
 
-The files are netCDF-4 (HDF5), readable by h5py, xarray and the netCDF tools.
+The files are netCDF-4 (HDF5), readable by h5py, xarray and the netCDF tools, and follow the CF
+conventions (`cf_encoded`): every file of `fretting`, result, stress field or sweep, is written here.
 """
 
 from __future__ import annotations
@@ -23,24 +24,32 @@ import h5py
 import numpy as np
 import xarray as xr
 
+from fretting._version import __version__
 from fretting.errors import FrettingError
+from fretting.results.variables import AXES, VARIABLES
 
 if TYPE_CHECKING:
     from fretting.loading.history_file import HistorySource
 
 __all__ = [
+    "CONVENTIONS",
     "ENGINE",
+    "LEGACY_UNITS",
+    "WRITTEN_ATTRIBUTES",
     "Joiner",
     "ResultError",
+    "cf_encoded",
     "join_results",
     "joined_steps",
     "load",
     "open_result",
     "provenance",
+    "recorded_path",
     "remove_temporaries",
     "save",
     "save_joined",
     "source_attributes",
+    "with_current_units",
 ]
 
 #: The xarray backend, named explicitly so that files never depend on what else is installed.
@@ -64,6 +73,23 @@ TOKEN_BYTES = 6
 
 #: Distributions whose versions a result records.
 DEPENDENCIES = ("fretting", "numpy", "scipy", "xarray", "h5netcdf", "h5py")
+
+#: Units as the files of fretting 0.1.0 spell them -> as they are spelled now, which both pint and UDUNITS
+#: parse (pint takes ``m2`` for a unit named "m2"). Files are read (`open_result`) with the new spelling.
+LEGACY_UNITS = {"m2": "m^2", "Pa2": "Pa^2", "J/m2": "J/m^2", "Pa J/m2": "Pa J/m^2"}
+
+#: The conventions that the files follow: their global attribute ``Conventions``.
+CONVENTIONS = "CF-1.11"
+
+#: The method that results are computed by: the files' global attribute ``references``.
+REFERENCES = (
+    "D. A. Hills, R. Ramesh, J. R. Barber and M. R. Moore, Methods to solve half-plane partial slip contact "
+    "problems (method 4)"
+)
+
+#: Global attributes that writing a file adds (`provenance`, `cf_encoded`): two writes of one dataset
+#: differ in ``created`` and ``history``.
+WRITTEN_ATTRIBUTES = ("created", "versions", "Conventions", "title", "source", "references", "history")
 
 #: Variables and attributes that every result has.
 REQUIRED_VARIABLES = ("Q", "sigma", "p", "q", "slip", "stick", "dissipation", "delta_Q", "vertex_step", "state_slip")
@@ -101,7 +127,7 @@ def save(result: xr.Dataset, path: str | os.PathLike) -> None:
     (True, 'grid')
     """
     with _replacing(path) as temporary:
-        _write(result.assign_attrs(provenance()), temporary, path)
+        _write(result.assign_attrs(provenance()), temporary, path, "fretting.save")
 
 
 @contextlib.contextmanager
@@ -139,7 +165,8 @@ def save_joined(parts: Sequence[str | os.PathLike], path: str | os.PathLike, att
     with _replacing(path) as temporary:
         rows = (found for found in map(_rows, parts) if found.variables)
         first = next(rows, None)
-        _write(head if first is None else head.assign(first.variables), temporary, path, fsync=False)
+        wrote = f"fretting.results.io.save_joined of {len(parts)} part{'s' * (len(parts) != 1)}"
+        _write(head if first is None else head.assign(first.variables), temporary, path, wrote, fsync=False)
         with h5netcdf.File(temporary, "r+") as file:
             for found in rows:
                 _append_cycles(file, found)
@@ -152,14 +179,14 @@ def joined_steps(parts: Sequence[str | os.PathLike]) -> xr.Dataset:
     joiner = Joiner()
     for part in parts:
         with xr.open_dataset(part, engine=ENGINE) as opened:
-            joiner.add(opened.drop_vars(_per_cycle(opened)).load())
+            joiner.add(with_current_units(opened.drop_vars(_per_cycle(opened)).load()))
     return joiner.result()
 
 
 def _rows(part):
     """The per-cycle variables of the result file `part`, read into memory."""
     with xr.open_dataset(part, engine=ENGINE) as opened:
-        return opened[_per_cycle(opened)].load()
+        return with_current_units(opened[_per_cycle(opened)].load())
 
 
 def _per_cycle(result, dims=CYCLE_DIMS):
@@ -201,10 +228,13 @@ def remove_temporaries(path: str | os.PathLike) -> list[Path]:
     return stale
 
 
-def _write(result: xr.Dataset, temporary: Path, path: Path, fsync: bool = True) -> None:
-    """Write `result` to the file `temporary` and (`fsync`) flush it to disk; errors name `path`,
-    the file asked for. Its `CYCLE_DIMS` are unlimited, in chunks of `CYCLE_CHUNK_ROWS` rows."""
-    encoding = {name: dict(COMPRESSION) for name, variable in result.variables.items() if variable.dtype.kind in "biuf"}
+def _write(result: xr.Dataset, temporary: Path, path: Path, wrote: str, fsync: bool = True) -> None:
+    """Write `result` to the file `temporary`, as `cf_encoded` by `wrote`, and (`fsync`) flush it to disk;
+    errors name `path`, the file asked for. Its `CYCLE_DIMS` are unlimited, in chunks of `CYCLE_CHUNK_ROWS` rows."""
+    result, encoding = cf_encoded(result, wrote)
+    for name, variable in result.variables.items():
+        if variable.dtype.kind in "biuf":
+            encoding.setdefault(name, {}).update(COMPRESSION)
     for name in _per_cycle(result):
         encoding.setdefault(name, {})["chunksizes"] = (CYCLE_CHUNK_ROWS, *result[name].shape[1:])
     try:
@@ -213,6 +243,63 @@ def _write(result: xr.Dataset, temporary: Path, path: Path, fsync: bool = True) 
         raise OSError(error.errno, f"cannot write: {error.strerror or error}", str(path)) from error
     if fsync:
         _synced(temporary, path)
+
+
+def cf_encoded(dataset: xr.Dataset, wrote: str) -> tuple[xr.Dataset, dict[str, dict]]:
+    """`dataset` as a file of `fretting` holds it, following the CF conventions (`CONVENTIONS`), and
+    the encoding that keeps fill values off its coordinates. Every file is written through here.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A result, a stress field, a sweep or any dataset of `fretting`; not changed.
+    wrote : str
+        What writes it, for its ``history``: ``"fretting.save"``.
+
+    Returns
+    -------
+    dataset : xarray.Dataset
+        With the global attributes ``Conventions``, ``title`` (the dataset's own, else one said
+        from what it is), ``source`` (fretting and its version) and ``references`` (the method);
+        a line ``<time, ISO 8601 UTC> <wrote> (fretting <version>)`` appended to its ``history``;
+        the units of `LEGACY_UNITS` spelled as now; its coordinates ``x`` and ``z`` with their
+        `fretting.results.variables.AXES` attributes (``axis``, and ``positive`` for the depth), and
+        a coordinate of `fretting.results.variables.VARIABLES` that has no long name with that
+        entry's units and long name.
+    encoding : dict
+        Variable name -> ``{"_FillValue": None}`` for each coordinate variable (a variable named as
+        its dimension), which CF forbids to have one; xarray gives one to floating-point variables.
+    """
+    dataset = with_current_units(dataset.copy())
+    for name, attrs in AXES.items():
+        if name in dataset.coords:
+            dataset[name].attrs.update(attrs)
+    for name in dataset.coords:
+        if "long_name" not in dataset[name].attrs and name in VARIABLES:
+            _, units, long_name = VARIABLES[name]
+            dataset[name].attrs.update(units=units, long_name=long_name)
+    time = dataset.attrs.get("created") or datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
+    line = f"{time} {wrote} (fretting {__version__})"
+    history = dataset.attrs.get("history")
+    dataset.attrs.update(
+        Conventions=CONVENTIONS,
+        title=dataset.attrs.get("title") or _title(dataset),
+        source=f"fretting {__version__}",
+        references=REFERENCES,
+        history=f"{history}\n{line}" if history else line,
+    )
+    encoding = {name: {"_FillValue": None} for name in dataset.dims if name in dataset.variables}
+    return dataset, encoding
+
+
+def _title(dataset: xr.Dataset) -> str:
+    """A title for `dataset`, which has none: of a result of `simulate`, a stress field (on depths ``z``), or other."""
+    attrs = dataset.attrs
+    if all(name in attrs for name in REQUIRED_ATTRIBUTES):
+        return f"fretting result: {attrs['profile']} contact, {attrs['model']} model"
+    if "z" in dataset.dims:
+        return f"fretting stress field under the surface of body {attrs.get('body', '?')} ({attrs.get('role', '?')})"
+    return "fretting dataset"
 
 
 def _synced(temporary: Path, path: Path) -> None:
@@ -259,7 +346,17 @@ def open_result(path: str | os.PathLike) -> xr.Dataset:
     if missing:
         result.close()
         raise ResultError(f"{path}: found no {missing[0]}, expected a result of fretting")
-    return result
+    return with_current_units(result)
+
+
+def with_current_units(dataset: xr.Dataset) -> xr.Dataset:
+    """`dataset` with the units of its variables spelled as they are now: those of `LEGACY_UNITS`
+    replaced, in place (a lazily opened dataset stays open); the dataset is returned."""
+    for variable in dataset.variables.values():
+        units = variable.attrs.get("units")
+        if isinstance(units, str) and units in LEGACY_UNITS:
+            variable.attrs["units"] = LEGACY_UNITS[units]
+    return dataset
 
 
 def join_results(parts: Sequence[xr.Dataset]) -> xr.Dataset:
@@ -328,7 +425,8 @@ class Joiner:
         later = self._last is not None
         piece = part.isel(step=part.step.values > 0) if later else part
         stepwise = [name for name, variable in part.data_vars.items() if "step" in variable.dims]
-        self._pieces.append(piece[stepwise].assign_coords(step=piece.step + self._end))
+        step = piece.step.variable.copy(data=piece.step.values + self._end)  # its attributes kept in any xarray
+        self._pieces.append(piece[stepwise].assign_coords(step=step))
         self._add_vertices(part, later)
         self._end += part.attrs["steps"] - 1
         if self._first_attrs is None:
@@ -464,6 +562,20 @@ def source_attributes(source: HistorySource) -> dict[str, str]:
     Returns
     -------
     dict
-        ``history_file`` (its path as given), ``history_toml`` (its text) and ``history_sha256``.
+        ``history_file`` (its `recorded_path`), ``history_toml`` (its text) and ``history_sha256``.
     """
-    return {"history_file": str(source.path), "history_toml": source.text, "history_sha256": source.sha256}
+    return {"history_file": recorded_path(source.path), "history_toml": source.text, "history_sha256": source.sha256}
+
+
+def recorded_path(path: str | os.PathLike) -> str:
+    """`path` as a file records it: as given when relative, else its name alone, so that a file says
+    nothing of the folders of the machine that wrote it (the text and digest it records beside the
+    name say which file it was).
+
+    Examples
+    --------
+    >>> recorded_path("runs/shear.toml"), recorded_path("/home/someone/runs/shear.toml")
+    ('runs/shear.toml', 'shear.toml')
+    """
+    path = Path(path)
+    return path.as_posix() if not path.is_absolute() else path.name

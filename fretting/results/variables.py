@@ -3,28 +3,84 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
 
-__all__ = ["ACCUMULATED", "CYCLE_FIELDS", "CYCLE_PEAKS", "VARIABLES", "build_dataset", "variable"]
+__all__ = ["ACCUMULATED", "AXES", "CYCLE_FIELDS", "CYCLE_PEAKS", "VARIABLES", "build_dataset", "variable"]
+
+#: Coordinate name -> its CF attributes in every dataset of `fretting` that has it (results, stress
+#: fields): the axis it runs along, by which CF tools such as cf_xarray find the axes, and for the
+#: depth ``z`` into a body that it grows into the body. CF has a ``standard_name`` for neither.
+AXES = {"x": {"axis": "X"}, "z": {"axis": "Z", "positive": "down"}}
+
+
+class _Field(NamedTuple):
+    """A per-cycle field, as declared: its entries of `VARIABLES` follow from it.
+
+    They are ``<name>`` on dims (cycle_number, x), its value so far in the cycle in progress
+    ``state_<name>`` on (x,) where the state keeps one, and its accumulated field of `ACCUMULATED`
+    on (x,), all in `units`.
+    """
+
+    units: str
+    long_name: str  # of each cycle's value
+    state: str | None  # long name of state_<name>; None: the state keeps no such value
+    accumulated: str | None = None  # long name of its accumulated field; None: "largest <name> over every ..."
+
+
+_PEAKS = {
+    "sigma_xx_peak": _Field(
+        "Pa",
+        "largest surface direct stress of the specimen, with its bulk stress, over the steps of each load cycle",
+        "largest surface direct stress of the specimen so far in the cycle in progress",
+    ),
+    "q_peak": _Field(
+        "Pa",
+        "largest magnitude of the shear traction over the steps of each load cycle",
+        "largest |q| so far in the cycle in progress",
+    ),
+    "sigma_xx_q_peak": _Field(
+        "Pa^2",
+        "largest product of the specimen's surface direct stress and |q| over the steps of each load cycle",
+        "largest sigma_xx |q| of the specimen so far in the cycle in progress",
+    ),
+}
 
 #: Per-node peaks over every step of each load cycle that the engine tallies (`fretting.models.state.Tally`);
 #: each is also recorded as ``state_<name>`` for the cycle in progress at the last step.
-CYCLE_PEAKS = ("sigma_xx_peak", "q_peak", "sigma_xx_q_peak")
+CYCLE_PEAKS = tuple(_PEAKS)
+
+#: Per-cycle field -> `_Field`: the peaks, and the energy density and slip amplitude of each cycle.
+_FIELDS = {
+    "w": _Field(
+        "J/m^2",
+        "energy dissipated per unit area in each load cycle",
+        "energy dissipated per unit area so far in the cycle in progress",
+        "energy dissipated per unit area, summed over every complete load cycle",
+    ),
+    # the state keeps the least and greatest slip of the cycle instead (state_slip_min, state_slip_max)
+    "slip_amplitude": _Field(
+        "m",
+        "half the range of the slip over each load cycle",
+        None,
+        "largest slip amplitude over every complete load cycle",
+    ),
+} | _PEAKS
 
 #: Per-cycle fields (dims cycle_number, x): of every cycle, or of the cycles a run's ``cycle_fields``
 #: policy chose (dims field_cycle, x; `fretting.engine.recorder.CycleFields`).
-CYCLE_FIELDS = ("w", "slip_amplitude", *CYCLE_PEAKS)
+CYCLE_FIELDS = tuple(_FIELDS)
 
 #: Accumulated field -> the per-cycle field it accumulates over every complete cycle of a run of
 #: `fretting.run_file` whose ``cycle_fields`` policy leaves cycles out: ``w_total`` their sum, the others
-#: their maxima.
+#: their maxima. Each is on dims (x,), in the units of its per-cycle field.
 ACCUMULATED = {"w_total": "w"} | {f"{name}_max": name for name in CYCLE_FIELDS[1:]}
 
-#: name -> (dims, units, long_name). Units assume SI inputs; any consistent set works.
-VARIABLES = {
+#: name -> (dims, units, long_name) of the variables that follow from no other.
+_DECLARED = {
     "Q": (("step",), "N/m", "shear force per unit length"),
     "sigma": (("step",), "Pa", "differential bulk tension"),
     "p": (("x",), "Pa", "contact pressure (of the contact formed, where P varies)"),
@@ -38,7 +94,7 @@ VARIABLES = {
     "stick_end": (("step", "zone"), "m", "upper end of each stick zone of the increment (sub-grid)"),
     "dissipation": (("step",), "J/m", "energy dissipated in the increment ending at this step"),
     "delta_Q": (("step",), "m", "slip part of the generalized displacement conjugate to Q"),
-    "delta_sigma": (("step",), "m2", "slip part of the generalized displacement conjugate to sigma"),
+    "delta_sigma": (("step",), "m^2", "slip part of the generalized displacement conjugate to sigma"),
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
     "vertex_Q": (("vertex",), "N/m", "shear force at each vertex of the load path"),
     "vertex_sigma": (("vertex",), "Pa", "bulk tension at each vertex of the load path"),
@@ -52,29 +108,7 @@ VARIABLES = {
         "cycle copied, not solved: its loads and starting state repeat those of the cycle before bit for bit "
         "(which cycles a run copies depends on where it was cut into parts; the values do not)",
     ),
-    "w": (("cycle_number", "x"), "J/m2", "energy dissipated per unit area in each load cycle"),
-    "slip_amplitude": (("cycle_number", "x"), "m", "half the range of the slip over each load cycle"),
-    "sigma_xx_peak": (
-        ("cycle_number", "x"),
-        "Pa",
-        "largest surface direct stress of the specimen, with its bulk stress, over the steps of each load cycle",
-    ),
-    "q_peak": (
-        ("cycle_number", "x"),
-        "Pa",
-        "largest magnitude of the shear traction over the steps of each load cycle",
-    ),
-    "sigma_xx_q_peak": (
-        ("cycle_number", "x"),
-        "Pa2",
-        "largest product of the specimen's surface direct stress and |q| over the steps of each load cycle",
-    ),
     "field_cycle": (("field_cycle",), "1", "load cycle whose fields are stored (the cycle_fields policy's choice)"),
-    "w_total": (("x",), "J/m2", "energy dissipated per unit area, summed over every complete load cycle"),
-    "slip_amplitude_max": (("x",), "m", "largest slip amplitude over every complete load cycle"),
-    "sigma_xx_peak_max": (("x",), "Pa", "largest sigma_xx_peak over every complete load cycle"),
-    "q_peak_max": (("x",), "Pa", "largest q_peak over every complete load cycle"),
-    "sigma_xx_q_peak_max": (("x",), "Pa2", "largest sigma_xx_q_peak over every complete load cycle"),
     "cycle_dissipation_max": ((), "J/m", "largest energy dissipated in one complete load cycle (NaN: none yet)"),
     "state_Q": ((), "N/m", "shear force at the last step"),
     "state_sigma": ((), "Pa", "bulk tension at the last step"),
@@ -83,16 +117,8 @@ VARIABLES = {
     "state_episode_start": (("x",), "m", "slip at which each point's current slip episode began, at the last step"),
     "state_cycle": ((), "1", "load cycle in progress at the last step (0: none)"),
     "state_cycle_dissipation": ((), "J/m", "energy dissipated so far in the cycle in progress"),
-    "state_w": (("x",), "J/m2", "energy dissipated per unit area so far in the cycle in progress"),
     "state_slip_min": (("x",), "m", "least slip so far in the cycle in progress"),
     "state_slip_max": (("x",), "m", "greatest slip so far in the cycle in progress"),
-    "state_sigma_xx_peak": (
-        ("x",),
-        "Pa",
-        "largest surface direct stress of the specimen so far in the cycle in progress",
-    ),
-    "state_q_peak": (("x",), "Pa", "largest |q| so far in the cycle in progress"),
-    "state_sigma_xx_q_peak": (("x",), "Pa2", "largest sigma_xx |q| of the specimen so far in the cycle in progress"),
     "state_turning": (
         ("turning",),
         "N/m",
@@ -104,12 +130,30 @@ VARIABLES = {
     "step": (("step",), "1", "load step (0 is the starting state)"),
 }
 
+#: name -> (dims, units, long_name). Units assume SI inputs; any consistent set works. They are written
+#: as pint and UDUNITS both parse them: ``m^2``, not ``m2`` (`fretting.results.io.LEGACY_UNITS`).
+VARIABLES = (
+    _DECLARED
+    | {name: (("cycle_number", "x"), field.units, field.long_name) for name, field in _FIELDS.items()}
+    | {
+        name: (
+            ("x",),
+            _FIELDS[source].units,
+            _FIELDS[source].accumulated or f"largest {source} over every complete load cycle",
+        )
+        for name, source in ACCUMULATED.items()
+    }
+    | {f"state_{name}": (("x",), field.units, field.state) for name, field in _FIELDS.items() if field.state}
+)
+
 
 def variable(name: str, values: ArrayLike, dims: tuple[str, ...] | None = None) -> xr.Variable:
-    """The variable `name` of `VARIABLES` holding `values`, with its units and long name, on its
-    dims or on `dims` (a per-cycle field of chosen cycles: ``("field_cycle", "x")``)."""
+    """The variable `name` of `VARIABLES` holding `values`, with its units and long name (and its
+    `AXES` attributes), on its dims or on `dims` (a per-cycle field of chosen cycles:
+    ``("field_cycle", "x")``)."""
     declared, units, long_name = VARIABLES[name]
-    return xr.Variable(declared if dims is None else dims, np.asarray(values), {"units": units, "long_name": long_name})
+    attrs = {"units": units, "long_name": long_name} | AXES.get(name, {})
+    return xr.Variable(declared if dims is None else dims, np.asarray(values), attrs)
 
 
 def build_dataset(data: Mapping[str, ArrayLike], attrs: dict) -> xr.Dataset:

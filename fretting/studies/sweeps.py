@@ -41,7 +41,7 @@ from fretting.analysis import nucleation
 from fretting.engine.simulation import simulate
 from fretting.errors import GrossSlipError, MissingDependencyError
 from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
-from fretting.results.io import ENGINE, save
+from fretting.results.io import ENGINE, recorded_path, save, with_current_units
 
 __all__ = [
     "REGIMES",
@@ -89,7 +89,7 @@ VARIABLES = {
         "(NaN: no load cycles, or gross slip)",
     ),
     "w_max": (
-        "J/m2",
+        "J/m^2",
         "peak dissipated energy density of the last load cycle",
         "max over x of w(x) of the last cycle, w the energy dissipated per unit area in it "
         "(fretting.analysis.nucleation.peak_dissipation_density; NaN: no load cycles, or gross slip)",
@@ -422,7 +422,8 @@ def run_sweep(plan, scheduler=None, output=None):
                 k = futures[future]
                 summaries[k] = future.result()
                 if files[k] is not None:
-                    save(summaries[k].assign_attrs(_identity(plan.base, cases[k])), files[k])
+                    title = f"fretting sweep case: {json.dumps(cases[k])}"
+                    save(summaries[k].assign_attrs(_identity(plan.base, cases[k]), title=title), files[k])
     dataset = _combine(plan, summaries)
     if output is not None:
         save(dataset, output)
@@ -444,7 +445,7 @@ def _finished(file, base, case):
     """The case variables in `file` if it holds this case of this base history, else None."""
     if file is None or not file.is_file():
         return None
-    summary = xr.load_dataset(file, engine=ENGINE)
+    summary = with_current_units(xr.load_dataset(file, engine=ENGINE))  # a case file of fretting 0.1.0 too
     identity = _identity(base, case)
     return summary if all(summary.attrs.get(name) == value for name, value in identity.items()) else None
 
@@ -505,7 +506,8 @@ def _combine(plan, summaries):
     }
     coords = {key: (key, np.array(values), _key_attrs(key, values)) for key, values in plan.grid.items()}
     attrs = {
-        "history_file": str(plan.base.path),
+        "title": f"fretting sweep of {plan.base.path.name} over {' x '.join(plan.grid)}",
+        "history_file": recorded_path(plan.base.path),
         "history_toml": plan.base.text,
         "base_sha256": plan.base.sha256,
         "grid": json.dumps(plan.grid),

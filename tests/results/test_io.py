@@ -11,7 +11,15 @@ import xarray as xr
 
 import fretting as fr
 from fretting.physics.profiles import profile_class, recorded_profile
-from fretting.results.io import CYCLE_CHUNK_ROWS, ResultError, join_results, load, save, save_joined
+from fretting.results.io import (
+    CYCLE_CHUNK_ROWS,
+    WRITTEN_ATTRIBUTES,
+    ResultError,
+    join_results,
+    load,
+    save,
+    save_joined,
+)
 
 NODES = 48
 
@@ -38,7 +46,7 @@ def _contact():
 def without_provenance(result):
     """`result` without the attributes that `save` adds."""
     copy = result.copy()
-    copy.attrs = {name: value for name, value in result.attrs.items() if name not in ("created", "versions")}
+    copy.attrs = {name: value for name, value in result.attrs.items() if name not in WRITTEN_ATTRIBUTES}
     return copy
 
 
