@@ -117,8 +117,9 @@ def test_plot_without_cycles(workdir, capsys):
         (CONTACT.replace("f = 0.7", "f = -0.7") + SHEAR, "bad.toml:6: contact.f: found -0.7, expected a number > 0"),
         (CONTACT.replace("E = 210e9", "E = true") + SHEAR, "bad.toml:4: contact.E: found true, expected a number"),
         (CONTACT, "bad.toml: found no [[loading]] blocks, expected at least one"),
+        (CONTACT.replace("f = 0.7", "f = 1e300") + SHEAR, "(f p0 a)^2 / E_star overflows a float"),
     ],
-    ids=["missing", "syntax", "unknown-key", "unknown-profile", "negative", "non-numeric", "empty"],
+    ids=["missing", "syntax", "unknown-key", "unknown-profile", "negative", "non-numeric", "empty", "overflow"],
 )
 @pytest.mark.parametrize("command", ["run", "validate"])
 def test_bad_input_is_one_line_and_exit_2(workdir, capsys, command, text, words):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -124,6 +126,13 @@ class Contact:
         self.a, self.centre = (float(v) for v in profile.half_width(self.P, self.E_star))
         profile.check(self.a, self.centre, self.P, self.E_star)
         self.p0 = float(profile.peak_pressure(self.a, self.centre, self.P, self.E_star))
+        force = self.f * self.p0 * self.a  # [N/m]; squared by a product, which overflows to inf, not an error
+        energy = force * force / self.E_star  # [J/m]: the scale of every energy of the contact
+        if not math.isfinite(energy):
+            raise ValueError(
+                f"f = {f!r} with p0 = {self.p0:.4g} Pa, a = {self.a:.4g} m: the contact's energy scale "
+                f"(f p0 a)^2 / E_star overflows a float; expected a friction coefficient that keeps it finite"
+            )
 
     def __repr__(self):
         nu = "" if self.nu is None else f", nu={self.nu!r}"

@@ -374,3 +374,19 @@ def test_a_state_with_negative_energy_is_refused(hertz):
     negative = replace(state.tally, w=np.where(np.arange(64) == 5, -1.0, state.tally.w))
     with pytest.raises(fr.HistoryError, match=r"state.tally.w is negative at node 5"):
         fr.simulate(hertz, more, state=replace(state, tally=negative))
+
+
+def test_a_friction_coefficient_that_overflows_the_energy_is_refused_and_a_large_one_scales():
+    """``f = 1e300`` ended in an OverflowError traceback (issue 38): the contact refuses an ``f`` whose
+    energy scale ``(f p0 a)^2 / E_star`` overflows, in one line. Below that bound the answer is
+    right: under ``Q`` proportional to ``f P`` the slip is proportional to ``f`` and the energy to ``f^2``
+    (Mindlin and Deresiewicz's, ``(f p0 a)^2 / E_star`` times a function of ``Q / f P``)."""
+    with pytest.raises(ValueError, match=r"\(f p0 a\)\^2 / E_star overflows a float"):
+        fr.Contact(fr.Hertz(0.05), 115e9, 1e150, 1e5)
+    energies = []
+    for f in (0.6, 0.6e140):
+        contact = fr.Contact(fr.Hertz(0.05), 115e9, f, 1e5)
+        fP = contact.f * contact.P
+        history = fr.History.piecewise_linear([0, 0.5 * fP, -0.5 * fP, 0.5 * fP], None, 8)
+        energies.append(float(fr.simulate(contact, history).total_dissipation))
+    assert energies[1] == pytest.approx(1e280 * energies[0], rel=1e-12)
