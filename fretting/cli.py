@@ -40,9 +40,12 @@ __all__ = ["main"]
 
 EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
 
-#: Resolution of `fretting plot`: 6.4 x 4.4 inch figures at 100 dpi keep results/ of eight
-#: examples near 5 MB (7.9 MB at 150 dpi).
+#: Default resolution of `fretting plot` and `fretting stress --figure` (raster formats): 6.4 x 4.4
+#: inch figures at 100 dpi keep results/ of eight examples near 5 MB (7.9 MB at 150 dpi).
 FIGURE_DPI = 100
+#: Default size [inch] of those figures, and the formats they can be written in (vector: svg, pdf).
+FIGURE_SIZE = (6.4, 4.4)
+FIGURE_FORMATS = ("png", "svg", "pdf")
 
 #: Default grid of `fretting stress`: points along x and in depth, the depth and the half-span in
 #: half-widths a (two half-widths hold the peak shear under the contact and the edge gradients).
@@ -88,6 +91,21 @@ def _parser():
     commands = parser.add_subparsers(title="commands", required=True, metavar="COMMAND")
     common = argparse.ArgumentParser(add_help=False)
     common.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    figures = argparse.ArgumentParser(add_help=False)
+    figures.add_argument(
+        "--format", choices=FIGURE_FORMATS, default="png", help="file format of the figures (default: png)"
+    )
+    figures.add_argument(
+        "--dpi", type=_at_least(1, int), default=FIGURE_DPI, help=f"resolution of png figures (default {FIGURE_DPI})"
+    )
+    figures.add_argument(
+        "--size",
+        nargs=2,
+        type=_at_least(0.5, float),
+        default=FIGURE_SIZE,
+        metavar=("WIDTH", "HEIGHT"),
+        help=f"figure size in inches (default {FIGURE_SIZE[0]:g} {FIGURE_SIZE[1]:g})",
+    )
 
     run = commands.add_parser("run", parents=[common], help="run a history file and write its result")
     run.add_argument("file", metavar="HISTORY", help="history file (TOML), or the name of a shipped example")
@@ -149,7 +167,7 @@ def _parser():
     info.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
     info.set_defaults(command=_info)
 
-    plot = commands.add_parser("plot", parents=[common], help="draw a result as PNG files")
+    plot = commands.add_parser("plot", parents=[common, figures], help="draw a result as figure files")
     plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
     plot.add_argument("-o", "--output", metavar="DIR", help="directory of the figures (default: the result's)")
     plot.add_argument(
@@ -161,7 +179,7 @@ def _parser():
     )
     plot.set_defaults(command=_plot)
 
-    _stress_parser(commands, common)
+    _stress_parser(commands, common, figures)
 
     listing = commands.add_parser("examples", parents=[common], help="list the shipped example histories")
     listing.set_defaults(command=_examples, file="examples")
@@ -172,9 +190,9 @@ def _parser():
     return parser
 
 
-def _stress_parser(commands, common):
+def _stress_parser(commands, common, figures):
     stress = commands.add_parser(
-        "stress", parents=[common], help="write the stress field under the surface of a result (and a figure)"
+        "stress", parents=[common, figures], help="write the stress field under the surface of a result (and a figure)"
     )
     stress.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
     stress.add_argument("-o", "--output", metavar="OUT", help="field file (default: <result stem>_stress.h5 beside it)")
@@ -219,7 +237,7 @@ def _stress_parser(commands, common):
         "--figure",
         choices=(*COMPONENTS, *CRITERIA),
         help="also draw this component at the last step, or this criterion's map (with --material), "
-        "as <OUT stem>_<name>.png",
+        "as <OUT stem>_<name>.<format>",
     )
     stress.set_defaults(command=_stress, usage_error=stress.error)
 
@@ -344,12 +362,17 @@ def _plot(args):
     directory = Path(args.output) if args.output else Path(args.file).parent
     directory.mkdir(parents=True, exist_ok=True)
     for name in plots.figures_for(result):
-        figure = Figure(figsize=(6.4, 4.4), layout="constrained")
+        figure = Figure(figsize=args.size, layout="constrained")
         options = {"body": args.body} if name == "surface_stress" else {}
         plots.FIGURES[name](result, ax=figure.subplots(), **options)
-        path = directory / f"{Path(args.file).stem}_{name}.png"
-        figure.savefig(path, dpi=FIGURE_DPI)
-        print(path)
+        _saved(figure, directory / f"{Path(args.file).stem}_{name}", args)
+
+
+def _saved(figure, stem, args):
+    """Write `figure` as ``<stem>.<args.format>`` at ``args.dpi`` and print its path."""
+    path = stem.with_name(f"{stem.name}.{args.format}")
+    figure.savefig(path, dpi=args.dpi, format=args.format)
+    print(path)
 
 
 def _stress(args):
@@ -379,11 +402,9 @@ def _stress(args):
 
         from fretting import plots
 
-        figure = Figure(figsize=(6.4, 4.4), layout="constrained")
+        figure = Figure(figsize=args.size, layout="constrained")
         plots.stress_map(written[args.figure], result, step=int(written.step[-1]), ax=figure.subplots())
-        path = output.with_name(f"{output.stem}_{args.figure}.png")
-        figure.savefig(path, dpi=FIGURE_DPI)
-        print(path)
+        _saved(figure, output.with_name(f"{output.stem}_{args.figure}"), args)
 
 
 def _stress_criteria(args):

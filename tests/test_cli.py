@@ -95,6 +95,19 @@ def test_validate_info_and_plot(workdir, capsys):
     assert all((workdir / "figures" / name).read_bytes().startswith(b"\x89PNG") for name in names)
 
 
+def test_plot_writes_vector_files_and_the_size_and_resolution_asked(workdir, capsys):
+    """`fretting plot --format svg|pdf` writes vector files, `--size` and `--dpi` set a png's pixels (issue 37)."""
+    write(workdir / "ramp.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3]\nsigma = [50e6]\n')
+    assert run("run", "ramp.toml", "--nodes", NODES) == 0
+    assert run("plot", "ramp.h5", "--format", "svg", "-o", "svg") == 0
+    assert run("plot", "ramp.h5", "--format", "pdf", "-o", "pdf") == 0
+    assert run("plot", "ramp.h5", "--size", "3", "2", "--dpi", "50", "-o", "png") == 0
+    assert (workdir / "svg" / "ramp_traction.svg").read_text().lstrip().startswith("<?xml")
+    assert (workdir / "pdf" / "ramp_traction.pdf").read_bytes().startswith(b"%PDF")
+    header = (workdir / "png" / "ramp_traction.png").read_bytes()[16:24]  # the IHDR chunk's width, height
+    assert (int.from_bytes(header[:4], "big"), int.from_bytes(header[4:], "big")) == (150, 100)
+
+
 def test_plot_without_cycles(workdir, capsys):
     write(workdir / "ramp.toml", CONTACT + '[[loading]]\nkind = "linear"\nQ = [30e3]\nsigma = [50e6]\n')
     assert run("run", "ramp.toml", "--nodes", NODES) == 0
