@@ -54,7 +54,7 @@ def plane_strain_modulus(E: float, nu: float) -> float:
     >>> round(plane_strain_modulus(210e9, 0.3) / 1e9, 2)
     115.38
     """
-    E, nu = positive("E", E), poisson_ratio(nu)
+    E, nu = positive("E", E, "Pa"), poisson_ratio(nu)
     return E / (2 * (1 - nu**2))
 
 
@@ -118,9 +118,9 @@ class Contact:
         if isinstance(specimen, bool) or specimen not in (1, 2):
             raise ValueError(f"specimen must be 1 (the body with traction q) or 2 (traction -q), found {specimen!r}")
         self.profile = profile
-        self.E_star = positive("E_star", E_star)
+        self.E_star = positive("E_star", E_star, "Pa")
         self.f = positive("f", f)
-        self.P = positive("P", P)
+        self.P = positive("P", P, "N/m")
         self.specimen = int(specimen)
         self.nu = None if nu is None else poisson_ratio(nu)
         self.a, self.centre = (float(v) for v in profile.half_width(self.P, self.E_star))

@@ -176,7 +176,7 @@ class Hertz(Profile):
     ELLIPTICAL = True
 
     def __init__(self, R: float) -> None:
-        self.R = positive("R", R)
+        self.R = positive("R", R, "m")
 
     def __repr__(self) -> str:
         return f"Hertz(R={self.R!r})"
@@ -213,7 +213,7 @@ class FlatPunch(Profile):
     VANISHING_EDGES = False
 
     def __init__(self, a: float) -> None:
-        self.a = positive("a", a)
+        self.a = positive("a", a, "m")
 
     def __repr__(self) -> str:
         return f"FlatPunch(a={self.a!r})"
@@ -249,8 +249,8 @@ class RoundedFlat(Profile):
     SYMMETRIC = True
 
     def __init__(self, b: float, R: float) -> None:
-        self.b = positive("b", b)
-        self.R = positive("R", R)
+        self.b = positive("b", b, "m")
+        self.R = positive("R", R, "m")
         self.breakpoints = (-self.b, self.b)
 
     def __repr__(self) -> str:

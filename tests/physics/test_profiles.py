@@ -251,3 +251,22 @@ def test_contact_nu_is_a_poisson_ratio_or_unknown():
     assert contact.nu == 0.3 and repr(contact).endswith("specimen=2, nu=0.3)")
     with pytest.raises(ValueError, match=re.escape("nu must be in (-1, 0.5]")):
         fr.Contact(fr.Hertz(0.05), E_STAR, 0.5, P, nu=0.7)
+
+
+def test_contacts_and_profiles_take_quantities_with_units():
+    """``fr.Hertz(R=50 * ureg.mm)`` (issue 37): a pint quantity is converted to the SI unit of its
+    parameter, bit for bit the contact of the SI numbers; a quantity of another dimension is refused."""
+    import pint  # of the test extra: the package itself does not need it
+
+    ureg = pint.UnitRegistry()
+    given = fr.Contact(fr.Hertz(R=50 * ureg.mm), E_star=115 * ureg.GPa, f=0.6, P=100 * ureg.N / ureg.mm)
+    si = fr.Contact(fr.Hertz(R=0.05), E_star=115e9, f=0.6, P=1e5)
+    assert (given.a, given.p0, given.P, given.E_star) == (si.a, si.p0, si.P, si.E_star)
+    flat = fr.RoundedFlat(b=1 * ureg.mm, R=20 * ureg.mm)
+    assert (flat.b, flat.R) == (1e-3, 0.02)
+    with pytest.raises(
+        ValueError, match=r"R must be a number in m \(SI\) or a quantity in units of m, found 5 megapascal"
+    ):
+        fr.Hertz(R=5 * ureg.MPa)
+    with pytest.raises(ValueError, match="f must be a dimensionless number"):
+        fr.Contact(fr.Hertz(0.05), 115e9, 0.6 * ureg.m, 1e5)
