@@ -37,6 +37,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from fretting._version import __version__
 from fretting.analysis import nucleation
 from fretting.engine.simulation import simulate
 from fretting.errors import GrossSlipError, MissingDependencyError
@@ -431,8 +432,9 @@ def run_sweep(plan, scheduler=None, output=None):
 
 
 def _identity(base, case):
-    """Attributes of a case file that say what it was run from."""
-    return {"base_sha256": base.sha256, "case": json.dumps(case, sort_keys=True)}
+    """Attributes of a case file that say what it was run from: the base history, the case's values
+    and the release of fretting that ran it (a case run by another release is run again)."""
+    return {"base_sha256": base.sha256, "case": json.dumps(case, sort_keys=True), "fretting_version": __version__}
 
 
 def _case_file(output, base, case):

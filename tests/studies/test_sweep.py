@@ -15,6 +15,7 @@ import fretting as fr
 from fretting import cli
 from fretting.loading.examples import EXAMPLES
 from fretting.loading.history_file import HistoryFileError
+from fretting.studies import sweeps
 from fretting.studies.sweeps import REGIMES, VARIABLES, read_sweep, save_map, summarize
 
 #: A short cyclic history: f P = 70 kN/m, so Q = 75 kN/m slides and Q = sigma = 0 sticks.
@@ -104,6 +105,18 @@ def test_resume_runs_only_the_cases_without_a_file(swept, cluster):
     write(base, BASE.format(Q=20e3, sigma=10e6).replace("cycles = 2", "cycles = 3"))  # another base: nothing reused
     fr.sweep(base, GRID, scheduler=cluster, output=output)
     assert len(list(output.with_suffix(".cases").iterdir())) == 12
+
+
+def test_a_case_run_by_another_release_is_run_again(swept, cluster, monkeypatch):
+    """The case files say which release of fretting ran them (issue 37: an upgrade reused old cases)."""
+    base, output, _ = swept
+    before = set(output.with_suffix(".cases").iterdir())
+    monkeypatch.setattr(sweeps, "__version__", "0.0.1")  # as if the cases on disk were of a later release
+    again = fr.sweep(base, GRID, scheduler=cluster, output=output)
+    new = set(output.with_suffix(".cases").iterdir()) - before
+    assert len(new) == 6  # none of the six cases reused
+    assert {xr.load_dataset(file, engine="h5netcdf").attrs["fretting_version"] for file in new} == {"0.0.1"}
+    xr.testing.assert_identical(again.drop_attrs(), fr.sweep(base, GRID, scheduler=cluster).drop_attrs())
 
 
 @pytest.mark.parametrize(
