@@ -208,6 +208,27 @@ def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeyp
     assert not (workdir / "part.h5.checkpoint").exists()
 
 
+def test_an_interrupt_while_joining_the_parts_says_to_resume(workdir, capsys, monkeypatch):
+    """Ctrl-C after the last chunk, while the parts are joined into the result (issue 38: the hint to
+    resume was given only inside the loop over the chunks): the parts stay, the message says
+    --resume, and the resumed run writes the result an uninterrupted run writes."""
+    write(workdir / "shear.toml", CONTACT + SHEAR)
+    assert run("run", "shear.toml", "-o", "whole.h5", "--nodes", NODES) == 0
+    joined = runner.save_joined
+
+    def interrupted(*arguments, **options):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(runner, "save_joined", interrupted)
+    assert run("run", "shear.toml", "-o", "part.h5", "--nodes", NODES) == 130
+    assert capsys.readouterr().err == (
+        "fretting: error: interrupted: progress kept in part.h5.checkpoint; continue with --resume\n"
+    )
+    monkeypatch.setattr(runner, "save_joined", joined)
+    assert run("run", "shear.toml", "-o", "part.h5", "--nodes", NODES, "--resume") == 0
+    xr.testing.assert_identical(data_of(load(workdir / "part.h5")), data_of(load(workdir / "whole.h5")))
+
+
 @pytest.mark.slow
 def test_resume_refuses_another_history_or_grid(workdir, capsys, monkeypatch):
     monkeypatch.setattr(runner, "CHUNK_STEPS", 20)

@@ -301,40 +301,45 @@ def run_file(
                 "the unrecorded steps inside straight stretches are skipped: sigma_xx_peak and sigma_xx_q_peak "
                 "are not tallied (--every-step solves every step)"
             )
-        stepper = Stepper(source.contact, model if state is None else None, state)
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", ModelFallbackWarning)
-            stepper.resolve(history, record)
-        for warning in caught:  # a fallback becomes a note of the run; any other warning goes on
-            if issubclass(warning.category, ModelFallbackWarning):
-                notes.append(str(warning.message))
-            else:
-                warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
-        selector = None if not history.has_cycles or policy.all else FieldSelector(policy, history.cycle_ends(), done)
-        part, written = Joiner(), time.monotonic()
         try:
-            for chunk in _chunks(stepper, history, record, start, skipping):
-                start += chunk.attrs["steps"] - 1
-                part.add(chunk if selector is None else selector.take(chunk, start))
-                if progress is not None:
-                    progress(start, len(history) - 1)
-                if time.monotonic() - written >= checkpoint_interval or _full(part, selector is not None):
+            stepper = Stepper(source.contact, model if state is None else None, state)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always", ModelFallbackWarning)
+                stepper.resolve(history, record)
+            for warning in caught:  # a fallback becomes a note of the run; any other warning goes on
+                if issubclass(warning.category, ModelFallbackWarning):
+                    notes.append(str(warning.message))
+                else:
+                    warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+            selector = (
+                None if not history.has_cycles or policy.all else FieldSelector(policy, history.cycle_ends(), done)
+            )
+            part, written = Joiner(), time.monotonic()
+            try:
+                for chunk in _chunks(stepper, history, record, start, skipping):
+                    start += chunk.attrs["steps"] - 1
+                    part.add(chunk if selector is None else selector.take(chunk, start))
+                    if progress is not None:
+                        progress(start, len(history) - 1)
+                    if time.monotonic() - written >= checkpoint_interval or _full(part, selector is not None):
+                        _save_part(part, checkpoint, attributes)
+                        part, written = Joiner(), time.monotonic()
+            except KeyboardInterrupt:
+                if len(part):
                     _save_part(part, checkpoint, attributes)
-                    part, written = Joiner(), time.monotonic()
-        except KeyboardInterrupt:
+                raise
+            except GrossSlipError:
+                shutil.rmtree(checkpoint, ignore_errors=True)  # resuming would only reach it again
+                raise
+            del source, history  # the loads of every step: the result holds what it records
             if len(part):
                 _save_part(part, checkpoint, attributes)
+            save_joined(_parts(checkpoint), output, attributes)
+            shutil.rmtree(checkpoint)
+        except KeyboardInterrupt:  # wherever it came: the parts on disk are the run so far
             if _parts(checkpoint):
                 raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
             raise
-        except GrossSlipError:
-            shutil.rmtree(checkpoint, ignore_errors=True)  # resuming would only reach it again
-            raise
-        del source, history  # the loads of every step: the result holds what it records
-        if len(part):
-            _save_part(part, checkpoint, attributes)
-        save_joined(_parts(checkpoint), output, attributes)
-        shutil.rmtree(checkpoint)
     return Run(output, notes)
 
 
