@@ -27,6 +27,10 @@ __all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_da
 #: Keys of the [contact] table besides those of the profile.
 CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P", "specimen")
 
+#: Largest table file (`csv` blocks, tabulated profiles) read [bytes]: a device, a pipe or a file
+#: larger than this would hang the run or fill the memory before any error could be said.
+MAX_TABLE_BYTES = 2**30
+
 #: Default steps per segment of a `linear` block, and of a `csv` block: one row, one step.
 LINEAR_STEPS, CSV_STEPS = 16, 1
 
@@ -377,6 +381,10 @@ def _read_columns(table, key, path, names, all_required):
     of numbers; rows starting with ``#`` are comments.
     """
     try:
+        size = os.stat(path).st_size
+        if not os.path.isfile(path) or size > MAX_TABLE_BYTES:
+            found = "not a regular file" if not os.path.isfile(path) else f"{size} bytes"
+            raise table.error(key, f"{path} is {found}, expected a regular file of at most {MAX_TABLE_BYTES} bytes")
         with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's "CSV UTF-8" starts with a BOM
             rows = [(n, [cell.strip() for cell in row]) for n, row in enumerate(csv.reader(handle), start=1)]
     except (OSError, UnicodeDecodeError) as error:

@@ -6,7 +6,7 @@ from conftest import HERTZ_TOML as CONTACT
 
 import fretting as fr
 from fretting.cli import main
-from fretting.loading import examples
+from fretting.loading import examples, history_file
 from fretting.loading.history import RAMP_STEPS
 from fretting.loading.history_file import HistoryFileError, read_history, read_history_source
 
@@ -269,6 +269,18 @@ def test_bad_csv_names_its_line(tmp_path, table, line, words):
     error = error_of(tmp_path, CONTACT + SHEAR + '\n[[loading]]\nkind = "csv"\nfile = "series.csv"\n')
     assert error.line == line and words in str(error)
     assert error.path == tmp_path / ("history.toml" if table is None else "series.csv")
+
+
+def test_a_table_that_is_not_a_regular_file_of_bounded_size_is_refused(tmp_path, monkeypatch):
+    """A device or a pipe named as a table would hang the run, a huge file fill the memory (issue 38):
+    one line naming the history file's key, the path and what was expected, the file not read."""
+    block = '\n[[loading]]\nkind = "csv"\nfile = "{}"\n'
+    error = error_of(tmp_path, CONTACT + SHEAR + block.format("/dev/zero"))
+    assert "loading[2].file: /dev/zero is not a regular file, expected a regular file of at most" in str(error)
+    write(tmp_path, "Q,sigma\n1,2\n", "series.csv")
+    monkeypatch.setattr(history_file, "MAX_TABLE_BYTES", 8)
+    error = error_of(tmp_path, CONTACT + SHEAR + block.format("series.csv"))
+    assert "series.csv is 12 bytes, expected a regular file of at most 8 bytes" in str(error)
 
 
 def test_not_utf8(tmp_path):
