@@ -325,6 +325,34 @@ def test_critical_distances_on_an_exponential_gradient():
     assert abs(line.value - A * math.exp(-L / (2 * d))) > 10 * bound
 
 
+def test_line_method_integrates_the_interpolant_exactly_down_a_grid_of_rounded_spacing():
+    """``exp(-z / d)`` on 21 depths 0.025 apart, whose computed spacing is below 0.025 (``0.2 / h = 8 + 1e-14``):
+    down a column the bilinear interpolant is the piecewise-linear one through the nodes, whose integral over
+    ``2 L = 0.2`` (eight cells) is the trapezoid sum over the nodes ``z <= 0.2``, to rounding."""
+    d, L = 0.1, 0.1
+    z, x = np.linspace(0, 0.5, 21), np.linspace(-1, 1, 81)
+    assert 2 * L / np.diff(z).min() > 8
+    field = xr.DataArray(np.exp(-z[:, None] / d) * np.ones(x.size), coords={"z": z, "x": x}, dims=("z", "x"))
+    nodes = z[:9]
+    exact = np.sum(np.diff(nodes) * (np.exp(-nodes[:-1] / d) + np.exp(-nodes[1:] / d)) / 2) / (2 * L)
+    assert line_method(field, L).value == pytest.approx(exact, rel=1e-14)
+
+
+@pytest.mark.parametrize("degrees", [-60, -17, 0, 25, 80])
+def test_line_method_integrates_a_bilinear_map_exactly_in_any_direction(degrees):
+    """``1 + 4e6 (x - x0) z``, bilinear, so its own interpolant: along ``psi`` from ``x_hot`` it is
+    ``1 + 4e6 (x_hot - x0 + r sin psi) r cos psi``, whose mean over ``[0, R]`` is
+    ``1 + 4e6 cos psi ((x_hot - x0) R / 2 + sin psi R^2 / 3)``: quadratic in ``r``, which no trapezoid rule
+    integrates exactly."""
+    x, z = np.linspace(-1e-3, 1e-3, 81), np.linspace(0, 1e-3, 41)
+    x0, x_hot, L, psi = -3e-4, 1.3e-4, 2e-4, math.radians(degrees)
+    field = xr.DataArray(1 + 4e6 * (x[None, :] - x0) * z[:, None], coords={"z": z, "x": x}, dims=("z", "x"))
+    R = 2 * L
+    exact = 1 + 4e6 * math.cos(psi) * ((x_hot - x0) * R / 2 + math.sin(psi) * R**2 / 3)
+    line = line_method(field, L, direction=psi, x_hot=x_hot)
+    assert line.value == pytest.approx(exact, rel=1e-14)
+
+
 def test_critical_distance_directions():
     L = 4e-4
     field = linear_map(math.radians(30))

@@ -117,9 +117,6 @@ BLOCK = 2_000_000
 #: Directions sampled over ``[-pi/2, pi/2]`` by the critical distances' ``direction="max"``.
 DIRECTIONS = 181
 
-#: Points of the trapezoid rule of the line method per grid cell crossed (at least 64 in all).
-LINE_POINTS_PER_CELL = 8
-
 
 class MaterialFileError(FrettingError, ValueError):
     """A material file is malformed; the message reads ``file: key: problem``."""
@@ -764,7 +761,7 @@ def point_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance
     ----------
     parameter : xarray.DataArray
         A map on dims ``z`` (depth [m], ascending from 0) and ``x`` [m] (ascending), e.g.
-        ``apply(...).parameter``; read between grid points by linear interpolation.
+        ``apply(...).parameter``; read between grid points by bilinear interpolation.
     L : float
         The critical distance [m] (`Material.critical_distance`).
     direction : {"down", "max"} or float
@@ -779,19 +776,18 @@ def point_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance
     ValueError
         When the grid does not reach ``L/2`` along the direction (or along any, for "max").
     """
-    return _critical_distance(parameter, L, direction, x_hot, np.array([0.5]))
+    return _critical_distance(parameter, L, 0.5, direction, x_hot, _value_at_end)
 
 
 def line_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance:
     """The line method: the mean of the parameter over ``2 L`` from the hot spot [8, 9].
 
-    The trapezoid rule on `LINE_POINTS_PER_CELL` points per grid cell crossed (at least 64) integrates the
-    linear interpolant. Arguments and errors as `point_method`, with ``2 L`` for ``L/2``.
+    The mean of the bilinear interpolant of the map, exact to rounding: along a straight line the
+    interpolant is a quadratic in the distance within each grid cell, so Simpson's rule on each piece
+    between the grid lines the segment crosses integrates it exactly. Arguments and errors as
+    `point_method`, with ``2 L`` for ``L/2``.
     """
-    x, z, _ = _grid(parameter)
-    cells = 2 * positive("L", L) / min(np.diff(x).min(initial=np.inf), np.diff(z).min(initial=np.inf))
-    count = max(64, math.ceil(LINE_POINTS_PER_CELL * cells) + 1)
-    return _critical_distance(parameter, L, direction, x_hot, np.linspace(0.0, 2.0, count))
+    return _critical_distance(parameter, L, 2.0, direction, x_hot, _mean_along)
 
 
 def _grid(parameter):
@@ -804,10 +800,31 @@ def _grid(parameter):
     return x, z, values.values
 
 
-def _critical_distance(parameter, L, direction, x_hot, fractions):
-    """`CriticalDistance` of the mean over ``r = fractions L`` (one point: that point; else the trapezoid rule)."""
+def _value_at_end(interpolate, x, z, x_hot, angle, reach):
+    """The interpolated map at the distance `reach` [m] from ``(x_hot, 0)`` along `angle`."""
+    return interpolate([[reach * math.cos(angle), x_hot + reach * math.sin(angle)]])[0]
+
+
+def _mean_along(interpolate, x, z, x_hot, angle, reach):
+    """The mean of the interpolated map over the segment of length `reach` [m] from ``(x_hot, 0)`` along `angle`:
+    Simpson's rule between the grid lines it crosses, exact for the bilinear interpolant."""
+    sin, cos = math.sin(angle), math.cos(angle)
+    crossings = [np.array([0.0, reach])]
+    if sin != 0:
+        crossings.append((x - x_hot) / sin)
+    if cos != 0:
+        crossings.append(z / cos)
+    r = np.concatenate(crossings)
+    r = np.unique(r[(r >= 0) & (r <= reach)])
+    middle = (r[:-1] + r[1:]) / 2
+    ends, mids = (interpolate(np.stack([d * cos, x_hot + d * sin], axis=-1)) for d in (r, middle))
+    return float(np.sum(np.diff(r) * (ends[:-1] + 4 * mids + ends[1:])) / 6 / reach)
+
+
+def _critical_distance(parameter, L, fraction, direction, x_hot, read):
+    """`CriticalDistance` of `read` (`_value_at_end` or `_mean_along`) over ``fraction L`` from the hot spot."""
     x, z, values = _grid(parameter)
-    L = positive("L", L)
+    reach = fraction * positive("L", L)
     if x_hot is None:
         x_hot = x[np.nanargmax(values[0])]
     x_hot = finite("x_hot", x_hot)
@@ -819,20 +836,18 @@ def _critical_distance(parameter, L, direction, x_hot, fractions):
         raise ValueError(f"direction: found {direction!r}, expected 'down', 'max' or an angle [rad]")
     else:
         angles = np.array([finite("direction", direction)])
-    r = fractions * L
-    px, pz = x_hot + r[None, :] * np.sin(angles)[:, None], r[None, :] * np.cos(angles)[:, None]
-    inside = np.all((px >= x[0]) & (px <= x[-1]) & (pz <= z[-1]), axis=1)
+    end_x, end_z = x_hot + reach * np.sin(angles), reach * np.cos(angles)
+    inside = (x[0] <= x_hot <= x[-1]) & (end_x >= x[0]) & (end_x <= x[-1]) & (end_z >= 0) & (end_z <= z[-1])
     if not inside.any():
         along = "along any direction" if angles.size > 1 else f"at {np.degrees(angles[0]):.6g} deg from +z"
         raise ValueError(
             f"parameter: the grid spans x in [{x[0]:.6g}, {x[-1]:.6g}] m and z up to {z[-1]:.6g} m, expected it "
-            f"to reach {r[-1]:.6g} m from x = {x_hot:.6g} m {along}"
+            f"to reach {reach:.6g} m from x = {x_hot:.6g} m {along}"
         )
     interpolate = RegularGridInterpolator((z, x), values)
-    read = interpolate(np.stack([pz[inside], px[inside]], axis=-1))
-    means = read[:, 0] if r.size == 1 else np.trapezoid(read, r, axis=1) / r[-1]
-    best = np.argmax(means)
-    return CriticalDistance(float(means[best]), float(x_hot), float(angles[inside][best]))
+    found = [read(interpolate, x, z, x_hot, angle, reach) for angle in angles[inside]]
+    best = int(np.argmax(found))
+    return CriticalDistance(float(found[best]), float(x_hot), float(angles[inside][best]))
 
 
 _COMMON = {
