@@ -116,7 +116,7 @@ def test_pure_shear():
 
     SWT: ``eps_n = (1 + nu) sigma_n / E`` (zero trace), so ``(1 + nu) tau_a^2 / E`` at ``|phi| = pi/4``.
     MWCM: largest ``tau_a`` on ``phi = 0``, where ``sigma_n = 0``: ``rho = 0``, parameter ``tau_a``.
-    Fatemi-Socie: ``(tau_a / 2 G) cos u (1 + m sin u)``, ``u = 2 phi``, ``m = k tau_a / sigma_y``; its
+    Fatemi-Socie: ``(tau_a / G) cos u (1 + m sin u)``, ``u = 2 phi``, ``m = k tau_a / sigma_y``; its
     derivative vanishes where ``2 m sin^2 u + sin u - m = 0``.
     Crossland: ``sqrt(J2) = |tau|``, ``sigma_h = 0``: ``tau_a``.
     """
@@ -132,9 +132,29 @@ def test_pure_shear():
     assert min(abs(result.phi), abs(abs(result.phi) - math.pi / 2)) == pytest.approx(0, abs=1e-7)
     m = STEEL.fs_k * tau_a / STEEL.sigma_y
     sin_u = (math.sqrt(1 + 8 * m * m) - 1) / (4 * m)
-    expected = tau_a / (2 * STEEL.G) * math.sqrt(1 - sin_u**2) * (1 + m * sin_u)
+    expected = tau_a / STEEL.G * math.sqrt(1 - sin_u**2) * (1 + m * sin_u)
     assert fatemi_socie(*stress[:3], STEEL, **kwargs).parameter == pytest.approx(expected, rel=1e-13)
     assert crossland(*stress[:3], STEEL, **kwargs).parameter == pytest.approx(tau_a, rel=1e-13)
+
+
+def test_fatemi_socie_reads_the_engineering_shear_strain_amplitude():
+    """Fatemi & Socie (1988): ``(Delta gamma_max / 2) (1 + k sigma_n,max / sigma_y)``, ``gamma`` the engineering
+    shear strain. Uniaxial ``sigma_xx = sigma_a sin t`` (``sigma_yy = 0``): on ``phi``, ``tau_a = (sigma_a / 2)
+    |sin u|``, ``u = 2 phi``, and ``sigma_n,max = (sigma_a / 2) (1 + cos u)``, so the parameter is
+    ``(sigma_a / 2 G) sin u (1 + m (1 + cos u))``, ``m = k sigma_a / (2 sigma_y)``. With ``k = 0`` its largest,
+    at ``u = pi/2``, is ``sigma_a / (2 G) = (1 + nu) sigma_a / E``: the amplitude of ``eps_1 - eps_3``, the
+    largest engineering shear strain. With ``k > 0`` the derivative vanishes where ``2 m c^2 + (1 + m) c - m
+    = 0``, ``c = cos u``."""
+    sigma_a = 300e6
+    stress = (sigma_a * np.sin(t), ZERO, ZERO)
+    no_normal = Material(E=STEEL.E, nu=STEEL.nu, fs_k=0.0, sigma_y=STEEL.sigma_y)
+    result = fatemi_socie(*stress, no_normal, sigma_yy=ZERO)
+    assert result.parameter == pytest.approx((1 + STEEL.nu) * sigma_a / STEEL.E, rel=1e-13)
+    assert result.amplitude == pytest.approx(result.parameter, rel=1e-13)
+    m = STEEL.fs_k * sigma_a / (2 * STEEL.sigma_y)
+    c = (math.sqrt((1 + m) ** 2 + 8 * m * m) - (1 + m)) / (4 * m)
+    expected = sigma_a / (2 * STEEL.G) * math.sqrt(1 - c * c) * (1 + m * (1 + c))
+    assert fatemi_socie(*stress, STEEL, sigma_yy=ZERO).parameter == pytest.approx(expected, rel=1e-13)
 
 
 def test_mwcm_and_crossland_reach_their_thresholds_at_both_fatigue_limits():
@@ -495,7 +515,7 @@ def test_the_search_finds_the_dense_maximum_of_non_proportional_histories():
     formulas = {
         swt: lambda n, tau_a, eps_a: n * eps_a,
         findley: lambda n, tau_a, eps_a: tau_a + k * n,
-        fatemi_socie: lambda n, tau_a, eps_a: tau_a / G / 2 * (1 + STEEL.fs_k * n / STEEL.sigma_y),
+        fatemi_socie: lambda n, tau_a, eps_a: tau_a / G * (1 + STEEL.fs_k * n / STEEL.sigma_y),
     }
     dense = [dense_search([component[:, point] for component in stress]) for point in range(200)]
     for criterion, formula in formulas.items():

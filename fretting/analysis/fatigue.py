@@ -51,6 +51,8 @@ References
    Journal of Fatigue 21 (1999) 413-420.
 .. [9] J. A. Araujo and D. Nowell, The effect of rapidly varying contact stress fields on
    fretting fatigue, International Journal of Fatigue 24 (2002) 763-775.
+.. [10] D. F. Socie and G. B. Marquis, Multiaxial Fatigue, SAE International, Warrendale (2000),
+   chapter 4 (critical plane models; the Fatemi-Socie parameter and its shear strain-life curve).
 """
 
 from __future__ import annotations
@@ -546,7 +548,7 @@ def _findley(terms, material):
 
 def _fatemi_socie(terms, material):
     k, sigma_y = material._required("fatemi_socie", "fs_k", "sigma_y")
-    return terms.tau_a / material.G / 2 * (1 + k * terms.sigma_n_max / sigma_y)
+    return terms.tau_a / material.G * (1 + k * terms.sigma_n_max / sigma_y)
 
 
 def _mwcm(terms, material):
@@ -604,7 +606,7 @@ CRITERIA = {
         _OnPlane(
             "fatemi_socie",
             "1",
-            "Fatemi-Socie parameter gamma_a/2 (1 + k sigma_n,max/sigma_y)",
+            "Fatemi-Socie parameter gamma_a (1 + k sigma_n,max/sigma_y), gamma_a = Delta gamma_max / 2",
             "1",
             "engineering shear strain amplitude gamma_a",
             parameter=_fatemi_socie,
@@ -670,10 +672,15 @@ def findley(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plan
 
 
 def fatemi_socie(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
-    """Fatemi-Socie parameter ``gamma_a / 2 (1 + k sigma_n,max / sigma_y)`` [1] on its critical plane [3].
+    """Fatemi-Socie parameter ``(Delta gamma_max / 2) (1 + k sigma_n,max / sigma_y)`` on its critical plane [3].
 
-    ``gamma_a`` is the elastic engineering shear strain amplitude ``tau_a / G``; the critical plane is the one
-    of largest parameter. Needs `Material.fs_k` and `Material.sigma_y`. Arguments as `swt`.
+    ``Delta gamma_max / 2 = gamma_a`` is the amplitude (half the range) of the engineering shear strain on the
+    plane, ``gamma = 2 eps_nt = tau / G`` (elastic), as Fatemi & Socie define it [3, 10]: under uniaxial
+    elastic loading ``gamma_a = (1 + nu) eps_a``, the amplitude of the difference of the largest and smallest
+    principal strains, not half of it. ``sigma_n,max`` [Pa] is the largest normal stress on the plane over the
+    cycle. The critical plane is the one of largest parameter; Fatemi & Socie take the plane of largest
+    ``gamma_a`` and read ``sigma_n,max`` on it, which gives at most as much. Needs `Material.fs_k` and
+    `Material.sigma_y`. Arguments as `swt`.
     """
     return _evaluate("fatemi_socie", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes)
 
