@@ -310,6 +310,53 @@ def test_flat_punch_is_refused():
             stress.field(written, [0.0], [1e-4], nu=NU)
 
 
+@pytest.fixture(scope="module")
+def in_phase(contact):
+    """A cycle of Q and sigma in phase (steps 4 to 12 the cycle)."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.piecewise_linear(
+        [0.0, 0.4 * fP, -0.4 * fP, 0.4 * fP], [0.0, 0.3 * fp0, -0.3 * fp0, 0.3 * fp0], 4
+    )
+    return fr.simulate(contact, history, nodes=32)
+
+
+def test_bulk_stress_in_plane_stress_leaves_sigma_yy_without_its_share(contact, in_phase):
+    """The two states differ only by ``nu sigma_b`` in the specimen's ``sigma_yy``; the pad carries no bulk stress.
+    The default is plane strain, as before the choice existed: ``nu (sigma_xx + sigma_zz)``, bulk included."""
+    x, z = grid(contact, 9, 5)
+    strain = stress.field(in_phase, x, z, nu=NU)
+    plane = stress.field(in_phase, x, z, nu=NU, bulk_state="plane stress")
+    assert (strain.attrs["bulk_state"], plane.attrs["bulk_state"]) == ("plane strain", "plane stress")
+    assert plane.sigma_yy.attrs["definition"] == stress.BULK_STATES["plane stress"]
+    np.testing.assert_array_equal(strain.sigma_yy, NU * (strain.sigma_xx + strain.sigma_zz))
+    for name in ("sigma_xx", "sigma_zz", "tau_xz"):
+        np.testing.assert_array_equal(plane[name], strain[name])
+    bulk = nucleation.body_bulk(in_phase, nucleation.specimen(in_phase))
+    assert np.ptp(bulk) > 0
+    np.testing.assert_allclose(strain.sigma_yy - plane.sigma_yy, NU * bulk[:, None, None] * np.ones((5, 9)), atol=1e-6)
+    pad = 3 - nucleation.specimen(in_phase)
+    pads = [stress.field(in_phase, x, z, body=pad, nu=NU, bulk_state=state) for state in stress.BULK_STATES]
+    np.testing.assert_array_equal(pads[0].sigma_yy, pads[1].sigma_yy)
+    with pytest.raises(ValueError, match="bulk_state: found 'plane', expected one of: 'plane strain', 'plane stress'"):
+        stress.field(in_phase, x, z, nu=NU, bulk_state="plane")
+
+
+def test_bulk_stress_state_scales_a_strain_criterion_by_one_over_one_minus_nu_squared(contact, in_phase):
+    """Far from the contact the bulk stress ``sigma_b`` alone strains the specimen along ``x`` by ``(1 - nu^2)
+    sigma_b / E`` in plane strain and by ``sigma_b / E`` in plane stress, with the same ``sigma_n,max``: SWT
+    in plane stress is ``1 / (1 - nu^2)`` times SWT in plane strain. At ``r = 1e4 a`` the contact's stress,
+    which falls off as ``1 / r``, changes the ratio by 9.2e-6 (1e-4 at 1e3 a, 1e-3 at 1e2 a): tolerance 1.5e-5."""
+    material = Material(E=210e9, nu=NU)
+    far = ([1e4 * contact.a], [3e3 * contact.a])
+    swt = [
+        fatigue.apply(stress.field(in_phase, *far, step=list(range(4, 13)), nu=NU, bulk_state=state), "swt", material)
+        for state in stress.BULK_STATES
+    ]
+    assert swt[1].attrs["bulk_state"] == "plane stress"
+    ratio = (swt[1].parameter / swt[0].parameter).item()
+    assert ratio == pytest.approx(1 / (1 - NU**2), rel=1.5e-5)
+
+
 # The command and the figure
 
 
@@ -327,6 +374,11 @@ def test_command_writes_the_field(contact, tmp_path, capsys):
         x = contact.a * np.linspace(-2, 2, 9)
         expected = stress.field(result, x, contact.a * np.linspace(0, 2, 5), step=[4, 8], nu=NU)
         np.testing.assert_allclose(written.sigma_xx.values, expected.sigma_xx.values, rtol=1e-12)
+    assert capsys.readouterr().out.splitlines()[0].endswith("body 2 (specimen), bulk stress in plane strain")
+    assert cli.main([*arguments, "--step", "4", "--bulk-state", "plane-stress"]) == 0
+    assert capsys.readouterr().out.splitlines()[0].endswith("bulk stress in plane stress")
+    with xr.open_dataset(output, engine="h5netcdf") as written:
+        assert written.attrs["bulk_state"] == "plane stress"
     assert cli.main([*arguments, "--step", "99"]) == 2
     assert "step 99 is not recorded" in capsys.readouterr().err
     assert cli.main([*arguments[:-4], "-o", str(output)]) == 2  # no nu: the result has no history file

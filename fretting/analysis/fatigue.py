@@ -884,7 +884,8 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
     xarray.Dataset
         On the points' dims and coordinates: ``parameter``, ``amplitude``, and ``phi``, ``theta``,
         ``sigma_n_max`` (critical-plane criteria) or ``sigma_h_max`` (Crossland), with ``units`` and
-        ``long_name``; attribute ``criterion``.
+        ``long_name``; attributes: the field's (those of `fretting.analysis.stress.field`: ``body``,
+        ``bulk_state``, ...) and ``criterion``.
     """
     if criterion not in CRITERIA:
         raise ValueError(f"criterion: found {criterion!r}, expected one of: {', '.join(CRITERIA)}")
@@ -914,4 +915,4 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
         name: xr.Variable(dims[1:], value, {"units": attributes[name][0], "long_name": attributes[name][1]})
         for name, value in result._asdict().items()
     }
-    return xr.Dataset(variables, coords=coords, attrs={"criterion": criterion})
+    return xr.Dataset(variables, coords=coords, attrs={**field.attrs, "criterion": criterion})
