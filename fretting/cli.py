@@ -16,7 +16,15 @@ from tqdm import tqdm
 from fretting import __version__
 from fretting._validate import positive
 from fretting.analysis import nucleation
-from fretting.analysis.fatigue import CRITERIA, Material, MaterialFileError, apply, line_method, point_method
+from fretting.analysis.fatigue import (
+    CRITERIA,
+    Material,
+    MaterialFileError,
+    apply,
+    hot_spot,
+    line_method,
+    point_method,
+)
 from fretting.analysis.stress import BULK_STATES, COMPONENTS, field
 from fretting.engine.recorder import (
     CYCLE_FIELDS_EXPECTED,
@@ -384,7 +392,8 @@ def _stress(args):
     output = Path(args.output or Path(args.file).with_name(f"{Path(args.file).stem}_stress.h5"))
     save(written, output)
     print(
-        f"{output}: {stresses.sizes['step']} steps, {args.nz} x {args.nx} points, body {body} ({args.body}), "
+        f"{output}: {stresses.sizes['step']} steps, {stresses.sizes['z']} x {stresses.sizes['x']} points, "
+        f"body {body} ({args.body}), "
         f"bulk stress in {stresses.attrs['bulk_state']}"
     )
     for name in criteria:
@@ -430,10 +439,8 @@ def _criterion_map(stresses, name, material, path):
 def _distances(parameter, material, path):
     """The surface hot spot, and the point and line methods below it (`fretting.analysis.fatigue`) when the material
     gives ``L``, as attributes [the parameter's units, m]."""
-    surface = parameter.isel(z=0)
-    hot = int(np.nanargmax(surface.values))
-    x_hot = float(surface.x[hot])
-    attributes = {"hot_spot": float(surface[hot]), "x_hot": x_hot}
+    value, x_hot = hot_spot(parameter)
+    attributes = {"hot_spot": value, "x_hot": x_hot}
     L = material.critical_distance
     if L is None:
         return attributes

@@ -91,6 +91,7 @@ __all__ = [
     "crossland",
     "fatemi_socie",
     "findley",
+    "hot_spot",
     "line_method",
     "mwcm",
     "point_method",
@@ -776,7 +777,7 @@ def point_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance
         `DIRECTIONS` angles over ``[-pi/2, pi/2]`` (1 degree apart; those that leave the grid are
         skipped); or an angle [rad] from ``+z`` toward ``+x``.
     x_hot : float, optional
-        The surface point to start from [m]; by default the largest surface value (``z = 0``).
+        The surface point to start from [m]; by default that of the largest surface value (`hot_spot`).
 
     Raises
     ------
@@ -795,6 +796,18 @@ def line_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance:
     `point_method`, with ``2 L`` for ``L/2``.
     """
     return _critical_distance(parameter, L, 2.0, direction, x_hot, _mean_along)
+
+
+def hot_spot(parameter) -> tuple[float, float]:
+    """The largest surface value (``z = 0``) of a map and its ``x`` [m], the first of equal ones.
+
+    The map's grid decides where the surface is read: a field of `fretting.analysis.stress.field` holds the
+    contact's edges, where the surface value of a fatigue parameter usually peaks with a kink, so that the hot
+    spot does not depend on the grid's spacing there. Arguments as `point_method`.
+    """
+    x, _, values = _grid(parameter)
+    at = int(np.nanargmax(values[0]))
+    return float(values[0, at]), float(x[at])
 
 
 def _grid(parameter):
@@ -832,9 +845,7 @@ def _critical_distance(parameter, L, fraction, direction, x_hot, read):
     """`CriticalDistance` of `read` (`_value_at_end` or `_mean_along`) over ``fraction L`` from the hot spot."""
     x, z, values = _grid(parameter)
     reach = fraction * positive("L", L)
-    if x_hot is None:
-        x_hot = x[np.nanargmax(values[0])]
-    x_hot = finite("x_hot", x_hot)
+    x_hot = finite("x_hot", hot_spot(parameter)[1] if x_hot is None else x_hot)
     if direction == "down":
         angles = np.array([0.0])
     elif direction == "max":

@@ -64,7 +64,7 @@ from fretting.physics.closed_forms import masing_increment, masing_origin
 from fretting.physics.contact import poisson_ratio
 from fretting.physics.profiles import profile_class, recorded_profile
 
-__all__ = ["BULK_STATES", "COMPONENTS", "field", "mcewen", "polygon"]
+__all__ = ["BULK_STATES", "COMPONENTS", "field", "mcewen", "polygon", "with_edges"]
 
 #: name -> (units, long name, definition) of the variables of `field`.
 COMPONENTS = {
@@ -189,7 +189,7 @@ def polygon(x, z, knots):
     return np.array([[a, b, c], [d, c, a]])
 
 
-def field(result, x, z, step=None, body=None, nu=None, bulk_state="plane strain"):
+def field(result, x, z, step=None, body=None, nu=None, bulk_state="plane strain", edges=True):
     """Stress [Pa] at the points ``(x, z)`` of one body, at recorded steps of a result.
 
     Parameters
@@ -214,14 +214,19 @@ def field(result, x, z, step=None, body=None, nu=None, bulk_state="plane strain"
         The state of the body's bulk stress ``sigma_b`` (`BULK_STATES`, module docstring): it adds ``nu
         sigma_b`` to ``sigma_yy`` in plane strain, nothing in plane stress (a specimen free across its width).
         The pad carries no bulk stress, so its field is the same in both.
+    edges : bool
+        Add the contact's edges ``centre +- a`` to an ascending `x` that spans them (`with_edges`). The surface
+        stress has a kink at each edge, with an unbounded slope outside it, and a fatigue parameter there its
+        largest surface value (the hot spot) in most cycles: without the edges on the grid the hot spot read from
+        the map depends on how near a grid point falls to them. False: `x` as given.
 
     Returns
     -------
     xarray.Dataset
-        ``sigma_xx``, ``sigma_zz``, ``tau_xz``, ``sigma_yy`` [Pa] on dims (step, z, x)
-        (`COMPONENTS`; sign conventions in the module docstring; ``sigma_yy``'s ``definition`` by
-        `bulk_state`). Attributes: ``body``, ``role`` (specimen or pad), ``nu``, ``bulk_state``,
-        the contact's ``a``, ``centre``, ``p0``, ``f``, and
+        ``sigma_xx``, ``sigma_zz``, ``tau_xz``, ``sigma_yy`` [Pa] on dims (step, z, x), ``x`` the given
+        points and, with `edges`, the contact's edges (`COMPONENTS`; sign conventions in the module
+        docstring; ``sigma_yy``'s ``definition`` by `bulk_state`). Attributes: ``body``, ``role``
+        (specimen or pad), ``nu``, ``bulk_state``, the contact's ``a``, ``centre``, ``p0``, ``f``, and
         ``traction``, how the loads were integrated: ``"elliptical"`` (McEwen's closed forms:
         the exact model's traction on a Hertz contact) or ``"piecewise linear"``, and
         ``pressure`` likewise (``"elliptical"`` on a Hertz contact).
@@ -242,8 +247,8 @@ def field(result, x, z, step=None, body=None, nu=None, bulk_state="plane strain"
     ------
     ValueError
         On negative or non-finite depths, steps the result does not record, an unknown `body`,
-        a missing or invalid `nu`, an unknown `bulk_state`, or a contact whose pressure is unbounded at its edges (the
-        flat punch: `fretting.physics.profiles.Profile.VANISHING_EDGES`).
+        a missing or invalid `nu`, an unknown `bulk_state`, or a contact whose pressure is unbounded
+        at its edges (the flat punch: `fretting.physics.profiles.Profile.VANISHING_EDGES`).
     """
     x, z = finite_array("x", x), finite_array("z", z)
     if bulk_state not in BULK_STATES:
@@ -253,6 +258,8 @@ def field(result, x, z, step=None, body=None, nu=None, bulk_state="plane strain"
     body, role = body_role(result, body)
     nu = _poisson(result, nu)
     attrs = result.attrs
+    if edges:
+        x = with_edges(x, attrs["centre"], attrs["a"])
     profile = profile_class(recorded_profile(attrs)[0])
     if profile is not None and not profile.VANISHING_EDGES:
         raise ValueError(
@@ -300,6 +307,22 @@ def field(result, x, z, step=None, body=None, nu=None, bulk_state="plane strain"
     return dataset.assign_attrs(
         body=body, role=role, nu=nu, bulk_state=bulk_state, a=a, centre=centre, p0=attrs["p0"], f=attrs["f"], **kinds
     )
+
+
+def with_edges(x, centre, a):
+    """The points `x` [m] with the contact's edges ``centre - a`` and ``centre + a`` among them.
+
+    An edge within the span of an ascending `x` is inserted in order; a point closer to it than `EDGE` ``a`` is
+    moved onto it rather than doubled. Any other `x` (not ascending, or not spanning an edge) is returned as given.
+    """
+    x = np.array(x, dtype=float)
+    if x.size < 2 or np.any(np.diff(x) <= 0):
+        return x
+    for edge in (centre - a, centre + a):
+        if x[0] <= edge <= x[-1]:
+            near = np.abs(x - edge) <= EDGE * a
+            x = np.where(near, edge, x) if near.any() else np.insert(x, np.searchsorted(x, edge), edge)
+    return x
 
 
 def _poisson(result, nu):
