@@ -21,10 +21,15 @@ from fretting.analysis.fatigue import (
     MaterialFileError,
     apply,
     crossland,
+    crossland_life,
     fatemi_socie,
+    fatemi_socie_life,
     findley,
+    findley_life,
+    life,
     line_method,
     mwcm,
+    mwcm_life,
     point_method,
     swt,
     swt_life,
@@ -53,6 +58,11 @@ STEEL = Material(
     tau_limit=200e6,
     fs_k=0.6,
     sigma_y=600e6,
+    tau_f=520e6,
+    b0=-0.1,
+    gamma_f=1.0,
+    c0=-0.65,
+    N_A=2e6,
     critical_distance=1e-4,
 )
 CRITICAL_PLANE = (swt, findley, fatemi_socie, mwcm)
@@ -318,6 +328,93 @@ def test_swt_life_round_trip():
     assert swt_life(0.0, m) == math.inf
     with pytest.raises(ValueError, match="parameter: found .* expected at most"):
         swt_life(2 * (m.sigma_f**2 / m.E + m.sigma_f * m.eps_f), m)
+
+
+def test_fatemi_socie_life_round_trip_and_fully_reversed_torsion():
+    """``gamma_a (1 + k sigma_n,max / sigma_y) = tau_f' / G (2N)^b0 + gamma_f' (2N)^c0`` written out here, then
+    inverted. In fully reversed torsion with ``k = 0`` the parameter is ``gamma_a = tau_a / G``: a torsion
+    amplitude ``tau_a = G`` times the curve at ``N`` lives ``N``."""
+    m, lives = STEEL, np.array([1e2, 1e4, 1e6, 1e9])
+    parameter = m.tau_f / m.G * (2 * lives) ** m.b0 + m.gamma_f * (2 * lives) ** m.c0
+    assert fatemi_socie_life(parameter, m) == pytest.approx(lives, rel=1e-10)
+    torsion_only = Material(E=m.E, nu=m.nu, fs_k=0.0, sigma_y=m.sigma_y, tau_f=m.tau_f, b0=m.b0, gamma_f=1.0, c0=-0.65)
+    tau_a = m.G * parameter[2]
+    result = fatemi_socie(ZERO, ZERO, tau_a * np.sin(t), torsion_only, sigma_yy=ZERO)
+    assert fatemi_socie_life(result.parameter, torsion_only) == pytest.approx(lives[2], rel=1e-10)
+    with pytest.raises(ValueError, match="fatemi_socie_life needs tau_f, b0, gamma_f, c0"):
+        fatemi_socie_life(1e-3, Material(E=m.E, nu=m.nu))
+    with pytest.raises(ValueError, match=r"parameter: found 2, expected at most 1.0\d+ \(2 N_f = 1\)"):
+        fatemi_socie_life(2.0, m)
+
+
+@pytest.mark.parametrize(
+    ("criterion", "criterion_life"),
+    [(findley, findley_life), (crossland, crossland_life)],
+    ids=["findley", "crossland"],
+)
+def test_stress_lives_are_basquins_curve_in_push_pull(criterion, criterion_life):
+    """Fully reversed push-pull of amplitude ``sigma_a = sigma_f' (2N)^b`` (Basquin) lives ``N`` by either
+    criterion's relation: the parameter is ``f sigma_a``, with ``f = (sqrt(1 + k^2) + k) / 2`` (Findley,
+    `test_findley_uniaxial`) or ``1 / sqrt(3) + alpha / 3 = t_-1 / f_-1`` (Crossland: ``sqrt(J2)_a = sigma_a /
+    sqrt(3)``, ``sigma_h,max = sigma_a / 3``), and its curve ``f sigma_f' (2 N_f)^b``; ``2N`` is 1.2e6 here."""
+    m, N = STEEL, 6e5
+    k = m.findley_constant()
+    factor = {findley: (math.sqrt(1 + k * k) + k) / 2, crossland: m.tau_limit / m.sigma_limit}[criterion]
+    sigma_a = m.sigma_f * (2 * N) ** m.b
+    parameter = criterion(*uniaxial(sigma_a)[:3], m, sigma_yy=ZERO).parameter
+    assert parameter == pytest.approx(factor * sigma_a, rel=1e-13)
+    assert criterion_life(parameter, m) == pytest.approx(N, rel=1e-10)
+    assert criterion_life(np.array([parameter, 0.0]), m) == pytest.approx([N, math.inf], rel=1e-10)
+    with pytest.raises(ValueError, match="_life needs sigma_f, b, found None"):
+        criterion_life(parameter, Material(E=m.E, nu=m.nu, sigma_limit=m.sigma_limit, tau_limit=m.tau_limit))
+
+
+def test_mwcm_life_by_hand():
+    """``N_f = N_A ((lambda - kappa rho) / tau_a)^(k_0 + (k_1 - k_0) rho)``, ``k_0 = -1/b0 = 10``, ``k_1 = -1/b``:
+    torsion (``rho = 0``) at ``t_-1 / 2`` lives ``N_A 2^10``; push-pull (``rho = 1``) at the fatigue limit
+    ``f_-1`` lives ``N_A``; and ``rho = 1/2`` by hand."""
+    m = STEEL
+    kappa, lam = m.mwcm_constants()
+    assert mwcm_life(m.tau_limit / 2, 0.0, m) == pytest.approx(m.N_A * 2**10, rel=1e-13)
+    torsion = mwcm(ZERO, ZERO, m.tau_limit / 2 * np.sin(t), m, sigma_yy=ZERO)
+    assert mwcm_life(torsion.amplitude, torsion.sigma_n_max, m) == pytest.approx(m.N_A * 2**10, rel=1e-12)
+    push_pull = mwcm(*uniaxial(m.sigma_limit)[:3], m, sigma_yy=ZERO)
+    assert mwcm_life(push_pull.amplitude, push_pull.sigma_n_max, m) == pytest.approx(m.N_A, rel=1e-6)
+    tau_a, rho = 90e6, 0.5
+    k = -1 / m.b0 + (1 / m.b0 - 1 / m.b) * rho
+    expected = m.N_A * ((lam - kappa * rho) / tau_a) ** k
+    assert mwcm_life(np.array([tau_a, 0.0]), np.array([rho * tau_a, 1e8]), m) == pytest.approx([expected, math.inf])
+    with pytest.raises(ValueError, match="rho: found 20, outside the MWCM's curves"):
+        mwcm_life(1e6, 2e7, m)
+    with pytest.raises(ValueError, match="mwcm_life needs b0, N_A, found None"):
+        mwcm_life(tau_a, 0.0, Material(E=m.E, nu=m.nu, b=m.b, sigma_limit=m.sigma_limit, tau_limit=m.tau_limit))
+
+
+def test_life_maps_every_criterion_by_its_relation():
+    """`life` of the maps of `apply` is each criterion's life function at every point."""
+    z, x = np.linspace(0, 1e-3, 3), np.linspace(-1e-3, 1e-3, 4)
+    amplitude = 250e6 * np.exp(-z[:, None] / 5e-4) * (1 + x[None, :] / 4e-3)
+    history = amplitude * np.sin(COARSE)[:, None, None]
+    field = xr.Dataset(
+        {
+            "sigma_xx": (("step", "z", "x"), history),
+            "sigma_zz": (("step", "z", "x"), 0.3 * history),
+            "tau_xz": (("step", "z", "x"), 0.2 * history),
+        },
+        coords={"z": z, "x": x},
+    )
+    by_parameter = {"swt": swt_life, "findley": findley_life, "fatemi_socie": fatemi_socie_life}
+    by_parameter["crossland"] = crossland_life
+    for name in CRITERIA:
+        maps = apply(field, name, STEEL)
+        lives = life(maps, STEEL)
+        assert lives.dims == ("z", "x") and lives.attrs["definition"] == CRITERIA[name].life_name
+        if name == "mwcm":
+            expected = mwcm_life(maps.amplitude, maps.sigma_n_max, STEEL)
+        else:
+            expected = by_parameter[name](maps.parameter, STEEL)
+        np.testing.assert_array_equal(lives, expected)
+        assert np.all(np.isfinite(lives)) and np.all(np.diff(lives.values, axis=0) > 0)  # longer deeper down
 
 
 def linear_map(psi0, z_max=1e-3):

@@ -53,6 +53,8 @@ References
    fretting fatigue, International Journal of Fatigue 24 (2002) 763-775.
 .. [10] D. F. Socie and G. B. Marquis, Multiaxial Fatigue, SAE International, Warrendale (2000),
    chapter 4 (critical plane models; the Fatemi-Socie parameter and its shear strain-life curve).
+.. [11] P. Lazzarin and L. Susmel, A stress-based method to predict lifetime under multiaxial fatigue
+   loadings, Fatigue Fract. Engng Mater. Struct. 26 (2003) 1171-1187.
 """
 
 from __future__ import annotations
@@ -89,11 +91,16 @@ __all__ = [
     "Plane",
     "apply",
     "crossland",
+    "crossland_life",
     "fatemi_socie",
+    "fatemi_socie_life",
     "findley",
+    "findley_life",
     "hot_spot",
+    "life",
     "line_method",
     "mwcm",
+    "mwcm_life",
     "point_method",
     "swt",
     "swt_life",
@@ -150,6 +157,14 @@ class Material:
         Findley's normal stress sensitivity ``k`` >= 0 [2].
     fs_k, sigma_y : float, optional
         Fatemi-Socie's ``k`` >= 0 and the yield stress ``sigma_y`` [Pa] > 0 that normalises it [3].
+    tau_f, b0, gamma_f, c0 : float, optional
+        Shear strain-life constants [3, 10]: shear fatigue strength coefficient ``tau_f'`` [Pa] > 0 and
+        exponent ``b0`` < 0 (the fully reversed torsion Basquin curve ``tau_a = tau_f' (2 N_f)^b0``), shear
+        fatigue ductility coefficient ``gamma_f'`` > 0 and exponent ``c0`` < 0 (`fatemi_socie_life`; ``b0``
+        also `mwcm_life`).
+    N_A : float, optional
+        Cycles > 0 at which the fatigue limits `sigma_limit` and `tau_limit` are taken, the reference life
+        of the MWCM's curves [11] (`mwcm_life`), commonly 2e6.
     critical_distance : float, optional
         ``L`` [m] > 0 of the theory of critical distances [8], commonly
         ``(1/pi) (Delta K_th / Delta sigma_0)^2``.
@@ -171,13 +186,19 @@ class Material:
     findley_k: float | None = None
     fs_k: float | None = None
     sigma_y: float | None = None
+    tau_f: float | None = None
+    b0: float | None = None
+    gamma_f: float | None = None
+    c0: float | None = None
+    N_A: float | None = None
     critical_distance: float | None = None
 
     def __post_init__(self):
         plane_strain_modulus(self.E, self.nu)  # checks E and nu as a contact's
-        for name in ("sigma_f", "eps_f", "sigma_limit", "tau_limit", "sigma_y", "critical_distance"):
+        for name in ("sigma_f", "eps_f", "sigma_limit", "tau_limit", "sigma_y", "tau_f", "gamma_f", "N_A"):
             self._check(name, positive)
-        for name in ("b", "c"):
+        self._check("critical_distance", positive)
+        for name in ("b", "c", "b0", "c0"):
             self._check(name, _negative)
         for name in ("findley_k", "fs_k"):
             self._check(name, _non_negative)
@@ -395,6 +416,10 @@ class Criterion(abc.ABC):
         Of its parameter.
     amplitude_units, amplitude_name : str
         Of its amplitude.
+    life : callable
+        ``(maps, material) -> N_f``: cycles to failure from the maps of `apply` (`life`), by `life_name`.
+    life_name : str
+        Its S-N relation.
     """
 
     name: str
@@ -402,6 +427,8 @@ class Criterion(abc.ABC):
     long_name: str
     amplitude_units: str
     amplitude_name: str
+    life: Callable[[xr.Dataset, Material], np.ndarray]
+    life_name: str
 
     @abc.abstractmethod
     def evaluate(self, history: _History, material: Material, planes: str) -> Plane | Invariant:
@@ -591,6 +618,9 @@ CRITERIA = {
             "Smith-Watson-Topper parameter sigma_n,max eps_a",
             "1",
             "normal strain amplitude eps_a",
+            lambda maps, material: swt_life(maps.parameter, material),
+            "sigma_n,max eps_a = sigma_f'^2/E (2 N_f)^(2b) + sigma_f' eps_f' (2 N_f)^(b+c) "
+            "(Smith, Watson & Topper 1970)",
             parameter=_swt,
             amplitude=_eps_a,
             strain=True,
@@ -601,6 +631,9 @@ CRITERIA = {
             "Findley parameter tau_a + k sigma_n,max",
             "Pa",
             "shear stress amplitude tau_a",
+            lambda maps, material: findley_life(maps.parameter, material),
+            "tau_a + k sigma_n,max = (sqrt(1 + k^2) + k)/2 sigma_f' (2 N_f)^b "
+            "(Findley 1959 on Basquin's push-pull curve)",
             parameter=_findley,
             amplitude=_tau_a,
         ),
@@ -610,6 +643,8 @@ CRITERIA = {
             "Fatemi-Socie parameter gamma_a (1 + k sigma_n,max/sigma_y), gamma_a = Delta gamma_max / 2",
             "1",
             "engineering shear strain amplitude gamma_a",
+            lambda maps, material: fatemi_socie_life(maps.parameter, material),
+            "gamma_a (1 + k sigma_n,max/sigma_y) = tau_f'/G (2 N_f)^b0 + gamma_f' (2 N_f)^c0 (Fatemi & Socie 1988)",
             parameter=_fatemi_socie,
             amplitude=_gamma_a,
         ),
@@ -619,6 +654,9 @@ CRITERIA = {
             "MWCM equivalent shear tau_a + kappa rho",
             "Pa",
             "shear stress amplitude tau_a",
+            lambda maps, material: mwcm_life(maps.amplitude, maps.sigma_n_max, material),
+            "N_f = N_A ((lambda - kappa rho) / tau_a)^(k_0 + (k_1 - k_0) rho), k_0 = -1/b0, k_1 = -1/b "
+            "(Lazzarin & Susmel 2003)",
             parameter=_mwcm,
             amplitude=_tau_a,
             plane_by_shear=True,
@@ -629,6 +667,9 @@ CRITERIA = {
             "Crossland parameter sqrt(J2)_a + alpha sigma_h,max",
             "Pa",
             "sqrt(J2) amplitude",
+            lambda maps, material: crossland_life(maps.parameter, material),
+            "sqrt(J2)_a + alpha sigma_h,max = (1/sqrt(3) + alpha/3) sigma_f' (2 N_f)^b "
+            "(Crossland 1956 on Basquin's push-pull curve)",
             invariant=_crossland,
         ),
     )
@@ -713,27 +754,112 @@ def crossland(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None) -> Invariant:
 def swt_life(parameter, material):
     """Cycles to failure ``N_f`` of a Smith-Watson-Topper parameter [Pa], by the strain-life curve [1, 7].
 
-    Solves ``sigma_f'^2 / E (2 N_f)^(2 b) + sigma_f' eps_f' (2 N_f)^(b + c) = parameter`` for ``log(2 N_f)``
-    (brentq, to rounding); the left side falls from ``2 N_f = 1`` on. Returns ``inf`` where the parameter is
-    <= 0, an array of the parameter's shape (a float for a number).
+    ``sigma_n,max eps_a = sigma_f'^2 / E (2 N_f)^(2 b) + sigma_f' eps_f' (2 N_f)^(b + c)``: Basquin's and
+    Coffin-Manson's curves in the form of Smith, Watson & Topper [1]. Solved for ``log(2 N_f)`` (brentq, to
+    rounding). Returns ``inf`` where the parameter is <= 0, an array of the parameter's shape (a float for a
+    number).
 
     Raises
     ------
     ValueError
-        When the material lacks the strain-life constants, or a parameter exceeds the curve at
+        When the material lacks ``sigma_f``, ``b``, ``eps_f`` or ``c``, or a parameter exceeds the curve at
         ``2 N_f = 1``.
     """
     sigma_f, b, eps_f, c = material._required("swt_life", "sigma_f", "b", "eps_f", "c")
+    return _curve_life(parameter, ((sigma_f**2 / material.E, 2 * b), (sigma_f * eps_f, b + c)), " Pa")
+
+
+def fatemi_socie_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Fatemi-Socie parameter (dimensionless), by the shear strain-life curve [3, 10].
+
+    ``gamma_a (1 + k sigma_n,max / sigma_y) = tau_f' / G (2 N_f)^b0 + gamma_f' (2 N_f)^c0``, ``gamma_a`` the
+    engineering shear strain amplitude (`fatemi_socie`), ``G`` `Material.G`: the torsional Basquin and
+    Coffin-Manson curves, which the parameter reduces to in fully reversed torsion (``sigma_n,max = 0`` on the
+    planes of largest shear). Solved as `swt_life`, whose returns and errors it shares (constants ``tau_f``,
+    ``b0``, ``gamma_f``, ``c0``).
+    """
+    tau_f, b0, gamma_f, c0 = material._required("fatemi_socie_life", "tau_f", "b0", "gamma_f", "c0")
+    return _curve_life(parameter, ((tau_f / material.G, b0), (gamma_f, c0)), "")
+
+
+def findley_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Findley parameter [Pa]: ``tau_a + k sigma_n,max = f_k sigma_f' (2 N_f)^b``.
+
+    A Basquin line in the parameter, ``tau_f* (2 N_f)^b`` [2, 7, 10], its coefficient that of fully reversed
+    push-pull on Basquin's curve ``sigma_a = sigma_f' (2 N_f)^b``: there Findley's parameter is ``f_k
+    sigma_a``, ``f_k = (sqrt(1 + k^2) + k) / 2`` (`Material.findley_constant`). Returns and errors as
+    `swt_life` (constants ``sigma_f``, ``b``, and those of ``k``).
+    """
+    k = material.findley_constant()
+    return _basquin_life(parameter, (math.sqrt(1 + k * k) + k) / 2, material, "findley_life")
+
+
+def crossland_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Crossland parameter [Pa]: ``sqrt(J2)_a + alpha sigma_h,max = f_c sigma_f'
+    (2 N_f)^b``.
+
+    Crossland's parameter [6] on Basquin's fully reversed push-pull curve ``sigma_a = sigma_f' (2 N_f)^b`` [7]:
+    there ``sqrt(J2)_a = sigma_a / sqrt(3)`` and ``sigma_h,max = sigma_a / 3``, so ``f_c = 1 / sqrt(3) + alpha /
+    3`` (``t_-1 / f_-1`` with ``alpha`` of `Material.crossland_constants`). Returns and errors as `swt_life`
+    (constants ``sigma_f``, ``b``, ``sigma_limit``, ``tau_limit``).
+    """
+    alpha, _ = material.crossland_constants()
+    return _basquin_life(parameter, 1 / math.sqrt(3) + alpha / 3, material, "crossland_life")
+
+
+def mwcm_life(tau_a, sigma_n_max, material):
+    """Cycles to failure ``N_f`` by the modified Woehler curve method: ``N_f = N_A (tau_ref(rho) / tau_a)^k(rho)``.
+
+    Lazzarin & Susmel [11]: on the critical plane (`mwcm`), with ``rho = sigma_n,max / tau_a``, the Woehler
+    curve of shear amplitude ``tau_a`` [Pa] has at ``N_A`` cycles the strength ``tau_ref(rho) = lambda - kappa
+    rho`` (`Material.mwcm_constants`: ``t_-1`` in torsion, ``rho = 0``, ``f_-1 / 2`` in push-pull, ``rho = 1``)
+    and the inverse slope ``k(rho) = k_0 + (k_1 - k_0) rho``, linear between those of the torsion curve,
+    ``k_0 = -1 / b0``, and of the push-pull curve, ``k_1 = -1 / b``. Returns ``inf`` where ``tau_a = 0``, an
+    array of the arguments' broadcast shape (a float for numbers).
+
+    Raises
+    ------
+    ValueError
+        When the material lacks ``sigma_limit``, ``tau_limit``, ``b``, ``b0`` or ``N_A``; where ``rho`` leaves
+        the curves' range (``tau_ref(rho) <= 0`` or ``k(rho) <= 0``); or where the curve gives ``2 N_f < 1``.
+    """
+    kappa, lam = material.mwcm_constants()
+    b, b0, N_A = material._required("mwcm_life", "b", "b0", "N_A")
+    tau_a, sigma_n_max = np.broadcast_arrays(np.asarray(tau_a, dtype=float), np.asarray(sigma_n_max, dtype=float))
+    sheared = tau_a > 0
+    rho = np.divide(sigma_n_max, tau_a, out=np.zeros_like(tau_a), where=sheared)
+    reference, inverse_slope = lam - kappa * rho, -1 / b0 + (1 / b0 - 1 / b) * rho
+    outside = sheared & ((reference <= 0) | (inverse_slope <= 0))
+    if outside.any():
+        raise ValueError(
+            f"rho: found {rho[outside].flat[0]:.6g}, outside the MWCM's curves (tau_ref = lambda - kappa rho > 0 and "
+            f"k = k_0 + (k_1 - k_0) rho > 0)"
+        )
+    ratio = np.divide(reference, tau_a, out=np.ones_like(tau_a), where=sheared)
+    lives = np.where(sheared, N_A * ratio**inverse_slope, np.inf)
+    if np.any(lives < 0.5):
+        raise ValueError(f"tau_a: found {tau_a[lives < 0.5].flat[0]:.6g} Pa, beyond the MWCM's curve at 2 N_f = 1")
+    return float(lives) if lives.ndim == 0 else lives
+
+
+def _basquin_life(parameter, factor, material, name):
+    """`_curve_life` of Basquin's line ``factor sigma_f' (2 N_f)^b``."""
+    sigma_f, b = material._required(name, "sigma_f", "b")
+    return _curve_life(parameter, ((factor * sigma_f, b),), " Pa")
+
+
+def _curve_life(parameter, terms, units):
+    """Cycles ``N_f`` at which the curve ``sum C (2 N_f)^e`` over `terms` ``(C, e)``, every ``C > 0`` and ``e < 0``,
+    meets each parameter (of `units`, e.g. " Pa", or "" for a number); ``inf`` where the parameter is <= 0."""
 
     def excess(log_reversals, target):
-        reversals = math.exp(log_reversals)
-        return sigma_f**2 / material.E * reversals ** (2 * b) + sigma_f * eps_f * reversals ** (b + c) - target
+        return sum(C * math.exp(e * log_reversals) for C, e in terms) - target
 
     def life(target):
         if target <= 0:
             return math.inf
         if excess(0.0, target) < 0:
-            raise ValueError(f"parameter: found {target:.6g} Pa, expected at most {excess(0.0, 0):.6g} (2 N_f = 1)")
+            raise ValueError(f"parameter: found {target:.6g}{units}, expected at most {excess(0.0, 0):.6g} (2 N_f = 1)")
         high = 1.0
         while excess(high, target) > 0:
             high *= 2
@@ -742,6 +868,30 @@ def swt_life(parameter, material):
     values = np.asarray(parameter, dtype=float)
     lives = np.array([life(float(value)) for value in values.ravel()]).reshape(values.shape)
     return float(lives) if lives.ndim == 0 else lives
+
+
+def life(maps, material) -> xr.DataArray:
+    """Cycles to failure ``N_f`` at every point of the maps of `apply`, by the S-N relation of their criterion.
+
+    The relation of each criterion (`Criterion.life`): `swt_life`, `findley_life`, `fatemi_socie_life`,
+    `mwcm_life` (which reads ``amplitude`` and ``sigma_n_max`` as well as the parameter), `crossland_life`.
+
+    Parameters
+    ----------
+    maps : xarray.Dataset
+        A result of `apply` (its attribute ``criterion`` names the criterion).
+    material : Material
+
+    Returns
+    -------
+    xarray.DataArray
+        ``N_f`` on the maps' dims and coordinates, ``inf`` where the parameter is <= 0; attributes ``units``,
+        ``long_name``, ``definition`` (the relation).
+    """
+    criterion = CRITERIA[maps.attrs["criterion"]]
+    values = criterion.life(maps, material)
+    attrs = {"units": "1", "long_name": "cycles to failure", "definition": criterion.life_name}
+    return xr.DataArray(values, coords=maps.parameter.coords, dims=maps.parameter.dims, name="N_f", attrs=attrs)
 
 
 class CriticalDistance(NamedTuple):
