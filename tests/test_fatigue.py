@@ -22,6 +22,8 @@ from fretting.analysis.fatigue import (
     apply,
     crossland,
     crossland_life,
+    dang_van,
+    dang_van_life,
     fatemi_socie,
     fatemi_socie_life,
     findley,
@@ -178,6 +180,59 @@ def test_mwcm_and_crossland_reach_their_thresholds_at_both_fatigue_limits():
     assert mwcm(*torsion[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(lam, rel=PLANE_FIRST_ORDER)
     assert crossland(*push_pull[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(beta, rel=1e-13)
     assert crossland(*torsion[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(beta, rel=1e-13)
+
+
+def test_dang_van_reaches_its_limit_at_both_fatigue_limits_and_centres_a_mean_stress():
+    """Push-pull at ``f``: Tresca ``f/2`` with ``sigma_h = f/3`` at the peak, ``f/2 + a f/3 = t = b``; torsion at
+    ``t``: Tresca ``t``, ``sigma_h = 0``. With a mean ``S``, ``sigma_xx = S + sigma_a sin t``, the deviatoric path
+    is a segment whose midpoint is the mean's deviator: the mesoscopic shear is ``sigma_a |sin t| / 2``, and the
+    parameter ``sigma_a / 2 + a (S + sigma_a) / 3``."""
+    a, b = STEEL.dang_van_constants()
+    assert (a, b) == pytest.approx((3 * (STEEL.tau_limit / STEEL.sigma_limit - 0.5), STEEL.tau_limit))
+    assert dang_van(*uniaxial(STEEL.sigma_limit)[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(b, rel=1e-13)
+    torsion = dang_van(ZERO, ZERO, STEEL.tau_limit * np.sin(t), STEEL, sigma_yy=ZERO)
+    assert (torsion.parameter, torsion.amplitude) == pytest.approx((b, b), rel=1e-13)
+    S, sigma_a = -80e6, 150e6
+    result = dang_van(S + sigma_a * np.sin(t), ZERO, ZERO, STEEL, sigma_yy=ZERO)
+    assert result.parameter == pytest.approx(sigma_a / 2 + a * (S + sigma_a) / 3, rel=1e-13)
+    assert result.sigma_h_max == pytest.approx((S + sigma_a) / 3, rel=1e-13)
+    with pytest.raises(ValueError, match="dang_van needs sigma_limit / tau_limit <= 2 for a >= 0, found 2.5"):
+        Material(E=1e9, nu=0.3, sigma_limit=2.5e8, tau_limit=1e8).dang_van_constants()
+
+
+@pytest.mark.parametrize("offset", [0.0, 70e6], ids=["centred", "with a mean deviator"])
+def test_dang_van_centres_a_triangular_path_on_its_enclosing_ball(offset):
+    """Three states ``sigma_xx = -sigma_zz = D + R cos w``, ``tau_xz = R sin w``, ``w`` at 90, 210 and 330 degrees:
+    in the coordinates ``((sigma_xx - sigma_zz) / 2, tau_xz)`` the deviator visits an equilateral triangle on the
+    circle of radius ``R`` about ``(D, 0)``, whose enclosing ball is that circle, not the ball on a side
+    (radius ``R sqrt(3) / 2``). About its centre each state has principal stresses ``+-R`` in the plane and 0 out
+    of it, no mean stress: the parameter is ``R``, whatever the mean deviator ``D``."""
+    R, angles = 120e6, np.radians([90.0, 210.0, 330.0])
+    xx, xz = offset + R * np.cos(angles), R * np.sin(angles)
+    result = dang_van(xx, -xx, xz, STEEL, sigma_yy=0 * xx)
+    assert result.parameter == pytest.approx(R, rel=1e-13)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_enclosing_ball_is_the_smallest_that_encloses(seed):
+    """Random clouds in three dimensions, a flat one and one with repeated points. A ball that encloses the points
+    is the smallest exactly when its centre lies in the convex hull of the points on its surface (the optimality
+    condition of the minimax problem): non-negative weights summing to 1 on those points (within 1e-9 of the
+    radius) rebuild the centre, by scipy's NNLS, to 1e-9 of the cloud's size."""
+    from scipy.optimize import nnls
+
+    from fretting.analysis.fatigue import _enclosing_centre
+
+    rng = np.random.default_rng(seed)
+    cloud = rng.normal(size=(rng.integers(5, 40), 3)) * [1.0, 0.5, 0.0 if seed == 4 else 2.0]
+    if seed == 5:
+        cloud = np.concatenate([cloud, cloud[:4]])
+    centre = _enclosing_centre(cloud)
+    distance = np.sqrt(np.sum((cloud - centre) ** 2, axis=1))
+    surface = cloud[distance >= distance.max() * (1 - 1e-9)]
+    weights, residual = nnls(np.vstack([surface.T, np.ones(len(surface))]), np.append(centre, 1.0))
+    assert residual < 1e-9 * distance.max()
+    assert 2 <= len(surface) <= 8 and np.all(weights >= 0)
 
 
 def tension_torsion(sigma_a, tau_a, delay):
@@ -349,17 +404,18 @@ def test_fatemi_socie_life_round_trip_and_fully_reversed_torsion():
 
 @pytest.mark.parametrize(
     ("criterion", "criterion_life"),
-    [(findley, findley_life), (crossland, crossland_life)],
-    ids=["findley", "crossland"],
+    [(findley, findley_life), (crossland, crossland_life), (dang_van, dang_van_life)],
+    ids=["findley", "crossland", "dang_van"],
 )
 def test_stress_lives_are_basquins_curve_in_push_pull(criterion, criterion_life):
     """Fully reversed push-pull of amplitude ``sigma_a = sigma_f' (2N)^b`` (Basquin) lives ``N`` by either
     criterion's relation: the parameter is ``f sigma_a``, with ``f = (sqrt(1 + k^2) + k) / 2`` (Findley,
-    `test_findley_uniaxial`) or ``1 / sqrt(3) + alpha / 3 = t_-1 / f_-1`` (Crossland: ``sqrt(J2)_a = sigma_a /
-    sqrt(3)``, ``sigma_h,max = sigma_a / 3``), and its curve ``f sigma_f' (2 N_f)^b``; ``2N`` is 1.2e6 here."""
+    `test_findley_uniaxial`), ``1 / sqrt(3) + alpha / 3 = t_-1 / f_-1`` (Crossland: ``sqrt(J2)_a = sigma_a /
+    sqrt(3)``, ``sigma_h,max = sigma_a / 3``) or ``1/2 + a/3 = t_-1 / f_-1`` (Dang Van: Tresca ``sigma_a / 2``
+    and ``sigma_h = sigma_a / 3`` at the peak), and its curve ``f sigma_f' (2 N_f)^b``; ``2N`` is 1.2e6 here."""
     m, N = STEEL, 6e5
     k = m.findley_constant()
-    factor = {findley: (math.sqrt(1 + k * k) + k) / 2, crossland: m.tau_limit / m.sigma_limit}[criterion]
+    factor = (math.sqrt(1 + k * k) + k) / 2 if criterion is findley else m.tau_limit / m.sigma_limit
     sigma_a = m.sigma_f * (2 * N) ** m.b
     parameter = criterion(*uniaxial(sigma_a)[:3], m, sigma_yy=ZERO).parameter
     assert parameter == pytest.approx(factor * sigma_a, rel=1e-13)
@@ -404,7 +460,7 @@ def test_life_maps_every_criterion_by_its_relation():
         coords={"z": z, "x": x},
     )
     by_parameter = {"swt": swt_life, "findley": findley_life, "fatemi_socie": fatemi_socie_life}
-    by_parameter["crossland"] = crossland_life
+    by_parameter |= {"crossland": crossland_life, "dang_van": dang_van_life}
     for name in CRITERIA:
         maps = apply(field, name, STEEL)
         lives = life(maps, STEEL)
@@ -519,8 +575,8 @@ def test_apply_maps_a_criterion_over_a_field():
     assert set(invariant) == {"parameter", "amplitude", "sigma_h_max"}
     alpha, _ = STEEL.crossland_constants()
     np.testing.assert_allclose(invariant.parameter, amplitude / math.sqrt(3) + alpha * amplitude / 3, rtol=1e-13)
-    with pytest.raises(ValueError, match="criterion: found 'dang_van', expected one of: swt, findley"):
-        apply(dataset, "dang_van", STEEL)
+    with pytest.raises(ValueError, match="criterion: found 'papadopoulos', expected one of: swt, findley"):
+        apply(dataset, "papadopoulos", STEEL)
     with pytest.raises(ValueError, match="field: expected a variable tau_xz"):
         apply(dataset.drop_vars("tau_xz"), "swt", STEEL)
 

@@ -55,6 +55,13 @@ References
    chapter 4 (critical plane models; the Fatemi-Socie parameter and its shear strain-life curve).
 .. [11] P. Lazzarin and L. Susmel, A stress-based method to predict lifetime under multiaxial fatigue
    loadings, Fatigue Fract. Engng Mater. Struct. 26 (2003) 1171-1187.
+.. [12] K. Dang Van, B. Griveau and O. Message, On a new multiaxial fatigue limit criterion: theory and
+   application, in M. W. Brown and K. J. Miller (eds), Biaxial and Multiaxial Fatigue, EGF 3, Mechanical
+   Engineering Publications, London (1989) 479-496.
+.. [13] I. V. Papadopoulos, P. Davoli, C. Gorla, M. Filippini and A. Bernasconi, A comparative study of
+   multiaxial high-cycle fatigue criteria for metals, International Journal of Fatigue 19 (1997) 219-235.
+.. [14] E. Welzl, Smallest enclosing disks (balls and ellipsoids), in H. Maurer (ed), New Results and
+   New Trends in Computer Science, Lecture Notes in Computer Science 555, Springer (1991) 359-370.
 """
 
 from __future__ import annotations
@@ -92,6 +99,8 @@ __all__ = [
     "apply",
     "crossland",
     "crossland_life",
+    "dang_van",
+    "dang_van_life",
     "fatemi_socie",
     "fatemi_socie_life",
     "findley",
@@ -123,6 +132,10 @@ TIE_RTOL = 1e-9
 
 #: Elements of the arrays of one block of planes: the sample stage's memory bound.
 BLOCK = 2_000_000
+
+#: Relative margin on squared distances within which a point counts as inside a ball (Dang Van's enclosing ball
+#: of the deviatoric path): points on the sphere itself come out a few roundings either side of it.
+ENCLOSED_RTOL = 1e-12
 
 #: Directions sampled over ``[-pi/2, pi/2]`` by the critical distances' ``direction="max"``.
 DIRECTIONS = 181
@@ -284,6 +297,18 @@ class Material:
         f, t = self._required("crossland", "sigma_limit", "tau_limit")
         return 3 * t / f - math.sqrt(3), t
 
+    def dang_van_constants(self) -> tuple[float, float]:
+        """``(a, b)`` of Dang Van's limit ``tau(t) + a sigma_h(t) <= b`` [12].
+
+        ``b = t_-1`` and ``a = 3 (t_-1 / f_-1 - 1/2)``, from fully reversed torsion (``tau = t_-1``,
+        ``sigma_h = 0``) and push-pull (``tau = f_-1 / 2`` and ``sigma_h = f_-1 / 3`` at the peak); ``a >= 0``,
+        so ``f_-1 / t_-1 <= 2``.
+        """
+        f, t = self._required("dang_van", "sigma_limit", "tau_limit")
+        if f / t > 2:
+            raise ValueError(f"material: dang_van needs sigma_limit / tau_limit <= 2 for a >= 0, found {f / t:.6g}")
+        return 3 * (t / f - 0.5), t
+
 
 def _negative(name, value):
     number = finite(name, value)
@@ -323,7 +348,8 @@ class Plane(NamedTuple):
 
 
 class Invariant(NamedTuple):
-    """An invariant criterion at each point: `parameter`, ``sqrt(J2)_a`` (`amplitude`) [Pa], ``sigma_h,max`` [Pa]."""
+    """A criterion on no plane at each point: `parameter`, its shear `amplitude` [Pa] (``sqrt(J2)_a`` for Crossland,
+    the largest mesoscopic shear stress for Dang Van) and the largest mean stress ``sigma_h,max`` [Pa]."""
 
     parameter: np.ndarray
     amplitude: np.ndarray
@@ -378,11 +404,25 @@ def _half_longest_chord(components):
     """Half the longest chord of a path in time (axis 0), of one or more components."""
     if len(components) == 1:
         return _half_range(components[0])
+    return _longest_chord(components, ends=False)[0]
+
+
+def _longest_chord(components, ends=True):
+    """Half the longest chord of a path in time (axis 0) of components ``(time, *points)`` and, with `ends`, the
+    instants of its two ends (else None): arrays of the points' shape."""
     longest = np.zeros(components[0].shape[1:])
+    first = second = np.zeros(longest.shape, dtype=int) if ends else None
     for i in range(components[0].shape[0] - 1):
         squared = sum((part[i + 1 :] - part[i]) ** 2 for part in components)
-        longest = np.maximum(longest, squared.max(axis=0))
-    return np.sqrt(longest) / 2
+        if not ends:
+            longest = np.maximum(longest, squared.max(axis=0))
+            continue
+        later = np.argmax(squared, axis=0)
+        value = np.take_along_axis(squared, later[None], axis=0)[0]
+        better = value > longest
+        longest = np.where(better, value, longest)
+        first, second = np.where(better, i, first), np.where(better, i + 1 + later, second)
+    return np.sqrt(longest) / 2, first, second
 
 
 class _Terms(NamedTuple):
@@ -586,14 +626,67 @@ def _mwcm(terms, material):
     return np.where(sheared, terms.tau_a + kappa * rho, 0.0)
 
 
+def _deviator(history):
+    """The mean stress ``sigma_h`` [Pa] and the deviator in coordinates whose norm is ``sqrt(J2)`` [Pa]:
+    ``((sigma_xx - sigma_zz) / 2, (sqrt(3) / 2) (sigma_yy - sigma_h), tau_xz)``, each ``(time, point)``."""
+    sigma_h = (2 * history.mean + history.sigma_yy) / 3
+    return sigma_h, (history.half, math.sqrt(3) / 2 * (history.sigma_yy - sigma_h), history.tau_xz)
+
+
 def _crossland(history, material):
     alpha, _ = material.crossland_constants()
-    sigma_h = (2 * history.mean + history.sigma_yy) / 3
-    xx, zz = history.mean + history.half, history.mean - history.half
-    deviator = [(part - sigma_h) / math.sqrt(2) for part in (xx, zz, history.sigma_yy)] + [history.tau_xz]
+    sigma_h, deviator = _deviator(history)
     amplitude = _half_longest_chord(deviator)
     sigma_h_max = sigma_h.max(axis=0)
     return Invariant(*(v.reshape(history.shape) for v in (amplitude + alpha * sigma_h_max, amplitude, sigma_h_max)))
+
+
+def _dang_van(history, material):
+    a, _ = material.dang_van_constants()
+    sigma_h, deviator = _deviator(history)
+    path = np.stack(deviator, axis=-1)  # (time, point, 3)
+    half, first, second = _longest_chord(deviator)
+    points = np.arange(path.shape[1])
+    centre = (path[first, points] + path[second, points]) / 2
+    outside = np.sum((path - centre) ** 2, axis=-1).max(axis=0) > half**2 * (1 + ENCLOSED_RTOL)
+    for point in np.flatnonzero(outside):
+        centre[point] = _enclosing_centre(path[:, point])
+    u1, u2, u3 = np.moveaxis(path - centre, -1, 0)
+    s_yy = 2 * u2 / math.sqrt(3)
+    radius = np.hypot(u1, u3)
+    shear = (np.maximum(s_yy, radius - s_yy / 2) - np.minimum(s_yy, -radius - s_yy / 2)) / 2
+    parameter = (shear + a * sigma_h).max(axis=0)
+    return Invariant(*(v.reshape(history.shape) for v in (parameter, shear.max(axis=0), sigma_h.max(axis=0))))
+
+
+def _enclosing_centre(path):
+    """The centre of the smallest ball enclosing the points `path` ``(n, 3)``: the randomised incremental algorithm
+    (Welzl 1991 [14]), the points taken in a fixed shuffled order, at most four on the boundary in three dimensions."""
+    points = path[np.random.default_rng(0).permutation(len(path))]
+
+    def smallest(count, boundary):
+        centre, squared = _ball_through(boundary) if boundary else (points[0], 0.0)
+        if len(boundary) == 4:
+            return centre, squared
+        for i in range(0 if boundary else 1, count):
+            if np.sum((points[i] - centre) ** 2) > squared * (1 + ENCLOSED_RTOL):
+                centre, squared = smallest(i, [*boundary, points[i]])
+        return centre, squared
+
+    return smallest(len(points), [])[0]
+
+
+def _ball_through(boundary):
+    """The smallest ball with every point of `boundary` (1 to 4 points in three dimensions) on its surface: its
+    centre, in their affine hull, and squared radius."""
+    origin = boundary[0]
+    if len(boundary) == 1:
+        return origin, 0.0
+    edges = np.array(boundary[1:]) - origin
+    gram = edges @ edges.T
+    weights = np.linalg.lstsq(2 * gram, np.diag(gram), rcond=None)[0]
+    centre = origin + weights @ edges
+    return centre, float(np.sum((centre - origin) ** 2))
 
 
 def _eps_a(terms, material):
@@ -671,6 +764,16 @@ CRITERIA = {
             "sqrt(J2)_a + alpha sigma_h,max = (1/sqrt(3) + alpha/3) sigma_f' (2 N_f)^b "
             "(Crossland 1956 on Basquin's push-pull curve)",
             invariant=_crossland,
+        ),
+        _Invariant(
+            "dang_van",
+            "Pa",
+            "Dang Van parameter max over t of tau(t) + a sigma_h(t)",
+            "Pa",
+            "largest mesoscopic shear stress (Tresca)",
+            lambda maps, material: dang_van_life(maps.parameter, material),
+            "max_t (tau + a sigma_h) = (1/2 + a/3) sigma_f' (2 N_f)^b (Dang Van 1989 on Basquin's push-pull curve)",
+            invariant=_dang_van,
         ),
     )
 }
@@ -751,6 +854,20 @@ def crossland(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None) -> Invariant:
     return _evaluate("crossland", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes=None)
 
 
+def dang_van(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None) -> Invariant:
+    """Dang Van's parameter ``max over t of tau(t) + a sigma_h(t)`` [Pa], ``a`` of `Material.dang_van_constants` [12].
+
+    ``tau(t)`` is the Tresca shear stress (half the difference of the extreme principal stresses) of the
+    mesoscopic deviator ``s(t) - s*``: the macroscopic deviator less the centre ``s*`` of the smallest ball that
+    encloses its path over the cycle (Papadopoulos et al. [13]), in the norm ``sqrt(J2)``; ``sigma_h`` is the
+    mean stress ``(sigma_xx + sigma_yy + sigma_zz) / 3`` at the same instant. The ball is that on the longest
+    chord of the path where it encloses the path (a proportional or symmetric path), otherwise Welzl's algorithm
+    [14] on the path's points. The fatigue limit is reached where the parameter reaches ``b = t_-1``.
+    `Invariant.amplitude` is the largest ``tau``. Arguments as `swt` (no planes).
+    """
+    return _evaluate("dang_van", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes=None)
+
+
 def swt_life(parameter, material):
     """Cycles to failure ``N_f`` of a Smith-Watson-Topper parameter [Pa], by the strain-life curve [1, 7].
 
@@ -805,6 +922,20 @@ def crossland_life(parameter, material):
     """
     alpha, _ = material.crossland_constants()
     return _basquin_life(parameter, 1 / math.sqrt(3) + alpha / 3, material, "crossland_life")
+
+
+def dang_van_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Dang Van parameter [Pa]: ``max_t (tau + a sigma_h) = (1/2 + a/3) sigma_f'
+    (2 N_f)^b``.
+
+    Dang Van's parameter [12] on Basquin's fully reversed push-pull curve ``sigma_a = sigma_f' (2 N_f)^b`` [7]: at
+    the tensile peak ``tau = sigma_a / 2`` and ``sigma_h = sigma_a / 3`` (``1/2 + a/3 = t_-1 / f_-1`` with ``a``
+    of `Material.dang_van_constants`). Dang Van proposed a fatigue limit, not a life: this is the life at which
+    the parameter reaches that of push-pull on Basquin's curve. Returns and errors as `swt_life` (constants
+    ``sigma_f``, ``b``, ``sigma_limit``, ``tau_limit``).
+    """
+    a, _ = material.dang_van_constants()
+    return _basquin_life(parameter, 0.5 + a / 3, material, "dang_van_life")
 
 
 def mwcm_life(tau_a, sigma_n_max, material):
@@ -874,7 +1005,8 @@ def life(maps, material) -> xr.DataArray:
     """Cycles to failure ``N_f`` at every point of the maps of `apply`, by the S-N relation of their criterion.
 
     The relation of each criterion (`Criterion.life`): `swt_life`, `findley_life`, `fatemi_socie_life`,
-    `mwcm_life` (which reads ``amplitude`` and ``sigma_n_max`` as well as the parameter), `crossland_life`.
+    `mwcm_life` (which reads ``amplitude`` and ``sigma_n_max`` as well as the parameter), `crossland_life`,
+    `dang_van_life`.
 
     Parameters
     ----------
@@ -1035,16 +1167,16 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
         ``sigma_xx``, ``sigma_zz``, ``tau_xz`` [Pa] (and ``sigma_yy``; plane strain when absent) on dims
         ``step`` and the points' dims, e.g. ``(step, z, x)`` as `fretting.analysis.stress.field` returns.
     criterion : str
-        A key of `CRITERIA`: ``swt``, ``findley``, ``fatemi_socie``, ``mwcm``, ``crossland``.
+        A key of `CRITERIA`: ``swt``, ``findley``, ``fatemi_socie``, ``mwcm``, ``crossland``, ``dang_van``.
     material : Material
     planes : {"in-plane", "all"}
-        As `swt` (ignored by a criterion on no plane, ``crossland``).
+        As `swt` (ignored by a criterion on no plane, ``crossland`` and ``dang_van``).
 
     Returns
     -------
     xarray.Dataset
         On the points' dims and coordinates: ``parameter``, ``amplitude``, and ``phi``, ``theta``,
-        ``sigma_n_max`` (critical-plane criteria) or ``sigma_h_max`` (Crossland), with ``units`` and
+        ``sigma_n_max`` (critical-plane criteria) or ``sigma_h_max`` (Crossland, Dang Van), with ``units`` and
         ``long_name``; attributes: the field's (those of `fretting.analysis.stress.field`: ``body``,
         ``bulk_state``, ...) and ``criterion``.
     """
