@@ -5,7 +5,10 @@ Pure functions of a stress history at points: arrays ``sigma_xx``, ``sigma_zz``,
 surface, ``z`` the depth, ``y`` out of the plane; ``tau_xy = tau_yz = 0``, so ``sigma_yy`` is a
 principal stress; plane strain gives ``sigma_yy = nu (sigma_xx + sigma_zz)``, the default). The
 history is taken as one cycle. `apply` maps a criterion over a stress field, a Dataset on dims
-``(step, z, x)``; `point_method` and `line_method` read such a map at a critical distance.
+``(step, z, x)``; `point_method` and `line_method` read such a map at a critical distance. Each
+criterion has a life through a stated S-N relation (`life`). `threshold` runs a contact's history
+over its amplitude of ``Q`` to find where a criterion read at the critical distance reaches its
+fatigue limit or a life.
 
 Planes. A plane is named by its unit normal ``n = (sin(theta) cos(phi), cos(theta), sin(theta)
 sin(phi))`` in ``(x, y, z)``: ``phi`` [rad] from ``+x`` toward ``+z`` (depth), in ``[-pi/2,
@@ -82,6 +85,9 @@ from scipy.interpolate import RegularGridInterpolator
 from scipy.optimize import brentq
 
 from fretting._validate import finite, positive
+from fretting.analysis.nucleation import complete_cycles
+from fretting.analysis.stress import field as stress_field
+from fretting.engine.simulation import simulate
 from fretting.errors import FrettingError
 from fretting.physics.contact import plane_strain_modulus
 
@@ -96,6 +102,9 @@ __all__ = [
     "Material",
     "MaterialFileError",
     "Plane",
+    "THRESHOLD_GRID",
+    "THRESHOLD_XTOL",
+    "Threshold",
     "apply",
     "crossland",
     "crossland_life",
@@ -113,6 +122,7 @@ __all__ = [
     "point_method",
     "swt",
     "swt_life",
+    "threshold",
 ]
 
 #: Planes sampled over ``phi`` in ``[-pi/2, pi/2)`` (0.5 degree apart) before the refine.
@@ -279,6 +289,12 @@ class Material:
         if not 1 < r < 2:
             raise ValueError(f"material: findley needs 1 < sigma_limit / tau_limit < 2 for k, found {r:.6g}")
         return (2 - r) / (2 * math.sqrt(r - 1))
+
+    def findley_limit(self) -> float:
+        """Findley's parameter at the fatigue limit, ``t_-1 sqrt(1 + k^2)`` [Pa]: fully reversed torsion at ``t_-1``."""
+        k = self.findley_constant()
+        (t,) = self._required("findley", "tau_limit")
+        return t * math.sqrt(1 + k * k)
 
     def mwcm_constants(self) -> tuple[float, float]:
         """``(kappa, lambda)`` [Pa] of the MWCM at the fatigue limit, ``tau_a + kappa rho <= lambda`` [4].
@@ -460,6 +476,9 @@ class Criterion(abc.ABC):
         ``(maps, material) -> N_f``: cycles to failure from the maps of `apply` (`life`), by `life_name`.
     life_name : str
         Its S-N relation.
+    limit : callable or None
+        ``material -> value``: the parameter at the fatigue limit [its units]; None for a criterion with none
+        (SWT, Fatemi-Socie: a life only).
     """
 
     name: str
@@ -469,6 +488,7 @@ class Criterion(abc.ABC):
     amplitude_name: str
     life: Callable[[xr.Dataset, Material], np.ndarray]
     life_name: str
+    limit: Callable[[Material], float] | None
 
     @abc.abstractmethod
     def evaluate(self, history: _History, material: Material, planes: str) -> Plane | Invariant:
@@ -714,6 +734,7 @@ CRITERIA = {
             lambda maps, material: swt_life(maps.parameter, material),
             "sigma_n,max eps_a = sigma_f'^2/E (2 N_f)^(2b) + sigma_f' eps_f' (2 N_f)^(b+c) "
             "(Smith, Watson & Topper 1970)",
+            None,
             parameter=_swt,
             amplitude=_eps_a,
             strain=True,
@@ -727,6 +748,7 @@ CRITERIA = {
             lambda maps, material: findley_life(maps.parameter, material),
             "tau_a + k sigma_n,max = (sqrt(1 + k^2) + k)/2 sigma_f' (2 N_f)^b "
             "(Findley 1959 on Basquin's push-pull curve)",
+            lambda material: material.findley_limit(),
             parameter=_findley,
             amplitude=_tau_a,
         ),
@@ -738,6 +760,7 @@ CRITERIA = {
             "engineering shear strain amplitude gamma_a",
             lambda maps, material: fatemi_socie_life(maps.parameter, material),
             "gamma_a (1 + k sigma_n,max/sigma_y) = tau_f'/G (2 N_f)^b0 + gamma_f' (2 N_f)^c0 (Fatemi & Socie 1988)",
+            None,
             parameter=_fatemi_socie,
             amplitude=_gamma_a,
         ),
@@ -750,6 +773,7 @@ CRITERIA = {
             lambda maps, material: mwcm_life(maps.amplitude, maps.sigma_n_max, material),
             "N_f = N_A ((lambda - kappa rho) / tau_a)^(k_0 + (k_1 - k_0) rho), k_0 = -1/b0, k_1 = -1/b "
             "(Lazzarin & Susmel 2003)",
+            lambda material: material.mwcm_constants()[1],
             parameter=_mwcm,
             amplitude=_tau_a,
             plane_by_shear=True,
@@ -763,6 +787,7 @@ CRITERIA = {
             lambda maps, material: crossland_life(maps.parameter, material),
             "sqrt(J2)_a + alpha sigma_h,max = (1/sqrt(3) + alpha/3) sigma_f' (2 N_f)^b "
             "(Crossland 1956 on Basquin's push-pull curve)",
+            lambda material: material.crossland_constants()[1],
             invariant=_crossland,
         ),
         _Invariant(
@@ -773,6 +798,7 @@ CRITERIA = {
             "largest mesoscopic shear stress (Tresca)",
             lambda maps, material: dang_van_life(maps.parameter, material),
             "max_t (tau + a sigma_h) = (1/2 + a/3) sigma_f' (2 N_f)^b (Dang Van 1989 on Basquin's push-pull curve)",
+            lambda material: material.dang_van_constants()[1],
             invariant=_dang_van,
         ),
     )
@@ -1209,3 +1235,143 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
         for name, value in result._asdict().items()
     }
     return xr.Dataset(variables, coords=coords, attrs={**field.attrs, "criterion": criterion})
+
+
+#: Grid of `threshold`'s stress fields: points along ``x`` over ``centre +- SPAN a`` (and the contact's edges), and
+#: depths from 0 to the reach of the reading (``L/2``, ``2 L``), the last at it.
+THRESHOLD_GRID = {"nx": 151, "span": 1.5, "nz": 41}
+
+#: Width of the bracket, in ``f P``, at which `threshold`'s search stops.
+THRESHOLD_XTOL = 1e-6
+
+#: Depth [in ``a``] of the second row of the field that `threshold` reads at the hot spot (the map needs two).
+HOT_SPOT_DEPTH = 0.05
+
+
+class Threshold(NamedTuple):
+    """The result of `threshold`.
+
+    Attributes
+    ----------
+    amplitude : float
+        The amplitude of ``Q`` [N/m] at which the criterion reaches its target.
+    values : xarray.Dataset
+        The criterion's variables read there at the critical distance (``parameter``, ``amplitude``, ...: those of
+        `apply`, read as the parameter), with `apply`'s attributes.
+    runs : int
+        Runs of the history the search took.
+    """
+
+    amplitude: float
+    values: xr.Dataset
+    runs: int
+
+
+def threshold(
+    contact,
+    history,
+    criterion,
+    material,
+    life=None,
+    at="point",
+    bracket=(0.01, 0.99),
+    nu=None,
+    bulk_state="plane strain",
+    model=None,
+) -> Threshold:
+    """The amplitude of ``Q`` at which a criterion, read at the critical distance, reaches its fatigue limit or a life.
+
+    A bracketed search (Brent's method, `scipy.optimize.brentq`, to `THRESHOLD_XTOL` ``f P``) over runs: each
+    runs `history` at an amplitude (`fretting.simulate`), takes the specimen's stress field over the run's last
+    load cycle (`fretting.analysis.stress.field` on `THRESHOLD_GRID`), maps the criterion over it (`apply`) and
+    reads it at `at`: the surface hot spot (`hot_spot`), or the point or line method straight below it
+    (`point_method`, `line_method`, with `Material.critical_distance`). It finds the root of ``value - limit``,
+    the limit that of the criterion (`Criterion.limit`), or with `life` that of ``atan(log(life / N_f))``,
+    ``N_f`` the criterion's life of the values read (`life`; the MWCM's reads ``amplitude`` and
+    ``sigma_n_max`` there as the parameter), which grows with the amplitude and is finite where ``N_f`` is
+    infinite. The criterion must cross its target once between the bracket's ends.
+
+    Parameters
+    ----------
+    contact : fretting.Contact
+    history : callable
+        ``Q_a -> fretting.History``, the load history at the amplitude ``Q_a`` [N/m] of ``Q``, e.g. ``lambda Q_a:
+        History.sinusoidal(Q_a, sigma_a, cycles=2)``; its last load cycle must be recorded whole.
+    criterion : str
+        A key of `CRITERIA`.
+    material : Material
+    life : float, optional
+        Cycles to failure > 0: the amplitude at which the criterion's life is this. By default the one at which
+        it reaches its fatigue limit (SWT and Fatemi-Socie have none: they need a life).
+    at : {"point", "line", "hot spot"}
+        Where the criterion is read.
+    bracket : (float, float)
+        The amplitudes searched between, in ``f P``.
+    nu, bulk_state
+        As `fretting.analysis.stress.field`.
+    model : fretting.models.ModelSpec, optional
+        As `fretting.simulate`.
+
+    Returns
+    -------
+    Threshold
+
+    Raises
+    ------
+    ValueError
+        On an unknown criterion or `at`, a criterion without a fatigue limit and no `life`, a constant the
+        material lacks, or a target the criterion does not cross between the bracket's ends (both values
+        named).
+    """
+    if criterion not in CRITERIA:
+        raise ValueError(f"criterion: found {criterion!r}, expected one of: {', '.join(CRITERIA)}")
+    readings = {"point": (0.5, point_method), "line": (2.0, line_method), "hot spot": (None, None)}
+    if at not in readings:
+        raise ValueError(f"at: found {at!r}, expected 'point', 'line' or 'hot spot'")
+    declared = CRITERIA[criterion]
+    if life is None and declared.limit is None:
+        raise ValueError(f"criterion: {criterion} has no fatigue limit, give a life [cycles]")
+    target = declared.limit(material) if life is None else positive("life", life)
+    L = None if at == "hot spot" else material._required("threshold", "critical_distance")[0]
+    fP = contact.f * contact.P
+    low, high = (fP * positive("bracket", end) for end in bracket)
+    read = {}
+
+    def excess(amplitude):
+        values = _read(contact, history(amplitude), criterion, material, readings[at], L, nu, bulk_state, model)
+        read[amplitude] = values
+        if life is None:
+            return float(values.parameter) - target
+        return math.atan(math.log(target / float(declared.life(values, material))))
+
+    ends = [excess(low), excess(high)]
+    if ends[0] * ends[1] > 0:
+        quantity = "the criterion less its limit" if life is None else "atan(log(life / N_f))"
+        raise ValueError(
+            f"bracket: {quantity} is {ends[0]:.6g} at Q_a = {low:.6g} N/m and {ends[1]:.6g} at {high:.6g} N/m, "
+            f"expected a change of sign between them"
+        )
+    amplitude = brentq(excess, low, high, xtol=THRESHOLD_XTOL * fP)
+    if amplitude not in read:
+        excess(amplitude)
+    return Threshold(float(amplitude), read[amplitude], len(read))
+
+
+def _read(contact, history, criterion, material, reading, L, nu, bulk_state, model):
+    """The criterion's variables over the last load cycle of a run of `history`, read at the hot spot (`L` None) or
+    by `reading`, ``(fraction, method)``: `point_method` or `line_method`, whose reach is ``fraction L``."""
+    fraction, method = reading
+    result = simulate(contact, history, model)
+    rows = complete_cycles(result)[-1]
+    if rows is None:
+        raise ValueError("history: its last load cycle is not recorded whole, expected every step of it recorded")
+    a, centre = result.attrs["a"], result.attrs["centre"]
+    x = centre + a * np.linspace(-THRESHOLD_GRID["span"], THRESHOLD_GRID["span"], THRESHOLD_GRID["nx"])
+    z = np.array([0.0, HOT_SPOT_DEPTH * a]) if L is None else np.linspace(0.0, fraction * L, THRESHOLD_GRID["nz"])
+    stresses = stress_field(result, x, z, step=result.step.values[rows].tolist(), nu=nu, bulk_state=bulk_state)
+    maps = apply(stresses, criterion, material)
+    _, x_hot = hot_spot(maps.parameter)
+    if L is None:
+        return maps.sel(x=x_hot).isel(z=0, drop=True)
+    values = {name: ((), method(maps[name], L, x_hot=x_hot).value, maps[name].attrs) for name in maps.data_vars}
+    return xr.Dataset(values, coords={"x": x_hot}, attrs=maps.attrs)
