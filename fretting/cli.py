@@ -16,8 +16,16 @@ from tqdm import tqdm
 from fretting import __version__
 from fretting._validate import positive
 from fretting.analysis import nucleation
-from fretting.analysis.fatigue import CRITERIA, Material, MaterialFileError, apply, line_method, point_method
-from fretting.analysis.stress import COMPONENTS, field
+from fretting.analysis.fatigue import (
+    CRITERIA,
+    Material,
+    MaterialFileError,
+    apply,
+    hot_spot,
+    line_method,
+    point_method,
+)
+from fretting.analysis.stress import BULK_STATES, COMPONENTS, field
 from fretting.engine.recorder import (
     CYCLE_FIELDS_EXPECTED,
     CYCLE_FIELDS_STORED,
@@ -222,6 +230,13 @@ def _stress_parser(commands, common, figures):
     )
     stress.add_argument("--nu", type=float, help="Poisson's ratio (default: the nu the result records)")
     stress.add_argument(
+        "--bulk-state",
+        choices=tuple(state.replace(" ", "-") for state in BULK_STATES),
+        default="plane-strain",
+        help="state of the specimen's bulk stress: plane-strain (held across its width, the default) or "
+        "plane-stress (free across it, as a bar in tension); the contact's field is in plane strain either way",
+    )
+    stress.add_argument(
         "--material",
         metavar="FILE",
         help="material file (TOML, keys of fretting.analysis.fatigue.Material): map fatigue criteria over the steps, "
@@ -385,13 +400,25 @@ def _stress(args):
     specimen = nucleation.specimen(result)
     body = specimen if args.body == "specimen" else 3 - specimen
     try:
-        stresses = field(result, x, z, step=args.step or _last_cycle(result), body=body, nu=args.nu)
+        stresses = field(
+            result,
+            x,
+            z,
+            step=args.step or _last_cycle(result),
+            body=body,
+            nu=args.nu,
+            bulk_state=args.bulk_state.replace("-", " "),
+        )
     except ValueError as error:
         raise ResultError(f"{args.file}: {error}") from None
     written = xr.merge([stresses, *(_criterion_map(stresses, name, material, args.material) for name in criteria)])
     output = Path(args.output or Path(args.file).with_name(f"{Path(args.file).stem}_stress.h5"))
     save(written, output)
-    print(f"{output}: {stresses.sizes['step']} steps, {args.nz} x {args.nx} points, body {body} ({args.body})")
+    print(
+        f"{output}: {stresses.sizes['step']} steps, {stresses.sizes['z']} x {stresses.sizes['x']} points, "
+        f"body {body} ({args.body}), "
+        f"bulk stress in {stresses.attrs['bulk_state']}"
+    )
     for name in criteria:
         print(_critical_distances(name, written[name]))
     if args.figure:
@@ -433,10 +460,8 @@ def _criterion_map(stresses, name, material, path):
 def _distances(parameter, material, path):
     """The surface hot spot, and the point and line methods below it (`fretting.analysis.fatigue`) when the material
     gives ``L``, as attributes [the parameter's units, m]."""
-    surface = parameter.isel(z=0)
-    hot = int(np.nanargmax(surface.values))
-    x_hot = float(surface.x[hot])
-    attributes = {"hot_spot": float(surface[hot]), "x_hot": x_hot}
+    value, x_hot = hot_spot(parameter)
+    attributes = {"hot_spot": value, "x_hot": x_hot}
     L = material.critical_distance
     if L is None:
         return attributes

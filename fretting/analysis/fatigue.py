@@ -5,7 +5,10 @@ Pure functions of a stress history at points: arrays ``sigma_xx``, ``sigma_zz``,
 surface, ``z`` the depth, ``y`` out of the plane; ``tau_xy = tau_yz = 0``, so ``sigma_yy`` is a
 principal stress; plane strain gives ``sigma_yy = nu (sigma_xx + sigma_zz)``, the default). The
 history is taken as one cycle. `apply` maps a criterion over a stress field, a Dataset on dims
-``(step, z, x)``; `point_method` and `line_method` read such a map at a critical distance.
+``(step, z, x)``; `point_method` and `line_method` read such a map at a critical distance. Each
+criterion has a life through a stated S-N relation (`life`). `threshold` runs a contact's history
+over its amplitude of ``Q`` to find where a criterion read at the critical distance reaches its
+fatigue limit or a life.
 
 Planes. A plane is named by its unit normal ``n = (sin(theta) cos(phi), cos(theta), sin(theta)
 sin(phi))`` in ``(x, y, z)``: ``phi`` [rad] from ``+x`` toward ``+z`` (depth), in ``[-pi/2,
@@ -51,6 +54,17 @@ References
    Journal of Fatigue 21 (1999) 413-420.
 .. [9] J. A. Araujo and D. Nowell, The effect of rapidly varying contact stress fields on
    fretting fatigue, International Journal of Fatigue 24 (2002) 763-775.
+.. [10] D. F. Socie and G. B. Marquis, Multiaxial Fatigue, SAE International, Warrendale (2000),
+   chapter 4 (critical plane models; the Fatemi-Socie parameter and its shear strain-life curve).
+.. [11] P. Lazzarin and L. Susmel, A stress-based method to predict lifetime under multiaxial fatigue
+   loadings, Fatigue Fract. Engng Mater. Struct. 26 (2003) 1171-1187.
+.. [12] K. Dang Van, B. Griveau and O. Message, On a new multiaxial fatigue limit criterion: theory and
+   application, in M. W. Brown and K. J. Miller (eds), Biaxial and Multiaxial Fatigue, EGF 3, Mechanical
+   Engineering Publications, London (1989) 479-496.
+.. [13] I. V. Papadopoulos, P. Davoli, C. Gorla, M. Filippini and A. Bernasconi, A comparative study of
+   multiaxial high-cycle fatigue criteria for metals, International Journal of Fatigue 19 (1997) 219-235.
+.. [14] E. Welzl, Smallest enclosing disks (balls and ellipsoids), in H. Maurer (ed), New Results and
+   New Trends in Computer Science, Lecture Notes in Computer Science 555, Springer (1991) 359-370.
 """
 
 from __future__ import annotations
@@ -71,6 +85,9 @@ from scipy.interpolate import RegularGridInterpolator
 from scipy.optimize import brentq
 
 from fretting._validate import finite, positive
+from fretting.analysis.nucleation import complete_cycles
+from fretting.analysis.stress import field as stress_field
+from fretting.engine.simulation import simulate
 from fretting.errors import FrettingError
 from fretting.physics.contact import plane_strain_modulus
 
@@ -85,15 +102,27 @@ __all__ = [
     "Material",
     "MaterialFileError",
     "Plane",
+    "THRESHOLD_GRID",
+    "THRESHOLD_XTOL",
+    "Threshold",
     "apply",
     "crossland",
+    "crossland_life",
+    "dang_van",
+    "dang_van_life",
     "fatemi_socie",
+    "fatemi_socie_life",
     "findley",
+    "findley_life",
+    "hot_spot",
+    "life",
     "line_method",
     "mwcm",
+    "mwcm_life",
     "point_method",
     "swt",
     "swt_life",
+    "threshold",
 ]
 
 #: Planes sampled over ``phi`` in ``[-pi/2, pi/2)`` (0.5 degree apart) before the refine.
@@ -114,11 +143,12 @@ TIE_RTOL = 1e-9
 #: Elements of the arrays of one block of planes: the sample stage's memory bound.
 BLOCK = 2_000_000
 
+#: Relative margin on squared distances within which a point counts as inside a ball (Dang Van's enclosing ball
+#: of the deviatoric path): points on the sphere itself come out a few roundings either side of it.
+ENCLOSED_RTOL = 1e-12
+
 #: Directions sampled over ``[-pi/2, pi/2]`` by the critical distances' ``direction="max"``.
 DIRECTIONS = 181
-
-#: Points of the trapezoid rule of the line method per grid cell crossed (at least 64 in all).
-LINE_POINTS_PER_CELL = 8
 
 
 class MaterialFileError(FrettingError, ValueError):
@@ -150,6 +180,14 @@ class Material:
         Findley's normal stress sensitivity ``k`` >= 0 [2].
     fs_k, sigma_y : float, optional
         Fatemi-Socie's ``k`` >= 0 and the yield stress ``sigma_y`` [Pa] > 0 that normalises it [3].
+    tau_f, b0, gamma_f, c0 : float, optional
+        Shear strain-life constants [3, 10]: shear fatigue strength coefficient ``tau_f'`` [Pa] > 0 and
+        exponent ``b0`` < 0 (the fully reversed torsion Basquin curve ``tau_a = tau_f' (2 N_f)^b0``), shear
+        fatigue ductility coefficient ``gamma_f'`` > 0 and exponent ``c0`` < 0 (`fatemi_socie_life`; ``b0``
+        also `mwcm_life`).
+    N_A : float, optional
+        Cycles > 0 at which the fatigue limits `sigma_limit` and `tau_limit` are taken, the reference life
+        of the MWCM's curves [11] (`mwcm_life`), commonly 2e6.
     critical_distance : float, optional
         ``L`` [m] > 0 of the theory of critical distances [8], commonly
         ``(1/pi) (Delta K_th / Delta sigma_0)^2``.
@@ -171,13 +209,19 @@ class Material:
     findley_k: float | None = None
     fs_k: float | None = None
     sigma_y: float | None = None
+    tau_f: float | None = None
+    b0: float | None = None
+    gamma_f: float | None = None
+    c0: float | None = None
+    N_A: float | None = None
     critical_distance: float | None = None
 
     def __post_init__(self):
         plane_strain_modulus(self.E, self.nu)  # checks E and nu as a contact's
-        for name in ("sigma_f", "eps_f", "sigma_limit", "tau_limit", "sigma_y", "critical_distance"):
+        for name in ("sigma_f", "eps_f", "sigma_limit", "tau_limit", "sigma_y", "tau_f", "gamma_f", "N_A"):
             self._check(name, positive)
-        for name in ("b", "c"):
+        self._check("critical_distance", positive)
+        for name in ("b", "c", "b0", "c0"):
             self._check(name, _negative)
         for name in ("findley_k", "fs_k"):
             self._check(name, _non_negative)
@@ -246,6 +290,12 @@ class Material:
             raise ValueError(f"material: findley needs 1 < sigma_limit / tau_limit < 2 for k, found {r:.6g}")
         return (2 - r) / (2 * math.sqrt(r - 1))
 
+    def findley_limit(self) -> float:
+        """Findley's parameter at the fatigue limit, ``t_-1 sqrt(1 + k^2)`` [Pa]: fully reversed torsion at ``t_-1``."""
+        k = self.findley_constant()
+        (t,) = self._required("findley", "tau_limit")
+        return t * math.sqrt(1 + k * k)
+
     def mwcm_constants(self) -> tuple[float, float]:
         """``(kappa, lambda)`` [Pa] of the MWCM at the fatigue limit, ``tau_a + kappa rho <= lambda`` [4].
 
@@ -262,6 +312,18 @@ class Material:
         """
         f, t = self._required("crossland", "sigma_limit", "tau_limit")
         return 3 * t / f - math.sqrt(3), t
+
+    def dang_van_constants(self) -> tuple[float, float]:
+        """``(a, b)`` of Dang Van's limit ``tau(t) + a sigma_h(t) <= b`` [12].
+
+        ``b = t_-1`` and ``a = 3 (t_-1 / f_-1 - 1/2)``, from fully reversed torsion (``tau = t_-1``,
+        ``sigma_h = 0``) and push-pull (``tau = f_-1 / 2`` and ``sigma_h = f_-1 / 3`` at the peak); ``a >= 0``,
+        so ``f_-1 / t_-1 <= 2``.
+        """
+        f, t = self._required("dang_van", "sigma_limit", "tau_limit")
+        if f / t > 2:
+            raise ValueError(f"material: dang_van needs sigma_limit / tau_limit <= 2 for a >= 0, found {f / t:.6g}")
+        return 3 * (t / f - 0.5), t
 
 
 def _negative(name, value):
@@ -302,7 +364,8 @@ class Plane(NamedTuple):
 
 
 class Invariant(NamedTuple):
-    """An invariant criterion at each point: `parameter`, ``sqrt(J2)_a`` (`amplitude`) [Pa], ``sigma_h,max`` [Pa]."""
+    """A criterion on no plane at each point: `parameter`, its shear `amplitude` [Pa] (``sqrt(J2)_a`` for Crossland,
+    the largest mesoscopic shear stress for Dang Van) and the largest mean stress ``sigma_h,max`` [Pa]."""
 
     parameter: np.ndarray
     amplitude: np.ndarray
@@ -357,11 +420,25 @@ def _half_longest_chord(components):
     """Half the longest chord of a path in time (axis 0), of one or more components."""
     if len(components) == 1:
         return _half_range(components[0])
+    return _longest_chord(components, ends=False)[0]
+
+
+def _longest_chord(components, ends=True):
+    """Half the longest chord of a path in time (axis 0) of components ``(time, *points)`` and, with `ends`, the
+    instants of its two ends (else None): arrays of the points' shape."""
     longest = np.zeros(components[0].shape[1:])
+    first = second = np.zeros(longest.shape, dtype=int) if ends else None
     for i in range(components[0].shape[0] - 1):
         squared = sum((part[i + 1 :] - part[i]) ** 2 for part in components)
-        longest = np.maximum(longest, squared.max(axis=0))
-    return np.sqrt(longest) / 2
+        if not ends:
+            longest = np.maximum(longest, squared.max(axis=0))
+            continue
+        later = np.argmax(squared, axis=0)
+        value = np.take_along_axis(squared, later[None], axis=0)[0]
+        better = value > longest
+        longest = np.where(better, value, longest)
+        first, second = np.where(better, i, first), np.where(better, i + 1 + later, second)
+    return np.sqrt(longest) / 2, first, second
 
 
 class _Terms(NamedTuple):
@@ -395,6 +472,13 @@ class Criterion(abc.ABC):
         Of its parameter.
     amplitude_units, amplitude_name : str
         Of its amplitude.
+    life : callable
+        ``(maps, material) -> N_f``: cycles to failure from the maps of `apply` (`life`), by `life_name`.
+    life_name : str
+        Its S-N relation.
+    limit : callable or None
+        ``material -> value``: the parameter at the fatigue limit [its units]; None for a criterion with none
+        (SWT, Fatemi-Socie: a life only).
     """
 
     name: str
@@ -402,6 +486,9 @@ class Criterion(abc.ABC):
     long_name: str
     amplitude_units: str
     amplitude_name: str
+    life: Callable[[xr.Dataset, Material], np.ndarray]
+    life_name: str
+    limit: Callable[[Material], float] | None
 
     @abc.abstractmethod
     def evaluate(self, history: _History, material: Material, planes: str) -> Plane | Invariant:
@@ -549,7 +636,7 @@ def _findley(terms, material):
 
 def _fatemi_socie(terms, material):
     k, sigma_y = material._required("fatemi_socie", "fs_k", "sigma_y")
-    return terms.tau_a / material.G / 2 * (1 + k * terms.sigma_n_max / sigma_y)
+    return terms.tau_a / material.G * (1 + k * terms.sigma_n_max / sigma_y)
 
 
 def _mwcm(terms, material):
@@ -559,14 +646,67 @@ def _mwcm(terms, material):
     return np.where(sheared, terms.tau_a + kappa * rho, 0.0)
 
 
+def _deviator(history):
+    """The mean stress ``sigma_h`` [Pa] and the deviator in coordinates whose norm is ``sqrt(J2)`` [Pa]:
+    ``((sigma_xx - sigma_zz) / 2, (sqrt(3) / 2) (sigma_yy - sigma_h), tau_xz)``, each ``(time, point)``."""
+    sigma_h = (2 * history.mean + history.sigma_yy) / 3
+    return sigma_h, (history.half, math.sqrt(3) / 2 * (history.sigma_yy - sigma_h), history.tau_xz)
+
+
 def _crossland(history, material):
     alpha, _ = material.crossland_constants()
-    sigma_h = (2 * history.mean + history.sigma_yy) / 3
-    xx, zz = history.mean + history.half, history.mean - history.half
-    deviator = [(part - sigma_h) / math.sqrt(2) for part in (xx, zz, history.sigma_yy)] + [history.tau_xz]
+    sigma_h, deviator = _deviator(history)
     amplitude = _half_longest_chord(deviator)
     sigma_h_max = sigma_h.max(axis=0)
     return Invariant(*(v.reshape(history.shape) for v in (amplitude + alpha * sigma_h_max, amplitude, sigma_h_max)))
+
+
+def _dang_van(history, material):
+    a, _ = material.dang_van_constants()
+    sigma_h, deviator = _deviator(history)
+    path = np.stack(deviator, axis=-1)  # (time, point, 3)
+    half, first, second = _longest_chord(deviator)
+    points = np.arange(path.shape[1])
+    centre = (path[first, points] + path[second, points]) / 2
+    outside = np.sum((path - centre) ** 2, axis=-1).max(axis=0) > half**2 * (1 + ENCLOSED_RTOL)
+    for point in np.flatnonzero(outside):
+        centre[point] = _enclosing_centre(path[:, point])
+    u1, u2, u3 = np.moveaxis(path - centre, -1, 0)
+    s_yy = 2 * u2 / math.sqrt(3)
+    radius = np.hypot(u1, u3)
+    shear = (np.maximum(s_yy, radius - s_yy / 2) - np.minimum(s_yy, -radius - s_yy / 2)) / 2
+    parameter = (shear + a * sigma_h).max(axis=0)
+    return Invariant(*(v.reshape(history.shape) for v in (parameter, shear.max(axis=0), sigma_h.max(axis=0))))
+
+
+def _enclosing_centre(path):
+    """The centre of the smallest ball enclosing the points `path` ``(n, 3)``: the randomised incremental algorithm
+    (Welzl 1991 [14]), the points taken in a fixed shuffled order, at most four on the boundary in three dimensions."""
+    points = path[np.random.default_rng(0).permutation(len(path))]
+
+    def smallest(count, boundary):
+        centre, squared = _ball_through(boundary) if boundary else (points[0], 0.0)
+        if len(boundary) == 4:
+            return centre, squared
+        for i in range(0 if boundary else 1, count):
+            if np.sum((points[i] - centre) ** 2) > squared * (1 + ENCLOSED_RTOL):
+                centre, squared = smallest(i, [*boundary, points[i]])
+        return centre, squared
+
+    return smallest(len(points), [])[0]
+
+
+def _ball_through(boundary):
+    """The smallest ball with every point of `boundary` (1 to 4 points in three dimensions) on its surface: its
+    centre, in their affine hull, and squared radius."""
+    origin = boundary[0]
+    if len(boundary) == 1:
+        return origin, 0.0
+    edges = np.array(boundary[1:]) - origin
+    gram = edges @ edges.T
+    weights = np.linalg.lstsq(2 * gram, np.diag(gram), rcond=None)[0]
+    centre = origin + weights @ edges
+    return centre, float(np.sum((centre - origin) ** 2))
 
 
 def _eps_a(terms, material):
@@ -591,6 +731,10 @@ CRITERIA = {
             "Smith-Watson-Topper parameter sigma_n,max eps_a",
             "1",
             "normal strain amplitude eps_a",
+            lambda maps, material: swt_life(maps.parameter, material),
+            "sigma_n,max eps_a = sigma_f'^2/E (2 N_f)^(2b) + sigma_f' eps_f' (2 N_f)^(b+c) "
+            "(Smith, Watson & Topper 1970)",
+            None,
             parameter=_swt,
             amplitude=_eps_a,
             strain=True,
@@ -601,15 +745,22 @@ CRITERIA = {
             "Findley parameter tau_a + k sigma_n,max",
             "Pa",
             "shear stress amplitude tau_a",
+            lambda maps, material: findley_life(maps.parameter, material),
+            "tau_a + k sigma_n,max = (sqrt(1 + k^2) + k)/2 sigma_f' (2 N_f)^b "
+            "(Findley 1959 on Basquin's push-pull curve)",
+            lambda material: material.findley_limit(),
             parameter=_findley,
             amplitude=_tau_a,
         ),
         _OnPlane(
             "fatemi_socie",
             "1",
-            "Fatemi-Socie parameter gamma_a/2 (1 + k sigma_n,max/sigma_y)",
+            "Fatemi-Socie parameter gamma_a (1 + k sigma_n,max/sigma_y), gamma_a = Delta gamma_max / 2",
             "1",
             "engineering shear strain amplitude gamma_a",
+            lambda maps, material: fatemi_socie_life(maps.parameter, material),
+            "gamma_a (1 + k sigma_n,max/sigma_y) = tau_f'/G (2 N_f)^b0 + gamma_f' (2 N_f)^c0 (Fatemi & Socie 1988)",
+            None,
             parameter=_fatemi_socie,
             amplitude=_gamma_a,
         ),
@@ -619,6 +770,10 @@ CRITERIA = {
             "MWCM equivalent shear tau_a + kappa rho",
             "Pa",
             "shear stress amplitude tau_a",
+            lambda maps, material: mwcm_life(maps.amplitude, maps.sigma_n_max, material),
+            "N_f = N_A ((lambda - kappa rho) / tau_a)^(k_0 + (k_1 - k_0) rho), k_0 = -1/b0, k_1 = -1/b "
+            "(Lazzarin & Susmel 2003)",
+            lambda material: material.mwcm_constants()[1],
             parameter=_mwcm,
             amplitude=_tau_a,
             plane_by_shear=True,
@@ -629,7 +784,22 @@ CRITERIA = {
             "Crossland parameter sqrt(J2)_a + alpha sigma_h,max",
             "Pa",
             "sqrt(J2) amplitude",
+            lambda maps, material: crossland_life(maps.parameter, material),
+            "sqrt(J2)_a + alpha sigma_h,max = (1/sqrt(3) + alpha/3) sigma_f' (2 N_f)^b "
+            "(Crossland 1956 on Basquin's push-pull curve)",
+            lambda material: material.crossland_constants()[1],
             invariant=_crossland,
+        ),
+        _Invariant(
+            "dang_van",
+            "Pa",
+            "Dang Van parameter max over t of tau(t) + a sigma_h(t)",
+            "Pa",
+            "largest mesoscopic shear stress (Tresca)",
+            lambda maps, material: dang_van_life(maps.parameter, material),
+            "max_t (tau + a sigma_h) = (1/2 + a/3) sigma_f' (2 N_f)^b (Dang Van 1989 on Basquin's push-pull curve)",
+            lambda material: material.dang_van_constants()[1],
+            invariant=_dang_van,
         ),
     )
 }
@@ -673,10 +843,15 @@ def findley(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plan
 
 
 def fatemi_socie(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None, planes="in-plane") -> Plane:
-    """Fatemi-Socie parameter ``gamma_a / 2 (1 + k sigma_n,max / sigma_y)`` [1] on its critical plane [3].
+    """Fatemi-Socie parameter ``(Delta gamma_max / 2) (1 + k sigma_n,max / sigma_y)`` on its critical plane [3].
 
-    ``gamma_a`` is the elastic engineering shear strain amplitude ``tau_a / G``; the critical plane is the one
-    of largest parameter. Needs `Material.fs_k` and `Material.sigma_y`. Arguments as `swt`.
+    ``Delta gamma_max / 2 = gamma_a`` is the amplitude (half the range) of the engineering shear strain on the
+    plane, ``gamma = 2 eps_nt = tau / G`` (elastic), as Fatemi & Socie define it [3, 10]: under uniaxial
+    elastic loading ``gamma_a = (1 + nu) eps_a``, the amplitude of the difference of the largest and smallest
+    principal strains, not half of it. ``sigma_n,max`` [Pa] is the largest normal stress on the plane over the
+    cycle. The critical plane is the one of largest parameter; Fatemi & Socie take the plane of largest
+    ``gamma_a`` and read ``sigma_n,max`` on it, which gives at most as much. Needs `Material.fs_k` and
+    `Material.sigma_y`. Arguments as `swt`.
     """
     return _evaluate("fatemi_socie", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes)
 
@@ -705,30 +880,143 @@ def crossland(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None) -> Invariant:
     return _evaluate("crossland", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes=None)
 
 
+def dang_van(sigma_xx, sigma_zz, tau_xz, material, sigma_yy=None) -> Invariant:
+    """Dang Van's parameter ``max over t of tau(t) + a sigma_h(t)`` [Pa], ``a`` of `Material.dang_van_constants` [12].
+
+    ``tau(t)`` is the Tresca shear stress (half the difference of the extreme principal stresses) of the
+    mesoscopic deviator ``s(t) - s*``: the macroscopic deviator less the centre ``s*`` of the smallest ball that
+    encloses its path over the cycle (Papadopoulos et al. [13]), in the norm ``sqrt(J2)``; ``sigma_h`` is the
+    mean stress ``(sigma_xx + sigma_yy + sigma_zz) / 3`` at the same instant. The ball is that on the longest
+    chord of the path where it encloses the path (a proportional or symmetric path), otherwise Welzl's algorithm
+    [14] on the path's points. The fatigue limit is reached where the parameter reaches ``b = t_-1``.
+    `Invariant.amplitude` is the largest ``tau``. Arguments as `swt` (no planes).
+    """
+    return _evaluate("dang_van", sigma_xx, sigma_zz, tau_xz, material, sigma_yy, planes=None)
+
+
 def swt_life(parameter, material):
     """Cycles to failure ``N_f`` of a Smith-Watson-Topper parameter [Pa], by the strain-life curve [1, 7].
 
-    Solves ``sigma_f'^2 / E (2 N_f)^(2 b) + sigma_f' eps_f' (2 N_f)^(b + c) = parameter`` for ``log(2 N_f)``
-    (brentq, to rounding); the left side falls from ``2 N_f = 1`` on. Returns ``inf`` where the parameter is
-    <= 0, an array of the parameter's shape (a float for a number).
+    ``sigma_n,max eps_a = sigma_f'^2 / E (2 N_f)^(2 b) + sigma_f' eps_f' (2 N_f)^(b + c)``: Basquin's and
+    Coffin-Manson's curves in the form of Smith, Watson & Topper [1]. Solved for ``log(2 N_f)`` (brentq, to
+    rounding). Returns ``inf`` where the parameter is <= 0, an array of the parameter's shape (a float for a
+    number).
 
     Raises
     ------
     ValueError
-        When the material lacks the strain-life constants, or a parameter exceeds the curve at
+        When the material lacks ``sigma_f``, ``b``, ``eps_f`` or ``c``, or a parameter exceeds the curve at
         ``2 N_f = 1``.
     """
     sigma_f, b, eps_f, c = material._required("swt_life", "sigma_f", "b", "eps_f", "c")
+    return _curve_life(parameter, ((sigma_f**2 / material.E, 2 * b), (sigma_f * eps_f, b + c)), " Pa")
+
+
+def fatemi_socie_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Fatemi-Socie parameter (dimensionless), by the shear strain-life curve [3, 10].
+
+    ``gamma_a (1 + k sigma_n,max / sigma_y) = tau_f' / G (2 N_f)^b0 + gamma_f' (2 N_f)^c0``, ``gamma_a`` the
+    engineering shear strain amplitude (`fatemi_socie`), ``G`` `Material.G`: the torsional Basquin and
+    Coffin-Manson curves, which the parameter reduces to in fully reversed torsion (``sigma_n,max = 0`` on the
+    planes of largest shear). Solved as `swt_life`, whose returns and errors it shares (constants ``tau_f``,
+    ``b0``, ``gamma_f``, ``c0``).
+    """
+    tau_f, b0, gamma_f, c0 = material._required("fatemi_socie_life", "tau_f", "b0", "gamma_f", "c0")
+    return _curve_life(parameter, ((tau_f / material.G, b0), (gamma_f, c0)), "")
+
+
+def findley_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Findley parameter [Pa]: ``tau_a + k sigma_n,max = f_k sigma_f' (2 N_f)^b``.
+
+    A Basquin line in the parameter, ``tau_f* (2 N_f)^b`` [2, 7, 10], its coefficient that of fully reversed
+    push-pull on Basquin's curve ``sigma_a = sigma_f' (2 N_f)^b``: there Findley's parameter is ``f_k
+    sigma_a``, ``f_k = (sqrt(1 + k^2) + k) / 2`` (`Material.findley_constant`). Returns and errors as
+    `swt_life` (constants ``sigma_f``, ``b``, and those of ``k``).
+    """
+    k = material.findley_constant()
+    return _basquin_life(parameter, (math.sqrt(1 + k * k) + k) / 2, material, "findley_life")
+
+
+def crossland_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Crossland parameter [Pa]: ``sqrt(J2)_a + alpha sigma_h,max = f_c sigma_f'
+    (2 N_f)^b``.
+
+    Crossland's parameter [6] on Basquin's fully reversed push-pull curve ``sigma_a = sigma_f' (2 N_f)^b`` [7]:
+    there ``sqrt(J2)_a = sigma_a / sqrt(3)`` and ``sigma_h,max = sigma_a / 3``, so ``f_c = 1 / sqrt(3) + alpha /
+    3`` (``t_-1 / f_-1`` with ``alpha`` of `Material.crossland_constants`). Returns and errors as `swt_life`
+    (constants ``sigma_f``, ``b``, ``sigma_limit``, ``tau_limit``).
+    """
+    alpha, _ = material.crossland_constants()
+    return _basquin_life(parameter, 1 / math.sqrt(3) + alpha / 3, material, "crossland_life")
+
+
+def dang_van_life(parameter, material):
+    """Cycles to failure ``N_f`` of a Dang Van parameter [Pa]: ``max_t (tau + a sigma_h) = (1/2 + a/3) sigma_f'
+    (2 N_f)^b``.
+
+    Dang Van's parameter [12] on Basquin's fully reversed push-pull curve ``sigma_a = sigma_f' (2 N_f)^b`` [7]: at
+    the tensile peak ``tau = sigma_a / 2`` and ``sigma_h = sigma_a / 3`` (``1/2 + a/3 = t_-1 / f_-1`` with ``a``
+    of `Material.dang_van_constants`). Dang Van proposed a fatigue limit, not a life: this is the life at which
+    the parameter reaches that of push-pull on Basquin's curve. Returns and errors as `swt_life` (constants
+    ``sigma_f``, ``b``, ``sigma_limit``, ``tau_limit``).
+    """
+    a, _ = material.dang_van_constants()
+    return _basquin_life(parameter, 0.5 + a / 3, material, "dang_van_life")
+
+
+def mwcm_life(tau_a, sigma_n_max, material):
+    """Cycles to failure ``N_f`` by the modified Woehler curve method: ``N_f = N_A (tau_ref(rho) / tau_a)^k(rho)``.
+
+    Lazzarin & Susmel [11]: on the critical plane (`mwcm`), with ``rho = sigma_n,max / tau_a``, the Woehler
+    curve of shear amplitude ``tau_a`` [Pa] has at ``N_A`` cycles the strength ``tau_ref(rho) = lambda - kappa
+    rho`` (`Material.mwcm_constants`: ``t_-1`` in torsion, ``rho = 0``, ``f_-1 / 2`` in push-pull, ``rho = 1``)
+    and the inverse slope ``k(rho) = k_0 + (k_1 - k_0) rho``, linear between those of the torsion curve,
+    ``k_0 = -1 / b0``, and of the push-pull curve, ``k_1 = -1 / b``. Returns ``inf`` where ``tau_a = 0``, an
+    array of the arguments' broadcast shape (a float for numbers).
+
+    Raises
+    ------
+    ValueError
+        When the material lacks ``sigma_limit``, ``tau_limit``, ``b``, ``b0`` or ``N_A``; where ``rho`` leaves
+        the curves' range (``tau_ref(rho) <= 0`` or ``k(rho) <= 0``); or where the curve gives ``2 N_f < 1``.
+    """
+    kappa, lam = material.mwcm_constants()
+    b, b0, N_A = material._required("mwcm_life", "b", "b0", "N_A")
+    tau_a, sigma_n_max = np.broadcast_arrays(np.asarray(tau_a, dtype=float), np.asarray(sigma_n_max, dtype=float))
+    sheared = tau_a > 0
+    rho = np.divide(sigma_n_max, tau_a, out=np.zeros_like(tau_a), where=sheared)
+    reference, inverse_slope = lam - kappa * rho, -1 / b0 + (1 / b0 - 1 / b) * rho
+    outside = sheared & ((reference <= 0) | (inverse_slope <= 0))
+    if outside.any():
+        raise ValueError(
+            f"rho: found {rho[outside].flat[0]:.6g}, outside the MWCM's curves (tau_ref = lambda - kappa rho > 0 and "
+            f"k = k_0 + (k_1 - k_0) rho > 0)"
+        )
+    ratio = np.divide(reference, tau_a, out=np.ones_like(tau_a), where=sheared)
+    lives = np.where(sheared, N_A * ratio**inverse_slope, np.inf)
+    if np.any(lives < 0.5):
+        raise ValueError(f"tau_a: found {tau_a[lives < 0.5].flat[0]:.6g} Pa, beyond the MWCM's curve at 2 N_f = 1")
+    return float(lives) if lives.ndim == 0 else lives
+
+
+def _basquin_life(parameter, factor, material, name):
+    """`_curve_life` of Basquin's line ``factor sigma_f' (2 N_f)^b``."""
+    sigma_f, b = material._required(name, "sigma_f", "b")
+    return _curve_life(parameter, ((factor * sigma_f, b),), " Pa")
+
+
+def _curve_life(parameter, terms, units):
+    """Cycles ``N_f`` at which the curve ``sum C (2 N_f)^e`` over `terms` ``(C, e)``, every ``C > 0`` and ``e < 0``,
+    meets each parameter (of `units`, e.g. " Pa", or "" for a number); ``inf`` where the parameter is <= 0."""
 
     def excess(log_reversals, target):
-        reversals = math.exp(log_reversals)
-        return sigma_f**2 / material.E * reversals ** (2 * b) + sigma_f * eps_f * reversals ** (b + c) - target
+        return sum(C * math.exp(e * log_reversals) for C, e in terms) - target
 
     def life(target):
         if target <= 0:
             return math.inf
         if excess(0.0, target) < 0:
-            raise ValueError(f"parameter: found {target:.6g} Pa, expected at most {excess(0.0, 0):.6g} (2 N_f = 1)")
+            raise ValueError(f"parameter: found {target:.6g}{units}, expected at most {excess(0.0, 0):.6g} (2 N_f = 1)")
         high = 1.0
         while excess(high, target) > 0:
             high *= 2
@@ -737,6 +1025,31 @@ def swt_life(parameter, material):
     values = np.asarray(parameter, dtype=float)
     lives = np.array([life(float(value)) for value in values.ravel()]).reshape(values.shape)
     return float(lives) if lives.ndim == 0 else lives
+
+
+def life(maps, material) -> xr.DataArray:
+    """Cycles to failure ``N_f`` at every point of the maps of `apply`, by the S-N relation of their criterion.
+
+    The relation of each criterion (`Criterion.life`): `swt_life`, `findley_life`, `fatemi_socie_life`,
+    `mwcm_life` (which reads ``amplitude`` and ``sigma_n_max`` as well as the parameter), `crossland_life`,
+    `dang_van_life`.
+
+    Parameters
+    ----------
+    maps : xarray.Dataset
+        A result of `apply` (its attribute ``criterion`` names the criterion).
+    material : Material
+
+    Returns
+    -------
+    xarray.DataArray
+        ``N_f`` on the maps' dims and coordinates, ``inf`` where the parameter is <= 0; attributes ``units``,
+        ``long_name``, ``definition`` (the relation).
+    """
+    criterion = CRITERIA[maps.attrs["criterion"]]
+    values = criterion.life(maps, material)
+    attrs = {"units": "1", "long_name": "cycles to failure", "definition": criterion.life_name}
+    return xr.DataArray(values, coords=maps.parameter.coords, dims=maps.parameter.dims, name="N_f", attrs=attrs)
 
 
 class CriticalDistance(NamedTuple):
@@ -764,7 +1077,7 @@ def point_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance
     ----------
     parameter : xarray.DataArray
         A map on dims ``z`` (depth [m], ascending from 0) and ``x`` [m] (ascending), e.g.
-        ``apply(...).parameter``; read between grid points by linear interpolation.
+        ``apply(...).parameter``; read between grid points by bilinear interpolation.
     L : float
         The critical distance [m] (`Material.critical_distance`).
     direction : {"down", "max"} or float
@@ -772,26 +1085,37 @@ def point_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance
         `DIRECTIONS` angles over ``[-pi/2, pi/2]`` (1 degree apart; those that leave the grid are
         skipped); or an angle [rad] from ``+z`` toward ``+x``.
     x_hot : float, optional
-        The surface point to start from [m]; by default the largest surface value (``z = 0``).
+        The surface point to start from [m]; by default that of the largest surface value (`hot_spot`).
 
     Raises
     ------
     ValueError
         When the grid does not reach ``L/2`` along the direction (or along any, for "max").
     """
-    return _critical_distance(parameter, L, direction, x_hot, np.array([0.5]))
+    return _critical_distance(parameter, L, 0.5, direction, x_hot, _value_at_end)
 
 
 def line_method(parameter, L, direction="down", x_hot=None) -> CriticalDistance:
     """The line method: the mean of the parameter over ``2 L`` from the hot spot [8, 9].
 
-    The trapezoid rule on `LINE_POINTS_PER_CELL` points per grid cell crossed (at least 64) integrates the
-    linear interpolant. Arguments and errors as `point_method`, with ``2 L`` for ``L/2``.
+    The mean of the bilinear interpolant of the map, exact to rounding: along a straight line the
+    interpolant is a quadratic in the distance within each grid cell, so Simpson's rule on each piece
+    between the grid lines the segment crosses integrates it exactly. Arguments and errors as
+    `point_method`, with ``2 L`` for ``L/2``.
     """
-    x, z, _ = _grid(parameter)
-    cells = 2 * positive("L", L) / min(np.diff(x).min(initial=np.inf), np.diff(z).min(initial=np.inf))
-    count = max(64, math.ceil(LINE_POINTS_PER_CELL * cells) + 1)
-    return _critical_distance(parameter, L, direction, x_hot, np.linspace(0.0, 2.0, count))
+    return _critical_distance(parameter, L, 2.0, direction, x_hot, _mean_along)
+
+
+def hot_spot(parameter) -> tuple[float, float]:
+    """The largest surface value (``z = 0``) of a map and its ``x`` [m], the first of equal ones.
+
+    The map's grid decides where the surface is read: a field of `fretting.analysis.stress.field` holds the
+    contact's edges, where the surface value of a fatigue parameter usually peaks with a kink, so that the hot
+    spot does not depend on the grid's spacing there. Arguments as `point_method`.
+    """
+    x, _, values = _grid(parameter)
+    at = int(np.nanargmax(values[0]))
+    return float(values[0, at]), float(x[at])
 
 
 def _grid(parameter):
@@ -804,13 +1128,32 @@ def _grid(parameter):
     return x, z, values.values
 
 
-def _critical_distance(parameter, L, direction, x_hot, fractions):
-    """`CriticalDistance` of the mean over ``r = fractions L`` (one point: that point; else the trapezoid rule)."""
+def _value_at_end(interpolate, x, z, x_hot, angle, reach):
+    """The interpolated map at the distance `reach` [m] from ``(x_hot, 0)`` along `angle`."""
+    return interpolate([[reach * math.cos(angle), x_hot + reach * math.sin(angle)]])[0]
+
+
+def _mean_along(interpolate, x, z, x_hot, angle, reach):
+    """The mean of the interpolated map over the segment of length `reach` [m] from ``(x_hot, 0)`` along `angle`:
+    Simpson's rule between the grid lines it crosses, exact for the bilinear interpolant."""
+    sin, cos = math.sin(angle), math.cos(angle)
+    crossings = [np.array([0.0, reach])]
+    if sin != 0:
+        crossings.append((x - x_hot) / sin)
+    if cos != 0:
+        crossings.append(z / cos)
+    r = np.concatenate(crossings)
+    r = np.unique(r[(r >= 0) & (r <= reach)])
+    middle = (r[:-1] + r[1:]) / 2
+    ends, mids = (interpolate(np.stack([d * cos, x_hot + d * sin], axis=-1)) for d in (r, middle))
+    return float(np.sum(np.diff(r) * (ends[:-1] + 4 * mids + ends[1:])) / 6 / reach)
+
+
+def _critical_distance(parameter, L, fraction, direction, x_hot, read):
+    """`CriticalDistance` of `read` (`_value_at_end` or `_mean_along`) over ``fraction L`` from the hot spot."""
     x, z, values = _grid(parameter)
-    L = positive("L", L)
-    if x_hot is None:
-        x_hot = x[np.nanargmax(values[0])]
-    x_hot = finite("x_hot", x_hot)
+    reach = fraction * positive("L", L)
+    x_hot = finite("x_hot", hot_spot(parameter)[1] if x_hot is None else x_hot)
     if direction == "down":
         angles = np.array([0.0])
     elif direction == "max":
@@ -819,20 +1162,18 @@ def _critical_distance(parameter, L, direction, x_hot, fractions):
         raise ValueError(f"direction: found {direction!r}, expected 'down', 'max' or an angle [rad]")
     else:
         angles = np.array([finite("direction", direction)])
-    r = fractions * L
-    px, pz = x_hot + r[None, :] * np.sin(angles)[:, None], r[None, :] * np.cos(angles)[:, None]
-    inside = np.all((px >= x[0]) & (px <= x[-1]) & (pz <= z[-1]), axis=1)
+    end_x, end_z = x_hot + reach * np.sin(angles), reach * np.cos(angles)
+    inside = (x[0] <= x_hot <= x[-1]) & (end_x >= x[0]) & (end_x <= x[-1]) & (end_z >= 0) & (end_z <= z[-1])
     if not inside.any():
         along = "along any direction" if angles.size > 1 else f"at {np.degrees(angles[0]):.6g} deg from +z"
         raise ValueError(
             f"parameter: the grid spans x in [{x[0]:.6g}, {x[-1]:.6g}] m and z up to {z[-1]:.6g} m, expected it "
-            f"to reach {r[-1]:.6g} m from x = {x_hot:.6g} m {along}"
+            f"to reach {reach:.6g} m from x = {x_hot:.6g} m {along}"
         )
     interpolate = RegularGridInterpolator((z, x), values)
-    read = interpolate(np.stack([pz[inside], px[inside]], axis=-1))
-    means = read[:, 0] if r.size == 1 else np.trapezoid(read, r, axis=1) / r[-1]
-    best = np.argmax(means)
-    return CriticalDistance(float(means[best]), float(x_hot), float(angles[inside][best]))
+    found = [read(interpolate, x, z, x_hot, angle, reach) for angle in angles[inside]]
+    best = int(np.argmax(found))
+    return CriticalDistance(float(found[best]), float(x_hot), float(angles[inside][best]))
 
 
 _COMMON = {
@@ -852,17 +1193,18 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
         ``sigma_xx``, ``sigma_zz``, ``tau_xz`` [Pa] (and ``sigma_yy``; plane strain when absent) on dims
         ``step`` and the points' dims, e.g. ``(step, z, x)`` as `fretting.analysis.stress.field` returns.
     criterion : str
-        A key of `CRITERIA`: ``swt``, ``findley``, ``fatemi_socie``, ``mwcm``, ``crossland``.
+        A key of `CRITERIA`: ``swt``, ``findley``, ``fatemi_socie``, ``mwcm``, ``crossland``, ``dang_van``.
     material : Material
     planes : {"in-plane", "all"}
-        As `swt` (ignored by a criterion on no plane, ``crossland``).
+        As `swt` (ignored by a criterion on no plane, ``crossland`` and ``dang_van``).
 
     Returns
     -------
     xarray.Dataset
         On the points' dims and coordinates: ``parameter``, ``amplitude``, and ``phi``, ``theta``,
-        ``sigma_n_max`` (critical-plane criteria) or ``sigma_h_max`` (Crossland), with ``units`` and
-        ``long_name``; attribute ``criterion``.
+        ``sigma_n_max`` (critical-plane criteria) or ``sigma_h_max`` (Crossland, Dang Van), with ``units`` and
+        ``long_name``; attributes: the field's (those of `fretting.analysis.stress.field`: ``body``,
+        ``bulk_state``, ...) and ``criterion``.
     """
     if criterion not in CRITERIA:
         raise ValueError(f"criterion: found {criterion!r}, expected one of: {', '.join(CRITERIA)}")
@@ -892,4 +1234,144 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
         name: xr.Variable(dims[1:], value, {"units": attributes[name][0], "long_name": attributes[name][1]})
         for name, value in result._asdict().items()
     }
-    return xr.Dataset(variables, coords=coords, attrs={"criterion": criterion})
+    return xr.Dataset(variables, coords=coords, attrs={**field.attrs, "criterion": criterion})
+
+
+#: Grid of `threshold`'s stress fields: points along ``x`` over ``centre +- SPAN a`` (and the contact's edges), and
+#: depths from 0 to the reach of the reading (``L/2``, ``2 L``), the last at it.
+THRESHOLD_GRID = {"nx": 151, "span": 1.5, "nz": 41}
+
+#: Width of the bracket, in ``f P``, at which `threshold`'s search stops.
+THRESHOLD_XTOL = 1e-6
+
+#: Depth [in ``a``] of the second row of the field that `threshold` reads at the hot spot (the map needs two).
+HOT_SPOT_DEPTH = 0.05
+
+
+class Threshold(NamedTuple):
+    """The result of `threshold`.
+
+    Attributes
+    ----------
+    amplitude : float
+        The amplitude of ``Q`` [N/m] at which the criterion reaches its target.
+    values : xarray.Dataset
+        The criterion's variables read there at the critical distance (``parameter``, ``amplitude``, ...: those of
+        `apply`, read as the parameter), with `apply`'s attributes.
+    runs : int
+        Runs of the history the search took.
+    """
+
+    amplitude: float
+    values: xr.Dataset
+    runs: int
+
+
+def threshold(
+    contact,
+    history,
+    criterion,
+    material,
+    life=None,
+    at="point",
+    bracket=(0.01, 0.99),
+    nu=None,
+    bulk_state="plane strain",
+    model=None,
+) -> Threshold:
+    """The amplitude of ``Q`` at which a criterion, read at the critical distance, reaches its fatigue limit or a life.
+
+    A bracketed search (Brent's method, `scipy.optimize.brentq`, to `THRESHOLD_XTOL` ``f P``) over runs: each
+    runs `history` at an amplitude (`fretting.simulate`), takes the specimen's stress field over the run's last
+    load cycle (`fretting.analysis.stress.field` on `THRESHOLD_GRID`), maps the criterion over it (`apply`) and
+    reads it at `at`: the surface hot spot (`hot_spot`), or the point or line method straight below it
+    (`point_method`, `line_method`, with `Material.critical_distance`). It finds the root of ``value - limit``,
+    the limit that of the criterion (`Criterion.limit`), or with `life` that of ``atan(log(life / N_f))``,
+    ``N_f`` the criterion's life of the values read (`life`; the MWCM's reads ``amplitude`` and
+    ``sigma_n_max`` there as the parameter), which grows with the amplitude and is finite where ``N_f`` is
+    infinite. The criterion must cross its target once between the bracket's ends.
+
+    Parameters
+    ----------
+    contact : fretting.Contact
+    history : callable
+        ``Q_a -> fretting.History``, the load history at the amplitude ``Q_a`` [N/m] of ``Q``, e.g. ``lambda Q_a:
+        History.sinusoidal(Q_a, sigma_a, cycles=2)``; its last load cycle must be recorded whole.
+    criterion : str
+        A key of `CRITERIA`.
+    material : Material
+    life : float, optional
+        Cycles to failure > 0: the amplitude at which the criterion's life is this. By default the one at which
+        it reaches its fatigue limit (SWT and Fatemi-Socie have none: they need a life).
+    at : {"point", "line", "hot spot"}
+        Where the criterion is read.
+    bracket : (float, float)
+        The amplitudes searched between, in ``f P``.
+    nu, bulk_state
+        As `fretting.analysis.stress.field`.
+    model : fretting.models.ModelSpec, optional
+        As `fretting.simulate`.
+
+    Returns
+    -------
+    Threshold
+
+    Raises
+    ------
+    ValueError
+        On an unknown criterion or `at`, a criterion without a fatigue limit and no `life`, a constant the
+        material lacks, or a target the criterion does not cross between the bracket's ends (both values
+        named).
+    """
+    if criterion not in CRITERIA:
+        raise ValueError(f"criterion: found {criterion!r}, expected one of: {', '.join(CRITERIA)}")
+    readings = {"point": (0.5, point_method), "line": (2.0, line_method), "hot spot": (None, None)}
+    if at not in readings:
+        raise ValueError(f"at: found {at!r}, expected 'point', 'line' or 'hot spot'")
+    declared = CRITERIA[criterion]
+    if life is None and declared.limit is None:
+        raise ValueError(f"criterion: {criterion} has no fatigue limit, give a life [cycles]")
+    target = declared.limit(material) if life is None else positive("life", life)
+    L = None if at == "hot spot" else material._required("threshold", "critical_distance")[0]
+    fP = contact.f * contact.P
+    low, high = (fP * positive("bracket", end) for end in bracket)
+    read = {}
+
+    def excess(amplitude):
+        values = _read(contact, history(amplitude), criterion, material, readings[at], L, nu, bulk_state, model)
+        read[amplitude] = values
+        if life is None:
+            return float(values.parameter) - target
+        return math.atan(math.log(target / float(declared.life(values, material))))
+
+    ends = [excess(low), excess(high)]
+    if ends[0] * ends[1] > 0:
+        quantity = "the criterion less its limit" if life is None else "atan(log(life / N_f))"
+        raise ValueError(
+            f"bracket: {quantity} is {ends[0]:.6g} at Q_a = {low:.6g} N/m and {ends[1]:.6g} at {high:.6g} N/m, "
+            f"expected a change of sign between them"
+        )
+    amplitude = brentq(excess, low, high, xtol=THRESHOLD_XTOL * fP)
+    if amplitude not in read:
+        excess(amplitude)
+    return Threshold(float(amplitude), read[amplitude], len(read))
+
+
+def _read(contact, history, criterion, material, reading, L, nu, bulk_state, model):
+    """The criterion's variables over the last load cycle of a run of `history`, read at the hot spot (`L` None) or
+    by `reading`, ``(fraction, method)``: `point_method` or `line_method`, whose reach is ``fraction L``."""
+    fraction, method = reading
+    result = simulate(contact, history, model)
+    rows = complete_cycles(result)[-1]
+    if rows is None:
+        raise ValueError("history: its last load cycle is not recorded whole, expected every step of it recorded")
+    a, centre = result.attrs["a"], result.attrs["centre"]
+    x = centre + a * np.linspace(-THRESHOLD_GRID["span"], THRESHOLD_GRID["span"], THRESHOLD_GRID["nx"])
+    z = np.array([0.0, HOT_SPOT_DEPTH * a]) if L is None else np.linspace(0.0, fraction * L, THRESHOLD_GRID["nz"])
+    stresses = stress_field(result, x, z, step=result.step.values[rows].tolist(), nu=nu, bulk_state=bulk_state)
+    maps = apply(stresses, criterion, material)
+    _, x_hot = hot_spot(maps.parameter)
+    if L is None:
+        return maps.sel(x=x_hot).isel(z=0, drop=True)
+    values = {name: ((), method(maps[name], L, x_hot=x_hot).value, maps[name].attrs) for name in maps.data_vars}
+    return xr.Dataset(values, coords={"x": x_hot}, attrs=maps.attrs)

@@ -10,8 +10,14 @@ Flamant's line-load solutions (Johnson 1985 [1]_, eq 2.23), with ``u = x - s``,
     sigma_zz = -(2/pi) int [p(s) z^3 + t_x(s) z^2 u] / r^4 ds
     tau_xz   = -(2/pi) int [p(s) z^2 u + t_x(s) z u^2] / r^4 ds
 
-plus the body's bulk direct stress ``sigma_b`` (`fretting.physics.surface.bulk_stress`), and in
-plane strain ``sigma_yy = nu (sigma_xx + sigma_zz)``. The components are those of the stress
+plus the body's bulk direct stress ``sigma_b`` (`fretting.physics.surface.bulk_stress`). The
+contact's field is in plane strain, ``nu (sigma_xx + sigma_zz)`` out of the plane; the bulk
+stress is in the state `BULK_STATES` names: held across the width in plane strain (``nu
+sigma_b`` out of the plane, the default), or free across it as in a bar in tension (plane
+stress, nothing out of the plane). On a strain-based criterion the two differ by up to
+``1 / (1 - nu^2)``, 1.099 for ``nu = 0.3``, where the bulk stress dominates (a bulk stress
+alone strains along ``x`` by ``(1 - nu^2) sigma_b / E`` in plane strain, by ``sigma_b / E`` in
+plane stress). The components are those of the stress
 tensor in each body's own frame: ``x`` along the surface as in the result (the axis of
 `fretting.analysis.nucleation.surface_stress`), ``z`` into the body. At the surface
 ``sigma_zz = -p`` and ``tau_xz = -t_x``: ``-q`` in body 1, ``+q`` in body 2; in the frame of
@@ -58,7 +64,7 @@ from fretting.physics.closed_forms import masing_increment, masing_origin
 from fretting.physics.contact import poisson_ratio
 from fretting.physics.profiles import profile_class, recorded_profile
 
-__all__ = ["COMPONENTS", "field", "mcewen", "polygon"]
+__all__ = ["BULK_STATES", "COMPONENTS", "field", "mcewen", "polygon", "with_edges"]
 
 #: name -> (units, long name, definition) of the variables of `field`.
 COMPONENTS = {
@@ -70,7 +76,16 @@ COMPONENTS = {
         "Flamant superposition (Johnson 1985 eq 2.23), in the body's frame: x along the surface, z into the "
         "body; -t_x at the surface",
     ),
-    "sigma_yy": ("Pa", "direct stress out of the plane", "nu (sigma_xx + sigma_zz), plane strain"),
+    "sigma_yy": ("Pa", "direct stress out of the plane", "by the state of the bulk stress (BULK_STATES)"),
+}
+
+#: State of the body's bulk stress ``sigma_b`` -> the definition of ``sigma_yy`` it gives (the contact's field is
+#: in plane strain either way): held across the width (plane strain), or free across it, as a bar in tension
+#: (plane stress).
+BULK_STATES = {
+    "plane strain": "nu (sigma_xx + sigma_zz): plane strain, the bulk stress included",
+    "plane stress": "nu (sigma_xx - sigma_b + sigma_zz): the contact's field in plane strain, the bulk stress "
+    "sigma_b in plane stress (uniaxial)",
 }
 
 #: Largest difference, relative to ``f p0``, between the recorded traction and the exact model's
@@ -174,7 +189,7 @@ def polygon(x, z, knots):
     return np.array([[a, b, c], [d, c, a]])
 
 
-def field(result, x, z, step=None, body=None, nu=None):
+def field(result, x, z, step=None, body=None, nu=None, bulk_state="plane strain", edges=True):
     """Stress [Pa] at the points ``(x, z)`` of one body, at recorded steps of a result.
 
     Parameters
@@ -195,13 +210,23 @@ def field(result, x, z, step=None, body=None, nu=None):
         Poisson's ratio, for ``sigma_yy``; by default the ``nu`` the result records (its
         attribute, or for a result written before it, the ``[contact]`` of its ``history_toml``),
         which a result run from ``E_star`` alone does not have.
+    bulk_state : {"plane strain", "plane stress"}
+        The state of the body's bulk stress ``sigma_b`` (`BULK_STATES`, module docstring): it adds ``nu
+        sigma_b`` to ``sigma_yy`` in plane strain, nothing in plane stress (a specimen free across its width).
+        The pad carries no bulk stress, so its field is the same in both.
+    edges : bool
+        Add the contact's edges ``centre +- a`` to an ascending `x` that spans them (`with_edges`). The surface
+        stress has a kink at each edge, with an unbounded slope outside it, and a fatigue parameter there its
+        largest surface value (the hot spot) in most cycles: without the edges on the grid the hot spot read from
+        the map depends on how near a grid point falls to them. False: `x` as given.
 
     Returns
     -------
     xarray.Dataset
-        ``sigma_xx``, ``sigma_zz``, ``tau_xz``, ``sigma_yy`` [Pa] on dims (step, z, x)
-        (`COMPONENTS`; sign conventions in the module docstring). Attributes: ``body``,
-        ``role`` (specimen or pad), ``nu``, the contact's ``a``, ``centre``, ``p0``, ``f``, and
+        ``sigma_xx``, ``sigma_zz``, ``tau_xz``, ``sigma_yy`` [Pa] on dims (step, z, x), ``x`` the given
+        points and, with `edges`, the contact's edges (`COMPONENTS`; sign conventions in the module
+        docstring; ``sigma_yy``'s ``definition`` by `bulk_state`). Attributes: ``body``, ``role``
+        (specimen or pad), ``nu``, ``bulk_state``, the contact's ``a``, ``centre``, ``p0``, ``f``, and
         ``traction``, how the loads were integrated: ``"elliptical"`` (McEwen's closed forms:
         the exact model's traction on a Hertz contact) or ``"piecewise linear"``, and
         ``pressure`` likewise (``"elliptical"`` on a Hertz contact).
@@ -222,15 +247,19 @@ def field(result, x, z, step=None, body=None, nu=None):
     ------
     ValueError
         On negative or non-finite depths, steps the result does not record, an unknown `body`,
-        a missing or invalid `nu`, or a contact whose pressure is unbounded at its edges (the
-        flat punch: `fretting.physics.profiles.Profile.VANISHING_EDGES`).
+        a missing or invalid `nu`, an unknown `bulk_state`, or a contact whose pressure is unbounded
+        at its edges (the flat punch: `fretting.physics.profiles.Profile.VANISHING_EDGES`).
     """
     x, z = finite_array("x", x), finite_array("z", z)
+    if bulk_state not in BULK_STATES:
+        raise ValueError(f"bulk_state: found {bulk_state!r}, expected one of: {', '.join(map(repr, BULK_STATES))}")
     if np.any(z < 0):
         raise ValueError(f"z must be depths >= 0 into the body [m], found {z.min()!r}")
     body, role = body_role(result, body)
     nu = _poisson(result, nu)
     attrs = result.attrs
+    if edges:
+        x = with_edges(x, attrs["centre"], attrs["a"])
     profile = profile_class(recorded_profile(attrs)[0])
     if profile is not None and not profile.VANISHING_EDGES:
         raise ValueError(
@@ -253,20 +282,47 @@ def field(result, x, z, step=None, body=None, nu=None):
         p_field = pressure(t[at], depth[at], influence)  # (3, points)
         unit = traction(t[at], depth[at], influence)  # (3, points, basis)
         stress[:, :, at] = p_field[:, None, :] + sign * (unit @ loads.T).transpose(0, 2, 1)
-    stress[0] += body_bulk(result, body)[rows, None]
+    bulk = body_bulk(result, body)[rows, None, None]
     stress = stress.reshape(3, rows.size, z.size, x.size)
     values = dict(zip(("sigma_xx", "sigma_zz", "tau_xz"), stress, strict=True))
-    values["sigma_yy"] = nu * (values["sigma_xx"] + values["sigma_zz"])
+    contact_xx = values["sigma_xx"]
+    values["sigma_xx"] = contact_xx + bulk
+    in_plane_xx = values["sigma_xx"] if bulk_state == "plane strain" else contact_xx
+    values["sigma_yy"] = nu * (in_plane_xx + values["sigma_zz"])
     coords = {"step": result.step.values[rows], "z": z, "x": x}
+    definitions = {name: definition for name, (_, _, definition) in COMPONENTS.items()}
+    definitions["sigma_yy"] = BULK_STATES[bulk_state]
     data = {
-        name: (("step", "z", "x"), values[name], {"units": units, "long_name": long_name, "definition": definition})
-        for name, (units, long_name, definition) in COMPONENTS.items()
+        name: (
+            ("step", "z", "x"),
+            values[name],
+            {"units": units, "long_name": long_name, "definition": definitions[name]},
+        )
+        for name, (units, long_name, _) in COMPONENTS.items()
     }
     dataset = xr.Dataset(data, coords=coords)
     dataset.z.attrs.update(units="m", long_name="depth into the body")
     dataset.x.attrs.update(units="m", long_name="position along the contact")
     kinds = {"pressure": pressure_kind, "traction": traction_kind}
-    return dataset.assign_attrs(body=body, role=role, nu=nu, a=a, centre=centre, p0=attrs["p0"], f=attrs["f"], **kinds)
+    return dataset.assign_attrs(
+        body=body, role=role, nu=nu, bulk_state=bulk_state, a=a, centre=centre, p0=attrs["p0"], f=attrs["f"], **kinds
+    )
+
+
+def with_edges(x, centre, a):
+    """The points `x` [m] with the contact's edges ``centre - a`` and ``centre + a`` among them.
+
+    An edge within the span of an ascending `x` is inserted in order; a point closer to it than `EDGE` ``a`` is
+    moved onto it rather than doubled. Any other `x` (not ascending, or not spanning an edge) is returned as given.
+    """
+    x = np.array(x, dtype=float)
+    if x.size < 2 or np.any(np.diff(x) <= 0):
+        return x
+    for edge in (centre - a, centre + a):
+        if x[0] <= edge <= x[-1]:
+            near = np.abs(x - edge) <= EDGE * a
+            x = np.where(near, edge, x) if near.any() else np.insert(x, np.searchsorted(x, edge), edge)
+    return x
 
 
 def _poisson(result, nu):

@@ -21,10 +21,17 @@ from fretting.analysis.fatigue import (
     MaterialFileError,
     apply,
     crossland,
+    crossland_life,
+    dang_van,
+    dang_van_life,
     fatemi_socie,
+    fatemi_socie_life,
     findley,
+    findley_life,
+    life,
     line_method,
     mwcm,
+    mwcm_life,
     point_method,
     swt,
     swt_life,
@@ -53,6 +60,11 @@ STEEL = Material(
     tau_limit=200e6,
     fs_k=0.6,
     sigma_y=600e6,
+    tau_f=520e6,
+    b0=-0.1,
+    gamma_f=1.0,
+    c0=-0.65,
+    N_A=2e6,
     critical_distance=1e-4,
 )
 CRITICAL_PLANE = (swt, findley, fatemi_socie, mwcm)
@@ -116,7 +128,7 @@ def test_pure_shear():
 
     SWT: ``eps_n = (1 + nu) sigma_n / E`` (zero trace), so ``(1 + nu) tau_a^2 / E`` at ``|phi| = pi/4``.
     MWCM: largest ``tau_a`` on ``phi = 0``, where ``sigma_n = 0``: ``rho = 0``, parameter ``tau_a``.
-    Fatemi-Socie: ``(tau_a / 2 G) cos u (1 + m sin u)``, ``u = 2 phi``, ``m = k tau_a / sigma_y``; its
+    Fatemi-Socie: ``(tau_a / G) cos u (1 + m sin u)``, ``u = 2 phi``, ``m = k tau_a / sigma_y``; its
     derivative vanishes where ``2 m sin^2 u + sin u - m = 0``.
     Crossland: ``sqrt(J2) = |tau|``, ``sigma_h = 0``: ``tau_a``.
     """
@@ -132,9 +144,29 @@ def test_pure_shear():
     assert min(abs(result.phi), abs(abs(result.phi) - math.pi / 2)) == pytest.approx(0, abs=1e-7)
     m = STEEL.fs_k * tau_a / STEEL.sigma_y
     sin_u = (math.sqrt(1 + 8 * m * m) - 1) / (4 * m)
-    expected = tau_a / (2 * STEEL.G) * math.sqrt(1 - sin_u**2) * (1 + m * sin_u)
+    expected = tau_a / STEEL.G * math.sqrt(1 - sin_u**2) * (1 + m * sin_u)
     assert fatemi_socie(*stress[:3], STEEL, **kwargs).parameter == pytest.approx(expected, rel=1e-13)
     assert crossland(*stress[:3], STEEL, **kwargs).parameter == pytest.approx(tau_a, rel=1e-13)
+
+
+def test_fatemi_socie_reads_the_engineering_shear_strain_amplitude():
+    """Fatemi & Socie (1988): ``(Delta gamma_max / 2) (1 + k sigma_n,max / sigma_y)``, ``gamma`` the engineering
+    shear strain. Uniaxial ``sigma_xx = sigma_a sin t`` (``sigma_yy = 0``): on ``phi``, ``tau_a = (sigma_a / 2)
+    |sin u|``, ``u = 2 phi``, and ``sigma_n,max = (sigma_a / 2) (1 + cos u)``, so the parameter is
+    ``(sigma_a / 2 G) sin u (1 + m (1 + cos u))``, ``m = k sigma_a / (2 sigma_y)``. With ``k = 0`` its largest,
+    at ``u = pi/2``, is ``sigma_a / (2 G) = (1 + nu) sigma_a / E``: the amplitude of ``eps_1 - eps_3``, the
+    largest engineering shear strain. With ``k > 0`` the derivative vanishes where ``2 m c^2 + (1 + m) c - m
+    = 0``, ``c = cos u``."""
+    sigma_a = 300e6
+    stress = (sigma_a * np.sin(t), ZERO, ZERO)
+    no_normal = Material(E=STEEL.E, nu=STEEL.nu, fs_k=0.0, sigma_y=STEEL.sigma_y)
+    result = fatemi_socie(*stress, no_normal, sigma_yy=ZERO)
+    assert result.parameter == pytest.approx((1 + STEEL.nu) * sigma_a / STEEL.E, rel=1e-13)
+    assert result.amplitude == pytest.approx(result.parameter, rel=1e-13)
+    m = STEEL.fs_k * sigma_a / (2 * STEEL.sigma_y)
+    c = (math.sqrt((1 + m) ** 2 + 8 * m * m) - (1 + m)) / (4 * m)
+    expected = sigma_a / (2 * STEEL.G) * math.sqrt(1 - c * c) * (1 + m * (1 + c))
+    assert fatemi_socie(*stress, STEEL, sigma_yy=ZERO).parameter == pytest.approx(expected, rel=1e-13)
 
 
 def test_mwcm_and_crossland_reach_their_thresholds_at_both_fatigue_limits():
@@ -148,6 +180,59 @@ def test_mwcm_and_crossland_reach_their_thresholds_at_both_fatigue_limits():
     assert mwcm(*torsion[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(lam, rel=PLANE_FIRST_ORDER)
     assert crossland(*push_pull[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(beta, rel=1e-13)
     assert crossland(*torsion[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(beta, rel=1e-13)
+
+
+def test_dang_van_reaches_its_limit_at_both_fatigue_limits_and_centres_a_mean_stress():
+    """Push-pull at ``f``: Tresca ``f/2`` with ``sigma_h = f/3`` at the peak, ``f/2 + a f/3 = t = b``; torsion at
+    ``t``: Tresca ``t``, ``sigma_h = 0``. With a mean ``S``, ``sigma_xx = S + sigma_a sin t``, the deviatoric path
+    is a segment whose midpoint is the mean's deviator: the mesoscopic shear is ``sigma_a |sin t| / 2``, and the
+    parameter ``sigma_a / 2 + a (S + sigma_a) / 3``."""
+    a, b = STEEL.dang_van_constants()
+    assert (a, b) == pytest.approx((3 * (STEEL.tau_limit / STEEL.sigma_limit - 0.5), STEEL.tau_limit))
+    assert dang_van(*uniaxial(STEEL.sigma_limit)[:3], STEEL, sigma_yy=ZERO).parameter == pytest.approx(b, rel=1e-13)
+    torsion = dang_van(ZERO, ZERO, STEEL.tau_limit * np.sin(t), STEEL, sigma_yy=ZERO)
+    assert (torsion.parameter, torsion.amplitude) == pytest.approx((b, b), rel=1e-13)
+    S, sigma_a = -80e6, 150e6
+    result = dang_van(S + sigma_a * np.sin(t), ZERO, ZERO, STEEL, sigma_yy=ZERO)
+    assert result.parameter == pytest.approx(sigma_a / 2 + a * (S + sigma_a) / 3, rel=1e-13)
+    assert result.sigma_h_max == pytest.approx((S + sigma_a) / 3, rel=1e-13)
+    with pytest.raises(ValueError, match="dang_van needs sigma_limit / tau_limit <= 2 for a >= 0, found 2.5"):
+        Material(E=1e9, nu=0.3, sigma_limit=2.5e8, tau_limit=1e8).dang_van_constants()
+
+
+@pytest.mark.parametrize("offset", [0.0, 70e6], ids=["centred", "with a mean deviator"])
+def test_dang_van_centres_a_triangular_path_on_its_enclosing_ball(offset):
+    """Three states ``sigma_xx = -sigma_zz = D + R cos w``, ``tau_xz = R sin w``, ``w`` at 90, 210 and 330 degrees:
+    in the coordinates ``((sigma_xx - sigma_zz) / 2, tau_xz)`` the deviator visits an equilateral triangle on the
+    circle of radius ``R`` about ``(D, 0)``, whose enclosing ball is that circle, not the ball on a side
+    (radius ``R sqrt(3) / 2``). About its centre each state has principal stresses ``+-R`` in the plane and 0 out
+    of it, no mean stress: the parameter is ``R``, whatever the mean deviator ``D``."""
+    R, angles = 120e6, np.radians([90.0, 210.0, 330.0])
+    xx, xz = offset + R * np.cos(angles), R * np.sin(angles)
+    result = dang_van(xx, -xx, xz, STEEL, sigma_yy=0 * xx)
+    assert result.parameter == pytest.approx(R, rel=1e-13)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_enclosing_ball_is_the_smallest_that_encloses(seed):
+    """Random clouds in three dimensions, a flat one and one with repeated points. A ball that encloses the points
+    is the smallest exactly when its centre lies in the convex hull of the points on its surface (the optimality
+    condition of the minimax problem): non-negative weights summing to 1 on those points (within 1e-9 of the
+    radius) rebuild the centre, by scipy's NNLS, to 1e-9 of the cloud's size."""
+    from scipy.optimize import nnls
+
+    from fretting.analysis.fatigue import _enclosing_centre
+
+    rng = np.random.default_rng(seed)
+    cloud = rng.normal(size=(rng.integers(5, 40), 3)) * [1.0, 0.5, 0.0 if seed == 4 else 2.0]
+    if seed == 5:
+        cloud = np.concatenate([cloud, cloud[:4]])
+    centre = _enclosing_centre(cloud)
+    distance = np.sqrt(np.sum((cloud - centre) ** 2, axis=1))
+    surface = cloud[distance >= distance.max() * (1 - 1e-9)]
+    weights, residual = nnls(np.vstack([surface.T, np.ones(len(surface))]), np.append(centre, 1.0))
+    assert residual < 1e-9 * distance.max()
+    assert 2 <= len(surface) <= 8 and np.all(weights >= 0)
 
 
 def tension_torsion(sigma_a, tau_a, delay):
@@ -300,6 +385,94 @@ def test_swt_life_round_trip():
         swt_life(2 * (m.sigma_f**2 / m.E + m.sigma_f * m.eps_f), m)
 
 
+def test_fatemi_socie_life_round_trip_and_fully_reversed_torsion():
+    """``gamma_a (1 + k sigma_n,max / sigma_y) = tau_f' / G (2N)^b0 + gamma_f' (2N)^c0`` written out here, then
+    inverted. In fully reversed torsion with ``k = 0`` the parameter is ``gamma_a = tau_a / G``: a torsion
+    amplitude ``tau_a = G`` times the curve at ``N`` lives ``N``."""
+    m, lives = STEEL, np.array([1e2, 1e4, 1e6, 1e9])
+    parameter = m.tau_f / m.G * (2 * lives) ** m.b0 + m.gamma_f * (2 * lives) ** m.c0
+    assert fatemi_socie_life(parameter, m) == pytest.approx(lives, rel=1e-10)
+    torsion_only = Material(E=m.E, nu=m.nu, fs_k=0.0, sigma_y=m.sigma_y, tau_f=m.tau_f, b0=m.b0, gamma_f=1.0, c0=-0.65)
+    tau_a = m.G * parameter[2]
+    result = fatemi_socie(ZERO, ZERO, tau_a * np.sin(t), torsion_only, sigma_yy=ZERO)
+    assert fatemi_socie_life(result.parameter, torsion_only) == pytest.approx(lives[2], rel=1e-10)
+    with pytest.raises(ValueError, match="fatemi_socie_life needs tau_f, b0, gamma_f, c0"):
+        fatemi_socie_life(1e-3, Material(E=m.E, nu=m.nu))
+    with pytest.raises(ValueError, match=r"parameter: found 2, expected at most 1.0\d+ \(2 N_f = 1\)"):
+        fatemi_socie_life(2.0, m)
+
+
+@pytest.mark.parametrize(
+    ("criterion", "criterion_life"),
+    [(findley, findley_life), (crossland, crossland_life), (dang_van, dang_van_life)],
+    ids=["findley", "crossland", "dang_van"],
+)
+def test_stress_lives_are_basquins_curve_in_push_pull(criterion, criterion_life):
+    """Fully reversed push-pull of amplitude ``sigma_a = sigma_f' (2N)^b`` (Basquin) lives ``N`` by either
+    criterion's relation: the parameter is ``f sigma_a``, with ``f = (sqrt(1 + k^2) + k) / 2`` (Findley,
+    `test_findley_uniaxial`), ``1 / sqrt(3) + alpha / 3 = t_-1 / f_-1`` (Crossland: ``sqrt(J2)_a = sigma_a /
+    sqrt(3)``, ``sigma_h,max = sigma_a / 3``) or ``1/2 + a/3 = t_-1 / f_-1`` (Dang Van: Tresca ``sigma_a / 2``
+    and ``sigma_h = sigma_a / 3`` at the peak), and its curve ``f sigma_f' (2 N_f)^b``; ``2N`` is 1.2e6 here."""
+    m, N = STEEL, 6e5
+    k = m.findley_constant()
+    factor = (math.sqrt(1 + k * k) + k) / 2 if criterion is findley else m.tau_limit / m.sigma_limit
+    sigma_a = m.sigma_f * (2 * N) ** m.b
+    parameter = criterion(*uniaxial(sigma_a)[:3], m, sigma_yy=ZERO).parameter
+    assert parameter == pytest.approx(factor * sigma_a, rel=1e-13)
+    assert criterion_life(parameter, m) == pytest.approx(N, rel=1e-10)
+    assert criterion_life(np.array([parameter, 0.0]), m) == pytest.approx([N, math.inf], rel=1e-10)
+    with pytest.raises(ValueError, match="_life needs sigma_f, b, found None"):
+        criterion_life(parameter, Material(E=m.E, nu=m.nu, sigma_limit=m.sigma_limit, tau_limit=m.tau_limit))
+
+
+def test_mwcm_life_by_hand():
+    """``N_f = N_A ((lambda - kappa rho) / tau_a)^(k_0 + (k_1 - k_0) rho)``, ``k_0 = -1/b0 = 10``, ``k_1 = -1/b``:
+    torsion (``rho = 0``) at ``t_-1 / 2`` lives ``N_A 2^10``; push-pull (``rho = 1``) at the fatigue limit
+    ``f_-1`` lives ``N_A``; and ``rho = 1/2`` by hand."""
+    m = STEEL
+    kappa, lam = m.mwcm_constants()
+    assert mwcm_life(m.tau_limit / 2, 0.0, m) == pytest.approx(m.N_A * 2**10, rel=1e-13)
+    torsion = mwcm(ZERO, ZERO, m.tau_limit / 2 * np.sin(t), m, sigma_yy=ZERO)
+    assert mwcm_life(torsion.amplitude, torsion.sigma_n_max, m) == pytest.approx(m.N_A * 2**10, rel=1e-12)
+    push_pull = mwcm(*uniaxial(m.sigma_limit)[:3], m, sigma_yy=ZERO)
+    assert mwcm_life(push_pull.amplitude, push_pull.sigma_n_max, m) == pytest.approx(m.N_A, rel=1e-6)
+    tau_a, rho = 90e6, 0.5
+    k = -1 / m.b0 + (1 / m.b0 - 1 / m.b) * rho
+    expected = m.N_A * ((lam - kappa * rho) / tau_a) ** k
+    assert mwcm_life(np.array([tau_a, 0.0]), np.array([rho * tau_a, 1e8]), m) == pytest.approx([expected, math.inf])
+    with pytest.raises(ValueError, match="rho: found 20, outside the MWCM's curves"):
+        mwcm_life(1e6, 2e7, m)
+    with pytest.raises(ValueError, match="mwcm_life needs b0, N_A, found None"):
+        mwcm_life(tau_a, 0.0, Material(E=m.E, nu=m.nu, b=m.b, sigma_limit=m.sigma_limit, tau_limit=m.tau_limit))
+
+
+def test_life_maps_every_criterion_by_its_relation():
+    """`life` of the maps of `apply` is each criterion's life function at every point."""
+    z, x = np.linspace(0, 1e-3, 3), np.linspace(-1e-3, 1e-3, 4)
+    amplitude = 250e6 * np.exp(-z[:, None] / 5e-4) * (1 + x[None, :] / 4e-3)
+    history = amplitude * np.sin(COARSE)[:, None, None]
+    field = xr.Dataset(
+        {
+            "sigma_xx": (("step", "z", "x"), history),
+            "sigma_zz": (("step", "z", "x"), 0.3 * history),
+            "tau_xz": (("step", "z", "x"), 0.2 * history),
+        },
+        coords={"z": z, "x": x},
+    )
+    by_parameter = {"swt": swt_life, "findley": findley_life, "fatemi_socie": fatemi_socie_life}
+    by_parameter |= {"crossland": crossland_life, "dang_van": dang_van_life}
+    for name in CRITERIA:
+        maps = apply(field, name, STEEL)
+        lives = life(maps, STEEL)
+        assert lives.dims == ("z", "x") and lives.attrs["definition"] == CRITERIA[name].life_name
+        if name == "mwcm":
+            expected = mwcm_life(maps.amplitude, maps.sigma_n_max, STEEL)
+        else:
+            expected = by_parameter[name](maps.parameter, STEEL)
+        np.testing.assert_array_equal(lives, expected)
+        assert np.all(np.isfinite(lives)) and np.all(np.diff(lives.values, axis=0) > 0)  # longer deeper down
+
+
 def linear_map(psi0, z_max=1e-3):
     """``1 + (x - 2e-4) sin psi0 + z cos psi0``, exact under linear interpolation: along the direction
     ``psi`` from ``x = 2e-4`` it is ``1 + r cos(psi - psi0)``."""
@@ -323,6 +496,34 @@ def test_critical_distances_on_an_exponential_gradient():
     line = line_method(field, L)
     assert line.value == pytest.approx(A * d / (2 * L) * (1 - math.exp(-2 * L / d)), abs=bound)
     assert abs(line.value - A * math.exp(-L / (2 * d))) > 10 * bound
+
+
+def test_line_method_integrates_the_interpolant_exactly_down_a_grid_of_rounded_spacing():
+    """``exp(-z / d)`` on 21 depths 0.025 apart, whose computed spacing is below 0.025 (``0.2 / h = 8 + 1e-14``):
+    down a column the bilinear interpolant is the piecewise-linear one through the nodes, whose integral over
+    ``2 L = 0.2`` (eight cells) is the trapezoid sum over the nodes ``z <= 0.2``, to rounding."""
+    d, L = 0.1, 0.1
+    z, x = np.linspace(0, 0.5, 21), np.linspace(-1, 1, 81)
+    assert 2 * L / np.diff(z).min() > 8
+    field = xr.DataArray(np.exp(-z[:, None] / d) * np.ones(x.size), coords={"z": z, "x": x}, dims=("z", "x"))
+    nodes = z[:9]
+    exact = np.sum(np.diff(nodes) * (np.exp(-nodes[:-1] / d) + np.exp(-nodes[1:] / d)) / 2) / (2 * L)
+    assert line_method(field, L).value == pytest.approx(exact, rel=1e-14)
+
+
+@pytest.mark.parametrize("degrees", [-60, -17, 0, 25, 80])
+def test_line_method_integrates_a_bilinear_map_exactly_in_any_direction(degrees):
+    """``1 + 4e6 (x - x0) z``, bilinear, so its own interpolant: along ``psi`` from ``x_hot`` it is
+    ``1 + 4e6 (x_hot - x0 + r sin psi) r cos psi``, whose mean over ``[0, R]`` is
+    ``1 + 4e6 cos psi ((x_hot - x0) R / 2 + sin psi R^2 / 3)``: quadratic in ``r``, which no trapezoid rule
+    integrates exactly."""
+    x, z = np.linspace(-1e-3, 1e-3, 81), np.linspace(0, 1e-3, 41)
+    x0, x_hot, L, psi = -3e-4, 1.3e-4, 2e-4, math.radians(degrees)
+    field = xr.DataArray(1 + 4e6 * (x[None, :] - x0) * z[:, None], coords={"z": z, "x": x}, dims=("z", "x"))
+    R = 2 * L
+    exact = 1 + 4e6 * math.cos(psi) * ((x_hot - x0) * R / 2 + math.sin(psi) * R**2 / 3)
+    line = line_method(field, L, direction=psi, x_hot=x_hot)
+    assert line.value == pytest.approx(exact, rel=1e-14)
 
 
 def test_critical_distance_directions():
@@ -374,8 +575,8 @@ def test_apply_maps_a_criterion_over_a_field():
     assert set(invariant) == {"parameter", "amplitude", "sigma_h_max"}
     alpha, _ = STEEL.crossland_constants()
     np.testing.assert_allclose(invariant.parameter, amplitude / math.sqrt(3) + alpha * amplitude / 3, rtol=1e-13)
-    with pytest.raises(ValueError, match="criterion: found 'dang_van', expected one of: swt, findley"):
-        apply(dataset, "dang_van", STEEL)
+    with pytest.raises(ValueError, match="criterion: found 'papadopoulos', expected one of: swt, findley"):
+        apply(dataset, "papadopoulos", STEEL)
     with pytest.raises(ValueError, match="field: expected a variable tau_xz"):
         apply(dataset.drop_vars("tau_xz"), "swt", STEEL)
 
@@ -468,7 +669,7 @@ def test_the_search_finds_the_dense_maximum_of_non_proportional_histories():
     formulas = {
         swt: lambda n, tau_a, eps_a: n * eps_a,
         findley: lambda n, tau_a, eps_a: tau_a + k * n,
-        fatemi_socie: lambda n, tau_a, eps_a: tau_a / G / 2 * (1 + STEEL.fs_k * n / STEEL.sigma_y),
+        fatemi_socie: lambda n, tau_a, eps_a: tau_a / G * (1 + STEEL.fs_k * n / STEEL.sigma_y),
     }
     dense = [dense_search([component[:, point] for component in stress]) for point in range(200)]
     for criterion, formula in formulas.items():
