@@ -140,6 +140,12 @@ class History:
         ``delta`` None where it prescribes ``Q`` at every step)."""
         return LoadBlock(self.Q, self.sigma, self.P, self.delta)
 
+    def displacements(self):
+        """The same path with its ``Q`` read as the displacement ``delta`` [m] (``Q`` then NaN at every
+        step): the history of a path of ``delta`` built as one of ``Q``."""
+        Q, sigma, cycle, P = self.at(np.arange(len(self)))
+        return History(np.full(len(self), np.nan), sigma, self.vertex_step, cycle, P, Q)
+
     @property
     def displaced(self):
         """True if some step prescribes the displacement ``delta`` rather than ``Q``."""
@@ -360,8 +366,7 @@ class History:
             )
         if delta is None:
             return PiecewiseLinear.through(Q, sigma, steps_per_segment, P).explicit()
-        path = PiecewiseLinear.through(delta, sigma, steps_per_segment, P).explicit()  # delta in Q's place
-        return History(np.full(len(path), np.nan), path.sigma, path.vertex_step, None, path.P, path.Q)
+        return PiecewiseLinear.through(delta, sigma, steps_per_segment, P).explicit().displacements()
 
     @classmethod
     def sinusoidal(
