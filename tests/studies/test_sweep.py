@@ -124,7 +124,7 @@ def test_resume_runs_only_the_cases_without_a_file(swept, cluster):
         ({}, "grid: found {}, expected keys and lists of their values"),
         (
             {"contact.profile": ["flat"]},
-            "contact.R: unknown key, expected one of: profile, E_star, E, nu, f, P, specimen, a "
+            "contact.R: unknown key, expected one of: profile, E_star, E, nu, f, P, specimen, datum, compliance, a "
             "(in the case contact.profile",
         ),
     ],
