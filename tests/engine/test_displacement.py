@@ -9,6 +9,7 @@ import pytest
 from scipy.integrate import quad
 
 import fretting as fr
+from fretting.engine import runner
 from fretting.engine.recorder import final_state
 from fretting.loading.history_file import HistoryFileError
 from fretting.physics.closed_forms import cattaneo_mindlin_compliance, mindlin_deresiewicz_energy
@@ -225,3 +226,18 @@ def test_history_file_errors_name_file_and_key(tmp_path, contact_keys, first, se
     with pytest.raises(HistoryFileError, match=message) as caught:
         fr.read_history(path)
     assert "\n" not in str(caught.value)
+
+
+def test_a_file_of_delta_run_in_chunks_is_the_run_in_one_piece(tmp_path, monkeypatch):
+    """`run_file` cuts the history into chunks, each continued from the state the one before left."""
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 5)
+    monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)
+    path = tmp_path / "moved.toml"
+    second = '[[loading]]\nkind = "linear"\ndelta = [-8e-7, 8e-7]\ncycle = true'
+    path.write_text(FILE.format(contact=f"datum = {L}", first="delta = [8e-7]", second=second))
+    read, history = fr.read_history(path)
+    chunked = runner.run_file(path, tmp_path / "moved.h5", fr.models.Grid(32), record="all").result
+    whole = fr.simulate(read, history, fr.models.Grid(32))
+    for name in ("Q", "delta", "slip"):
+        assert np.array_equal(chunked[name].values, whole[name].values), name
+    assert float(chunked.state_delta) == 8e-7
