@@ -41,7 +41,7 @@ def cycles_of(delta_star, count, steps):
 def test_stuck_compliance_is_the_quadrature_of_the_green_function(x_over_a, L_over_a):
     """Eq D3: the relative tangential displacement of a point of the stuck contact and the datum
     under the stuck traction ``Q / (pi sqrt(a^2 - xi^2))``, from the surface displacement
-    ``-(1 / (pi E_star)) Q ln|x|`` of each half-plane under a line force (Johnson eq 2.19b),
+    ``-(1 / (pi E_star)) Q ln|x|`` of each half-plane under a line force (Johnson 1985, §2.3),
     is ``C_L Q`` wherever the point lies in the contact."""
     a, E_star, Q = 2e-4, 115e9, 3e4
     x, datum = x_over_a * a, L_over_a * a
