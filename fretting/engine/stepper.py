@@ -107,8 +107,9 @@ class Stepper:
             raise HistoryError("give either Q or delta, found " + ("both" if Q is not None else "neither"))
         Q, sigma = (np.nan, float(sigma)) if Q is None else (float(Q), float(sigma))
         delta = None if delta is None else float(delta)
-        if not (np.isfinite(sigma) and (np.isfinite(Q) or np.isfinite(delta))):
-            raise HistoryError(f"loads must be finite, found Q = {Q!r}, sigma = {sigma!r}, delta = {delta!r}")
+        if not (np.isfinite(sigma) and np.isfinite(Q if delta is None else delta)):
+            given = f"Q = {Q!r}" if delta is None else f"delta = {delta!r}"
+            raise HistoryError(f"loads must be finite, found {given}, sigma = {sigma!r}")
         with one_blas_thread():
             if cycle != self._state.tally.number:
                 self._state = replace(self._state, tally=Tally.begin(cycle, self._state.slip))

@@ -140,6 +140,10 @@ def test_stepper_steps_a_displacement(contact):
     assert contact.displacement(stepper.state.Q, 0.0) < 5e-7  # part of delta is slip
     with pytest.raises(fr.HistoryError, match="either Q or delta, found both"):
         stepper.step(1e3, delta=5e-7)
+    with pytest.raises(fr.HistoryError, match="found delta = inf, sigma = 0.0"):
+        stepper.step(delta=np.inf)
+    with pytest.raises(fr.HistoryError, match="found Q = nan, sigma = 0.0"):
+        stepper.step(np.nan)
 
 
 def test_beyond_sliding_is_gross_slip(contact):
