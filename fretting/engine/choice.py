@@ -12,7 +12,9 @@ history moves, and its own conditions hold):
    stick ends of the recorded steps, within the default's bounds of nodes and work, a fallback
    recorded and said where it passes them (`fretting.models.galerkin.model.Mesh.default_model`);
 4. where the history varies the normal load ``P``, which none of those follows, method 4 on cells
-   fixed in ``x`` over its largest contact (`Varying()`).
+   fixed in ``x`` over its largest contact (`Varying()`); so too where it prescribes the
+   displacement ``delta`` with a ``sigma`` off the in-phase line, whose ``Q`` of every step the mesh
+   cannot adapt to before the run (`Mesh.holds_for`).
 
 Every other decision is the spec's own (`ModelSpec.model_for`, `continued`, `is_default`); the
 engine hands a spec its loop (`fretting.engine.follow.follow`) for the passes of an adaptation.

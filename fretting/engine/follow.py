@@ -20,15 +20,18 @@ alone) has the solved steps that nothing records or copies taken a window at a t
 bit (tests/engine/test_window.py).
 """
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
+from scipy.optimize import brentq
 
-from fretting.errors import GrossSlipError, SolverError
+from fretting.errors import GrossSlipError, HistoryError, SolverError
+from fretting.loading.loads import Loads
 from fretting.models.state import State, Tally
 from fretting.physics.surface import bulk_stress
 
-__all__ = ["STRAIGHT", "advance", "follow", "skippable"]
+__all__ = ["BRACKET", "STRAIGHT", "advance", "displaced", "follow", "skippable"]
 
 #: Largest ``|sin|`` of the turn between two increments, in units of ``(f P, f p0)``, that counts
 #: as straight: the steps of a linear segment meet it to rounding, and a sampled curve with a
@@ -40,8 +43,66 @@ STRAIGHT = 1e-9
 PREPARED_STEPS = 512
 
 
+#: Relative distance below the friction force at which `displaced` brackets ``Q``: a trial increment
+#: nearer to sliding may find no stick zone within rounding, and a displacement beyond the bracket's
+#: is taken as gross slip.
+BRACKET = 1e-9
+
+
+def displaced(model, state, loads, step=None):
+    """`loads` (`Loads`) with the ``Q`` [N/m] that meets their prescribed displacement ``delta`` [m]
+    from `state`; `loads` as they are where ``delta`` is None.
+
+    ``delta(Q) = (C_L + C) Q + delta_Q(Q)`` (`fretting.physics.contact.Contact.displacement`, eq D4
+    of docs/theory/displacement.md), ``delta_Q(Q)`` that of the model's increment from `state` to
+    ``Q`` with the loads' ``sigma``: a trial increment, which leaves `state` as it is (models are
+    pure). ``delta(Q)`` increases with ``Q``, so ``Q`` is bracketed between the state's ``Q`` and
+    ``+-(1 - BRACKET)`` times the friction force and found by Brent's method to the precision of a
+    float. Loads that hold the state's ``delta``, ``sigma`` and ``P`` hold its ``Q``. The increment
+    to the loads returned is the force-controlled one (`advance`), so the memory is carried as
+    under force control. `step` names the step in an error.
+
+    Raises
+    ------
+    HistoryError
+        Where the contact has no datum, or the normal load varies (not yet followed).
+    GrossSlipError
+        Where ``delta`` is not reached below the friction force (gross slip: not yet followed).
+    """
+    if loads.delta is None:
+        return loads
+    contact = model.contact
+    where = "" if step is None else f"step {step}: "
+    if contact.displacement_compliance is None:
+        raise HistoryError(
+            f"{where}the history prescribes delta, but the contact has no datum: give fretting.Contact(..., datum=L)"
+        )
+    if loads.P is not None:
+        raise HistoryError(f"{where}delta under a varying normal load P is not followed yet: give Q")
+    held = state.loads
+    if (held.delta, held.sigma, held.P) == (loads.delta, loads.sigma, loads.P):
+        return replace(loads, Q=held.Q)
+    sliding = min(model.friction_force, contact.f * contact.P)
+
+    def missed(Q):
+        """``delta(Q) - delta`` [m] of the trial increment to `Q` [N/m]."""
+        trial = model.increment(state, Loads(Q, loads.sigma))
+        return contact.displacement(Q, model.delta_Q(trial)) - loads.delta
+
+    start = missed(held.Q)
+    if start == 0:
+        return replace(loads, Q=held.Q)
+    end = math.copysign(sliding * (1 - BRACKET), -start)
+    if missed(end) * start > 0:
+        raise GrossSlipError(step, math.copysign(sliding, end), loads.sigma, sliding)
+    eps = np.finfo(float).eps
+    Q = brentq(missed, held.Q, end, xtol=eps * sliding, rtol=4 * eps)
+    return replace(loads, Q=float(Q))
+
+
 def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=True, stress=True):
-    """(outcome, state after) of the increment of `model` from `state` to `loads` (`Loads`).
+    """(outcome, state after) of the increment of `model` from `state` to `loads` (`Loads`; with a
+    prescribed ``delta``, its ``Q`` found by `displaced`: the model is given the loads without it).
 
     `at_rest`: no increment, the state as it stands (the starting state of a history). `step`
     names the step in a `GrossSlipError`. An increment that reports negative dissipation is a
@@ -58,7 +119,7 @@ def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=Tru
     if at_rest:
         return model.at_rest(state), state
     try:
-        outcome = model.increment(state, loads, guess)
+        outcome = model.increment(state, loads.force(), guess)
     except GrossSlipError:  # within rounding of the friction force: the increment found no stick zone
         raise GrossSlipError(step, Q, sigma, sliding) from None
     if not outcome.dissipation >= 0:
@@ -157,8 +218,10 @@ class _Run:
             self.skip = skippable(history, recorder.row >= 0, model.contact)
         self.solved = np.flatnonzero(~self.skip)  # the last step is never skipped
         self.loads = history.loads
-        self.prepared = 0  # the steps before it are prepared
+        # the steps before it are prepared; none where Q is found step by step (`displaced`)
+        self.prepared = len(history) if history.displaced else 0
         windows = model.windows and not self.stress and tally and observe is None and guess is None
+        windows = windows and not history.displaced
         if windows and history.P is None:
             self.windowed = ~self.skip & (recorder.row < 0) & ~self._copyable()
             self.windowed[0] = False  # it may be the state at rest
@@ -205,7 +268,7 @@ class _Run:
                 self.model.prepare(state, self.loads[ahead])
                 self.prepared = int(ahead[-1]) + 1
             guess = None if self.guess is None else self.guess(step)
-            loads = self._at(step)
+            loads = displaced(self.model, state, self._at(step), step)
             at_rest = step == 0 and loads == state.loads
             outcome, state = advance(self.model, state, loads, step, guess, at_rest, self.tally, self.stress)
             if self.observe is not None and not at_rest:

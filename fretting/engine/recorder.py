@@ -224,9 +224,12 @@ class Recorder:
             "slip": np.empty((steps.size, N)),
             "stick": np.empty((steps.size, N), dtype=bool),
             "dissipation": np.empty(steps.size),
+            "Q": np.empty(steps.size),
             "delta_Q": np.empty(steps.size),
             "delta_sigma": np.empty(steps.size),
         }
+        if model.contact.datum is not None:
+            self.fields["delta"] = np.empty(steps.size)
         self.zones = [()] * steps.size
         self.cycles = []  # (number, tally, copied) of every cycle the run touches
 
@@ -240,7 +243,10 @@ class Recorder:
         self.fields["slip"][k] = state.slip
         self.fields["stick"][k] = outcome.ds == 0
         self.fields["dissipation"][k] = outcome.dissipation
-        self.fields["delta_Q"][k] = model.delta_Q(outcome)
+        self.fields["Q"][k] = state.Q  # the history's, or the Q found for its delta
+        self.fields["delta_Q"][k] = delta_Q = model.delta_Q(outcome)
+        if "delta" in self.fields:
+            self.fields["delta"][k] = model.contact.displacement(state.Q, delta_Q)
         self.fields["delta_sigma"][k] = model.delta_sigma(outcome)
         self.zones[k] = model.stick_zones(outcome, state)
 
@@ -267,7 +273,6 @@ class Recorder:
         return (
             data
             | {
-                "Q": history.Q[steps],
                 "sigma": history.sigma[steps],
                 "p": model.contact.pressure(model.x),
                 "x": model.x,
@@ -290,6 +295,8 @@ class Recorder:
             | ({} if model.theta is None else {"theta": model.theta[::-1]})
             | ({} if spec.memory_variable is None else {spec.memory_variable: np.array(state.memory, dtype=float)})
             | ({} if history.P is None else _normal_loads(model, history, steps, state))
+            | ({} if state.loads.delta is None else {"state_delta": state.loads.delta})
+            | ({} if history.delta is None else {"vertex_delta": history.delta[history.vertex_step]})
         )
 
     def dataset(self, state):
@@ -305,6 +312,7 @@ class Recorder:
             "profile": repr(contact.profile),
             **contact.profile.attributes(),
             **({} if contact.nu is None else {"nu": contact.nu}),
+            **({} if contact.datum is None else {"datum": contact.datum, "compliance": contact.compliance}),
             "specimen": contact.specimen,
             "nodes": self.model.x.size,
             "model_description": spec.description,
@@ -339,9 +347,10 @@ def final_state(result: xr.Dataset) -> State:
     )
     spec = recorded_spec(result)
     P = None if "state_P" not in result or float(result.state_P) == result.attrs["P"] else float(result.state_P)
+    delta = float(result.state_delta) if "state_delta" in result else None
     memory = spec.memory_variable
     return State(
-        Loads(float(result.state_Q), float(result.state_sigma), P),
+        Loads(float(result.state_Q), float(result.state_sigma), P, delta),
         result.state_slip.values.copy(),
         result.state_episode_start.values.copy(),
         tally,

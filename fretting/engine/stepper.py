@@ -14,11 +14,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from fretting.engine import choice
-from fretting.engine.follow import advance, follow
+from fretting.engine.follow import advance, displaced, follow
 from fretting.engine.threads import one_blas_thread
 from fretting.errors import HistoryError
 from fretting.loading.history import History
-from fretting.loading.loads import NAMED, Loads
+from fretting.loading.loads import CONVERTED, NAMED, Loads
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.state import State, Tally
 from fretting.physics.contact import Contact
@@ -82,8 +82,19 @@ class Stepper:
         """The current `State` (None until a model is built)."""
         return self._state
 
-    def step(self, Q: float, sigma: float = 0.0, cycle: int = 0, P: float | None = None) -> Outcome:
+    def step(
+        self,
+        Q: float | None = None,
+        sigma: float = 0.0,
+        cycle: int = 0,
+        P: float | None = None,
+        *,
+        delta: float | None = None,
+    ) -> Outcome:
         """Advance by one increment to the loads `Q` [N/m], `sigma` [Pa]; return its `Outcome`.
+
+        `delta` [m], instead of `Q`: the tangential displacement at the contact's datum to reach, for
+        which the step finds ``Q`` (`fretting.engine.follow.displaced`; ``state.Q`` holds it).
 
         `cycle` is the load cycle the increment belongs to (0: none): its energy, ``w`` and slip
         range are tallied in `State.tally` from the increment that begins it. `P` [N/m] is the
@@ -92,19 +103,24 @@ class Stepper:
         """
         if self._model is None:
             raise ValueError("the stepper has no model yet: give model= (e.g. fretting.models.Grid()) or run a history")
-        Q, sigma = float(Q), float(sigma)
-        if not (np.isfinite(Q) and np.isfinite(sigma)):
-            raise HistoryError(f"loads must be finite, found Q = {Q!r}, sigma = {sigma!r}")
+        if (Q is None) == (delta is None):
+            raise HistoryError("give either Q or delta, found " + ("both" if Q is not None else "neither"))
+        Q, sigma = (np.nan, float(sigma)) if Q is None else (float(Q), float(sigma))
+        delta = None if delta is None else float(delta)
+        if not (np.isfinite(sigma) and np.isfinite(Q if delta is None else delta)):
+            given = f"Q = {Q!r}" if delta is None else f"delta = {delta!r}"
+            raise HistoryError(f"loads must be finite, found {given}, sigma = {sigma!r}")
         with one_blas_thread():
             if cycle != self._state.tally.number:
                 self._state = replace(self._state, tally=Tally.begin(cycle, self._state.slip))
             P = None if P is None or P == self.contact.P else positive_load(P)
-            loads = Loads(Q, sigma, P)
-            if unfollowed := loads.given() - self._spec.inputs:
+            loads = Loads(Q, sigma, P, delta)
+            if unfollowed := {CONVERTED.get(name, name) for name in loads.given()} - self._spec.inputs:
                 names = " and ".join(NAMED[name] for name in sorted(unfollowed))
                 raise HistoryError(
                     f"{self._spec.description} does not follow {names}: give it no other than the contact's"
                 )
+            loads = displaced(self._model, self._state, loads)
             outcome, self._state = advance(self._model, self._state, loads)
         self._fresh = False
         return outcome
@@ -135,7 +151,14 @@ class Stepper:
             ``guess(step)``: the slip directions to start the solver from at `step`, or None.
         """
         self.resolve(history)
-        if not self._fresh and (self._state.Q, self._state.sigma) != history.start:
+        first = history.loads[0]
+        if not self._fresh and first.delta is not None:
+            if (self._state.loads.delta, self._state.sigma) != (first.delta, first.sigma):
+                raise HistoryError(
+                    f"history starts at delta = {first.delta!r}, sigma = {first.sigma!r}; the state is at "
+                    f"delta = {self._state.loads.delta!r}, sigma = {float(self._state.sigma)!r}"
+                )
+        elif not self._fresh and (self._state.Q, self._state.sigma) != history.start:
             Q, sigma = history.start
             raise HistoryError(
                 f"history starts at Q = {Q!r}, sigma = {sigma!r}; "

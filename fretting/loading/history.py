@@ -1,4 +1,5 @@
-"""Load histories: the shear force Q, the bulk tension sigma and, where it varies, the normal load P, at every step."""
+"""Load histories: the shear force Q (or the tangential displacement delta), the bulk tension sigma and,
+where it varies, the normal load P, at every step."""
 
 from __future__ import annotations
 
@@ -46,6 +47,11 @@ class History:
     P : ndarray, shape (n_steps,), optional
         Normal load per unit length [N/m], positive; step 0 is the load at which the contact is
         formed (the contact's ``P``). None: the contact's constant ``P``.
+    delta : ndarray, shape (n_steps,), optional
+        Tangential displacement of the pad relative to the specimen at the contact's datum [m]
+        (docs/theory/displacement.md) where it is prescribed, NaN where ``Q`` is: each step
+        prescribes exactly one of them (``Q`` is NaN where ``delta`` is given). None: ``Q`` at
+        every step.
     """
 
     Q: np.ndarray
@@ -53,9 +59,10 @@ class History:
     vertex_step: np.ndarray
     cycle: np.ndarray | None = None
     P: np.ndarray | None = None
+    delta: np.ndarray | None = None
 
     def __post_init__(self):
-        Q = _loads("Q", self.Q)
+        Q, delta = (_loads("Q", self.Q), None) if self.delta is None else _prescribed(self.Q, self.delta)
         sigma = _loads("sigma", self.sigma)
         if Q.shape != sigma.shape:
             raise HistoryError(f"Q and sigma must have the same length, found {Q.size} and {sigma.size}")
@@ -75,6 +82,8 @@ class History:
             arrays["cycle"] = cycle
         if self.P is not None:
             arrays["P"] = _normal_loads(self.P, Q.size)
+        if delta is not None:
+            arrays["delta"] = delta
         for name, value in arrays.items():
             value.setflags(write=False)
             object.__setattr__(self, name, value)
@@ -96,7 +105,8 @@ class History:
             raise HistoryError(f"steps {start}:{stop} of a {len(self)}-step history are empty")
         inside = slice(*np.searchsorted(self.vertex_step, [start, stop]))  # vertex_step is sorted
         Q, sigma, cycle, P = self._steps(start, stop)
-        return History(Q, sigma, self.vertex_step[inside] - start, cycle, P)
+        delta = None if self.delta is None else self.delta[start:stop]
+        return History(Q, sigma, self.vertex_step[inside] - start, cycle, P, delta)
 
     def _steps(self, start, stop):
         """``(Q, sigma, cycle, P)`` of the steps ``start .. stop - 1`` (views; cycle and P may be None)."""
@@ -117,14 +127,29 @@ class History:
 
     def moves(self, contact):
         """Names of the load inputs (`fretting.loading.loads.INPUTS`) this history moves on `contact`:
-        ``Q`` and ``sigma`` always, ``P`` where it leaves the contact's."""
+        ``Q`` and ``sigma`` always, ``P`` where it leaves the contact's, ``delta`` where it is
+        prescribed (which the engine turns into ``Q``, `fretting.loading.loads.CONVERTED`)."""
         varies_P = self.P is not None and bool(np.any(self.P != contact.P))
-        return frozenset({"Q", "sigma", "P"} if varies_P else {"Q", "sigma"})
+        return frozenset(
+            {"Q", "sigma"} | ({"P"} if varies_P else set()) | ({"delta"} if self.delta is not None else set())
+        )
 
     @property
     def loads(self):
-        """The loads of every step, a `LoadBlock` (``P`` None where the history does not vary it)."""
-        return LoadBlock(self.Q, self.sigma, self.P)
+        """The loads of every step, a `LoadBlock` (``P`` None where the history does not vary it,
+        ``delta`` None where it prescribes ``Q`` at every step)."""
+        return LoadBlock(self.Q, self.sigma, self.P, self.delta)
+
+    def displacements(self):
+        """The same path with its ``Q`` read as the displacement ``delta`` [m] (``Q`` then NaN at every
+        step): the history of a path of ``delta`` built as one of ``Q``."""
+        Q, sigma, cycle, P = self.at(np.arange(len(self)))
+        return History(np.full(len(self), np.nan), sigma, self.vertex_step, cycle, P, Q)
+
+    @property
+    def displaced(self):
+        """True if some step prescribes the displacement ``delta`` rather than ``Q``."""
+        return self.delta is not None
 
     @property
     def has_cycles(self):
@@ -141,7 +166,7 @@ class History:
         """The history without its normal loads where they are `P` [N/m] at every step, else itself."""
         if self.P is None or not np.all(self.P == P):
             return self
-        return History(self.Q, self.sigma, self.vertex_step, self.cycle)
+        return History(self.Q, self.sigma, self.vertex_step, self.cycle, None, self.delta)
 
     @property
     def normal_start(self):
@@ -256,7 +281,7 @@ class History:
         """The same path counted as one load cycle: every step after the first belongs to cycle 1."""
         cycle = np.ones(len(self), dtype=np.int64)
         cycle[0] = 0
-        return History(self.Q, self.sigma, self.vertex_step, cycle, self.P)
+        return History(self.Q, self.sigma, self.vertex_step, cycle, self.P, self.delta)
 
     @classmethod
     def concatenate(cls, histories):
@@ -281,12 +306,16 @@ class History:
             return histories[0]
         if len({history.normal_start is None for history in histories}) > 1:
             raise HistoryError("histories with a normal load P and without one cannot be concatenated")
+        if len({history.displaced for history in histories}) > 1:
+            raise HistoryError("histories of Q and histories of delta cannot be concatenated (not yet)")
         for number, (previous, history) in enumerate(itertools.pairwise(histories), start=2):
-            if (history.start, history.normal_start) != (previous.end, previous.normal_end):
+            if _point(history, 0) != _point(previous, len(previous) - 1):
                 raise HistoryError(
-                    f"history {number} starts at (Q, sigma) = {history.start}, P = {history.normal_start}, "
-                    f"expected the end of the previous one, {previous.end}, P = {previous.normal_end}"
+                    f"history {number} starts at {_point(history, 0)}, "
+                    f"expected the end of the previous one, {_point(previous, len(previous) - 1)}"
                 )
+        if histories[0].displaced:
+            return _joined_explicit(histories)
         if all(isinstance(history, PiecewiseLinear) for history in histories):
             return PiecewiseLinear.joined(histories)
         joined = Joined(histories)
@@ -295,17 +324,21 @@ class History:
     @classmethod
     def piecewise_linear(
         cls,
-        Q: ArrayLike,
+        Q: ArrayLike | None = None,
         sigma: ArrayLike | None = None,
         steps_per_segment: int | ArrayLike = 16,
         P: ArrayLike | None = None,
+        *,
+        delta: ArrayLike | None = None,
     ) -> History:
-        """Straight segments between vertices of the (Q, sigma) path, or of the (P, Q, sigma) path.
+        """Straight segments between vertices of the (Q, sigma) path, or of the (P, Q, sigma) path;
+        with `delta` instead of `Q`, of the (delta, sigma) path (displacement control).
 
         Parameters
         ----------
         Q : array_like
             Shear force at the vertices [N/m]; the first vertex is the starting state.
+            Not with `delta`.
         sigma : array_like, optional
             Bulk tension at the vertices [Pa]; zero when omitted.
         steps_per_segment : int or array_like of int
@@ -313,14 +346,27 @@ class History:
         P : array_like, optional
             Normal load at the vertices [N/m], positive; the first is the contact's ``P``, the
             load at which the contact is formed. None: the contact's constant ``P``.
+        delta : array_like, optional
+            Tangential displacement of the pad relative to the specimen at the contact's datum at
+            the vertices [m] (docs/theory/displacement.md), prescribed instead of `Q`: each step
+            solves for its ``Q`` (`fretting.engine.follow.displaced`).
 
         Examples
         --------
         >>> history = History.piecewise_linear([0, 100.0, -100.0], None, 4)
         >>> len(history), history.vertex_step.tolist(), history.Q[:3].tolist()
         (9, [0, 4, 8], [0.0, 25.0, 50.0])
+        >>> moved = History.piecewise_linear(delta=[0, 1e-6], steps_per_segment=2)
+        >>> moved.delta.tolist(), bool(np.isnan(moved.Q).all())
+        ([0.0, 5e-07, 1e-06], True)
         """
-        return PiecewiseLinear.through(Q, sigma, steps_per_segment, P).explicit()
+        if (Q is None) == (delta is None):
+            raise HistoryError(
+                "give the vertices of either Q or delta, found " + ("both" if Q is not None else "neither")
+            )
+        if delta is None:
+            return PiecewiseLinear.through(Q, sigma, steps_per_segment, P).explicit()
+        return PiecewiseLinear.through(delta, sigma, steps_per_segment, P).explicit().displacements()
 
     @classmethod
     def sinusoidal(
@@ -814,6 +860,37 @@ def _joined_vertices(histories, ends):
     return np.concatenate(vertex_step)
 
 
+def _point(history, step):
+    """The loads of `history` at `step` as text: ``(Q, sigma)`` or ``(delta, sigma)``, and ``P``."""
+    if history.displaced:
+        return (
+            f"(delta, sigma) = {(float(history.delta[step]), float(history.sigma[step]))}, P = {history.normal_start}"
+        )
+    (Q, sigma), P = history._loads_at(step)
+    return f"(Q, sigma) = {(Q, sigma)}, P = {P}"
+
+
+def _joined_explicit(histories):
+    """`History.concatenate` of explicit `histories` already checked to follow one another: their
+    arrays joined, the step 0 of each after the first dropped, cycles counted on."""
+    first = [0] + [1] * (len(histories) - 1)  # the first step each contributes
+    offset = np.cumsum([0] + [len(history) - 1 for history in histories[:-1]])
+
+    def joined(name):
+        if getattr(histories[0], name) is None:
+            return None
+        return np.concatenate([getattr(history, name)[k:] for history, k in zip(histories, first, strict=True)])
+
+    cycles, counted = [], 0
+    for history, k in zip(histories, first, strict=True):
+        own = _cycles(history)[k:]
+        cycles.append(np.where(own > 0, own + counted, 0))
+        counted += history.cycle_count
+    vertex_step = np.unique(np.concatenate([h.vertex_step + o for h, o in zip(histories, offset, strict=True)]))
+    cycle = np.concatenate(cycles) if any(history.has_cycles for history in histories) else None
+    return History(joined("Q"), joined("sigma"), vertex_step, cycle, joined("P"), joined("delta"))
+
+
 def _constant(vertices):
     """True where `vertices` (or None) are the loads of a load that keeps one value."""
     return vertices is not None and bool(np.all(vertices == vertices[0]))
@@ -940,6 +1017,24 @@ def _normal_loads(P, n):
 def _lift_off(P, step):
     """The error of a normal load `P` [N/m] <= 0 at `step`."""
     return HistoryError(f"P must stay positive (the contact lifts off): P = {float(P)!r} at step {int(step)}")
+
+
+def _prescribed(Q, delta):
+    """`Q` [N/m] and `delta` [m] of a history, checked: each step prescribes exactly one of them
+    (a finite number), the other NaN there."""
+    Q, delta = np.asarray(Q, dtype=float), np.asarray(delta, dtype=float)
+    if Q.ndim != 1 or Q.shape != delta.shape or Q.size == 0:
+        raise HistoryError(f"Q and delta must give one value per step, found {Q.size} and {delta.size}")
+    for name, values in (("Q", Q), ("delta", delta)):
+        if np.any(np.isinf(values)):
+            raise HistoryError(f"{name} must be finite, found {values[np.isinf(values)][0]!r}")
+    for found, problem in (
+        (~np.isnan(Q) & ~np.isnan(delta), "both Q and delta"),
+        (np.isnan(Q) & np.isnan(delta), "neither Q nor delta"),
+    ):
+        if found.any():
+            raise HistoryError(f"step {int(np.argmax(found))} gives {problem}, expected exactly one of them")
+    return Q, delta
 
 
 def _loads(name, values):

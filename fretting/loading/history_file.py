@@ -25,7 +25,7 @@ from fretting.physics.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 __all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_data", "read_history_source"]
 
 #: Keys of the [contact] table besides those of the profile.
-CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P", "specimen")
+CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P", "specimen", "datum", "compliance")
 
 #: Largest table file (`csv` blocks, tabulated profiles) read [bytes]: a device, a pipe or a file
 #: larger than this would hang the run or fill the memory before any error could be said.
@@ -152,7 +152,11 @@ class _Document:
         contact = _contact(top.table("contact"))
         if "loading" not in self.data:
             raise self.error((), "found no [[loading]] blocks, expected at least one")
-        history = _sequence(top.tables("loading"), start=(0.0, 0.0, contact.P))
+        history = _sequence(top.tables("loading"), start=(0.0, 0.0, contact.P, 0.0))
+        if history.displaced and contact.datum is None:
+            raise self.error(
+                ("contact",), "the loading prescribes delta, expected a datum L (key 'datum') to measure it at"
+            )
         return contact, history.without_P(contact.P)  # the contact's constant P: the history of Q and sigma alone
 
     def error(self, path, problem):
@@ -218,11 +222,19 @@ def _contact(table):
         raise table.error(None, "missing key 'E_star', expected E_star or both E and nu")
     profile, f, P = read_profile(table), table.get("f", _positive), table.get("P", _positive)
     specimen = table.get("specimen", _choice((1, 2)), SPECIMEN)
+    datum, compliance = table.get("datum", _positive, None), table.get("compliance", _non_negative, 0.0)
+    if compliance and datum is None:
+        raise table.error("compliance", "found a rig compliance without a datum, expected a datum L (key 'datum')")
     try:
-        return Contact(profile, E_star, f, P, specimen, nu)
+        contact = Contact(profile, E_star, f, P, specimen, nu)
     except ValueError as error:
         key = "table" if isinstance(profile, Gap) else None
         raise table.error(key, f"found no admissible contact for this profile and load: {error}") from None
+    if datum is None:
+        return contact
+    if not datum > contact.a:
+        raise table.error("datum", f"found {_show(datum)}, expected a distance L > a = {contact.a:.6g} m")
+    return Contact(profile, E_star, f, P, specimen, nu, datum=datum, compliance=compliance)
 
 
 def _gap(table):
@@ -248,26 +260,48 @@ PROFILES = {
 
 
 def _sequence(tables, start):
-    """History from `start` through the blocks of `tables` in order."""
+    """History from `start` ``(Q, sigma, P, delta)`` through the blocks of `tables` in order."""
     histories = []
     for table in tables:
         kind = table.get("kind", _choice(BLOCKS))
         keys, build = BLOCKS[kind]
         table.reject_unknown(("kind", *keys))
+        if np.isnan(start[0]) and kind not in ("linear", "repeat"):
+            raise table.error(
+                "kind", f"found a {kind} block of Q after a block of delta, expected a linear block of delta"
+            )
         histories.append(build(table, start))
-        start = (*histories[-1].end, histories[-1].normal_end)
+        start = _end(histories[-1])
     return History.concatenate(histories)
+
+
+def _end(history):
+    """``(Q, sigma, P, delta)`` at the last step of `history`: ``Q`` NaN where it prescribes ``delta``,
+    ``delta`` None where it prescribes ``Q`` (not known before the run)."""
+    delta = float(history.delta[-1]) if history.displaced else None
+    return (*history.end, history.normal_end, delta)
 
 
 def _linear(table, start):
     loads = [table.get(name, _numbers, None) for name in LOADS]
-    return _polyline(table, loads, start, LINEAR_STEPS)
+    delta = table.get("delta", _numbers, None)
+    if delta is not None and loads[0] is not None:
+        raise table.error("delta", "found both Q and delta, expected the vertices of one of them")
+    if delta is None and np.isnan(start[0]):
+        raise table.error(None, "found neither Q nor delta after a block of delta, expected the vertices of delta")
+    if delta is None:
+        return _polyline(table, loads, start[:3], LINEAR_STEPS)
+    if start[3] is None:
+        raise table.error(
+            "delta", "found delta after a block of Q, whose delta is not known before the run; expected Q"
+        )
+    return _polyline(table, [delta, *loads[1:]], (start[3], *start[1:3]), LINEAR_STEPS).explicit().displacements()
 
 
 def _series(table, start):
     path = table.file("file")
     columns = _read_columns(table, "file", path, LOADS, all_required=False)
-    return _polyline(table, [columns.get(name) for name in LOADS], start, CSV_STEPS)
+    return _polyline(table, [columns.get(name) for name in LOADS], start[:3], CSV_STEPS)
 
 
 def _polyline(table, loads, start, default_steps):
@@ -299,7 +333,7 @@ def _sine(table, start):
         table.get("steps_per_cycle", _count_from(4), 64),
         table.get("Q_mean", _number, 0.0),
         table.get("sigma_mean", _number, 0.0),
-        start=start,
+        start=start[:3],
         ramp_steps=table.get("ramp_steps", _count, RAMP_STEPS),
         P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
         P_mean=table.get("P_mean", _positive, start[2]),
@@ -317,7 +351,7 @@ def _random(table, start):
         table.get("sigma_mean", _number, 0.0),
         table.get("seed", _count_from(0)),
         table.get("steps_per_segment", _count, LINEAR_STEPS),
-        start=start,
+        start=start[:3],
         P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
         P_mean=table.get("P_mean", _positive, start[2]),
         vertices=True,
@@ -329,7 +363,7 @@ def _repeat(table, start):
     histories = []
     for _ in range(count):
         histories.append(_sequence(blocks, start))
-        start = (*histories[-1].end, histories[-1].normal_end)
+        start = _end(histories[-1])
     return History.concatenate(histories)
 
 
@@ -338,7 +372,7 @@ LOADS = ("Q", "sigma", "P")
 
 #: block kind -> (its keys besides `kind`, builder of its history from the table and the start ``(Q, sigma, P)``).
 BLOCKS = {
-    "linear": (("Q", "sigma", "P", "steps_per_segment", "cycle"), _linear),
+    "linear": (("Q", "delta", "sigma", "P", "steps_per_segment", "cycle"), _linear),
     "csv": (("file", "steps_per_segment", "cycle"), _series),
     "sine": (
         (

@@ -7,11 +7,11 @@ new load input is a field here, a column of the history file and the model that 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-__all__ = ["INPUTS", "NAMED", "LoadBlock", "Loads"]
+__all__ = ["CONVERTED", "INPUTS", "NAMED", "LoadBlock", "Loads"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -27,11 +27,17 @@ class Loads:
     P : float, optional
         Normal load per unit length [N/m]; None: the contact's ``P`` (the load it was formed at),
         which every model runs.
+    delta : float, optional
+        Tangential displacement of the pad relative to the specimen at the contact's datum [m]
+        (docs/theory/displacement.md), where it is prescribed: the engine then finds ``Q``
+        (`fretting.engine.follow.displaced`) and gives the model the loads with ``Q`` and without
+        ``delta``. None: ``Q`` is prescribed.
     """
 
     Q: float
     sigma: float = 0.0
     P: float | None = None
+    delta: float | None = None
 
     def normal(self, contact):
         """The normal load [N/m] on `contact`: `P`, or the contact's where it is None."""
@@ -41,15 +47,30 @@ class Loads:
         """Names of the inputs these loads set: ``Q`` and ``sigma`` always, the optional ones where not None."""
         return frozenset(field.name for field in fields(self) if getattr(self, field.name) is not None)
 
+    def force(self):
+        """These loads as a model is given them: without ``delta`` (the engine has found ``Q``)."""
+        return self if self.delta is None else replace(self, delta=None)
+
 
 #: Every load input a history can move, in the order of `Loads`' fields, with the words that name it.
-NAMED = {"Q": "the shear force Q", "sigma": "the bulk tension sigma", "P": "the normal load P"}
+NAMED = {
+    "Q": "the shear force Q",
+    "sigma": "the bulk tension sigma",
+    "P": "the normal load P",
+    "delta": "the tangential displacement delta",
+}
 INPUTS = tuple(NAMED)
+
+#: Inputs the engine turns into another before a model sees the loads: a prescribed ``delta`` is met
+#: by the ``Q`` it solves for, so a model that follows ``Q`` runs it (`fretting.engine.follow.displaced`).
+CONVERTED = {"delta": "Q"}
 
 
 @dataclass(frozen=True, eq=False)
 class LoadBlock:
     """The loads of a run of steps: each field of `Loads` as an array over the steps (None: not given).
+
+    Where ``delta`` is given, a step prescribes either ``Q`` or ``delta``: the other is NaN there.
 
     ``block[k]`` is the `Loads` of step ``k``, ``block[steps]`` (a slice or an index array) the
     block of those steps.
@@ -58,12 +79,21 @@ class LoadBlock:
     Q: np.ndarray
     sigma: np.ndarray
     P: np.ndarray | None = None
+    delta: np.ndarray | None = None
 
     def __len__(self):
         return len(self.Q)
 
     def __getitem__(self, steps):
-        P = self.P
+        P, delta = self.P, self.delta
         if isinstance(steps, (int, np.integer)):
-            return Loads(float(self.Q[steps]), float(self.sigma[steps]), None if P is None else float(P[steps]))
-        return LoadBlock(self.Q[steps], self.sigma[steps], None if self.P is None else self.P[steps])
+            displaced = delta is not None and not np.isnan(delta[steps])
+            return Loads(
+                float(self.Q[steps]),
+                float(self.sigma[steps]),
+                None if P is None else float(P[steps]),
+                float(delta[steps]) if displaced else None,
+            )
+        return LoadBlock(
+            self.Q[steps], self.sigma[steps], None if P is None else P[steps], None if delta is None else delta[steps]
+        )

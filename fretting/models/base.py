@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
-from fretting.loading.loads import NAMED, LoadBlock, Loads
+from fretting.loading.loads import CONVERTED, NAMED, LoadBlock, Loads
 from fretting.physics.surface import SurfaceStress
 
 if TYPE_CHECKING:
@@ -151,8 +151,10 @@ class ModelSpec(abc.ABC):
 
     def refusal(self, contact: Contact, history: History | None) -> str | None:
         """None if the model can run `history` on `contact`: it follows every input the history moves
-        (`inputs`) and `holds_for` it; else the reason why not (one line)."""
-        moved = frozenset() if history is None else history.moves(contact) - self.inputs
+        (`inputs`; an input the engine turns into another, `fretting.loading.loads.CONVERTED`, as that
+        one) and `holds_for` it; else the reason why not (one line)."""
+        moved = frozenset() if history is None else {CONVERTED.get(name, name) for name in history.moves(contact)}
+        moved -= self.inputs
         if moved:
             followers = sorted(
                 f"fretting.models.{spec.__name__}" for spec in set(self.registry.values()) if moved <= spec.inputs

@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike
 from fretting._validate import finite, positive
 from fretting.physics.profiles import Profile
 
-__all__ = ["POISSON_RANGE", "SPECIMEN", "Contact", "plane_strain_modulus", "poisson_ratio"]
+__all__ = ["POISSON_RANGE", "SPECIMEN", "Contact", "plane_strain_modulus", "poisson_ratio", "stuck_compliance"]
 
 #: Poisson's ratios of an isotropic elastic material, ``-1 < nu <= 0.5``: its bulk and shear moduli are
 #: positive for ``-1 < nu < 0.5``, and 0.5 is the incompressible limit, where ``E_star`` stays finite.
@@ -37,6 +37,14 @@ def poisson_ratio(nu: float) -> float:
             f"found {nu!r}"
         )
     return nu
+
+
+def stuck_compliance(L: float, a: float, E_star: float) -> float:
+    """Compliance ``C_L = (2 / (pi E_star)) arccosh(L / a)`` [m per N/m] of a fully stuck contact of
+    half-width `a` [m] between two similar half-planes of modulus `E_star` [Pa], its displacement
+    measured between surface points at the distance `L` > `a` [m] from its middle
+    (docs/theory/displacement.md, eq D3): ``(2 / (pi E_star)) ln(2 L / a)`` for ``L >> a``."""
+    return 2 * math.acosh(L / a) / (math.pi * E_star)
 
 
 def plane_strain_modulus(E: float, nu: float) -> float:
@@ -82,6 +90,13 @@ class Contact:
         ``nu``). It changes no mechanics, which `E_star` sets: a result records it (attribute
         ``nu``) for the stress out of the plane, ``sigma_yy = nu (sigma_xx + sigma_zz)``
         (`fretting.analysis.stress.field`).
+    datum : float, optional
+        Distance ``L`` [m] from the middle of the contact, along the surface, of the points of the
+        pad and the specimen whose relative tangential displacement ``delta`` is measured
+        (docs/theory/displacement.md); ``L > a``. None: no datum, no ``delta`` (force control only).
+    compliance : float
+        Rig compliance ``C`` [m per N/m] in series with the contact, ``>= 0``: it adds ``C Q`` to
+        ``delta``. Only with a `datum`.
 
     Attributes
     ----------
@@ -92,6 +107,9 @@ class Contact:
         Middle of the contact interval [m]; zero for symmetric profiles.
     p0 : float
         Peak contact pressure [Pa] (the centre pressure for the sharp flat punch).
+    displacement_compliance : float or None
+        ``d delta / dQ`` [m per N/m] of the fully stuck contact at the datum, with the rig:
+        `stuck_compliance` of ``L`` and ``a`` plus ``C``; None without a datum.
 
     Raises
     ------
@@ -111,7 +129,16 @@ class Contact:
     """
 
     def __init__(
-        self, profile: Profile, E_star: float, f: float, P: float, specimen: int = SPECIMEN, nu: float | None = None
+        self,
+        profile: Profile,
+        E_star: float,
+        f: float,
+        P: float,
+        specimen: int = SPECIMEN,
+        nu: float | None = None,
+        *,
+        datum: float | None = None,
+        compliance: float = 0.0,
     ) -> None:
         if not isinstance(profile, Profile):
             raise ValueError(f"profile must be a fretting Profile, found {profile!r}")
@@ -133,13 +160,33 @@ class Contact:
                 f"f = {f!r} with p0 = {self.p0:.4g} Pa, a = {self.a:.4g} m: the contact's energy scale "
                 f"(f p0 a)^2 / E_star overflows a float; expected a friction coefficient that keeps it finite"
             )
+        self.datum = None if datum is None else positive("datum", datum)
+        if self.datum is not None and not self.datum > self.a:
+            raise ValueError(
+                f"datum must be a distance L > a = {self.a!r} m from the middle of the contact, found {datum!r}"
+            )
+        self.compliance = finite("compliance", compliance)
+        if self.compliance < 0:
+            raise ValueError(f"compliance must be >= 0 [m per N/m], found {compliance!r}")
+        if self.compliance and self.datum is None:
+            raise ValueError("compliance needs a datum: give datum=L, the distance at which delta is measured")
+        self.displacement_compliance = (
+            None if self.datum is None else stuck_compliance(self.datum, self.a, self.E_star) + self.compliance
+        )
 
     def __repr__(self):
         nu = "" if self.nu is None else f", nu={self.nu!r}"
+        datum = "" if self.datum is None else f", datum={self.datum!r}, compliance={self.compliance!r}"
         return (
             f"Contact({self.profile!r}, E_star={self.E_star!r}, f={self.f!r}, P={self.P!r}, "
-            f"specimen={self.specimen!r}{nu})"
+            f"specimen={self.specimen!r}{nu}{datum})"
         )
+
+    def displacement(self, Q: float, delta_Q: float) -> float:
+        """Tangential displacement ``delta`` [m] of the pad relative to the specimen at the datum under
+        the shear force `Q` [N/m] with the slip part `delta_Q` [m]: ``(C_L + C) Q + delta_Q``
+        (docs/theory/displacement.md, eq D4). Only for a contact with a datum."""
+        return self.displacement_compliance * Q + delta_Q
 
     def pressure(self, x: ArrayLike) -> np.ndarray:
         """Contact pressure ``p(x)`` [Pa] at positions `x` [m]; zero outside the contact."""

@@ -81,7 +81,7 @@ ACCUMULATED = {"w_total": "w"} | {f"{name}_max": name for name in CYCLE_FIELDS[1
 
 #: name -> (dims, units, long_name) of the variables that follow from no other.
 _DECLARED = {
-    "Q": (("step",), "N/m", "shear force per unit length"),
+    "Q": (("step",), "N/m", "shear force per unit length (prescribed, or found for the prescribed delta)"),
     "sigma": (("step",), "Pa", "differential bulk tension"),
     "p": (("x",), "Pa", "contact pressure (of the contact formed, where P varies)"),
     "P": (("step",), "N/m", "normal load per unit length, where the history varies it"),
@@ -95,10 +95,22 @@ _DECLARED = {
     "dissipation": (("step",), "J/m", "energy dissipated in the increment ending at this step"),
     "delta_Q": (("step",), "m", "slip part of the generalized displacement conjugate to Q"),
     "delta_sigma": (("step",), "m^2", "slip part of the generalized displacement conjugate to sigma"),
+    "delta": (
+        ("step",),
+        "m",
+        "tangential displacement of the pad relative to the specimen at the datum (depends on the datum L "
+        "and the rig compliance, attributes datum and compliance), where the contact has a datum",
+    ),
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
     "vertex_Q": (("vertex",), "N/m", "shear force at each vertex of the load path"),
     "vertex_sigma": (("vertex",), "Pa", "bulk tension at each vertex of the load path"),
     "vertex_P": (("vertex",), "N/m", "normal load at each vertex of the load path, where the history varies it"),
+    "vertex_delta": (
+        ("vertex",),
+        "m",
+        "tangential displacement at the datum prescribed at each vertex, where the history prescribes it "
+        "(NaN where Q is)",
+    ),
     "cycle": (("step",), "1", "load cycle of the increment ending at this step (0: outside any cycle)"),
     "cycle_dissipation": (("cycle_number",), "J/m", "energy dissipated in each load cycle"),
     "cycle_number": (("cycle_number",), "1", "load cycle (1, 2, ...)"),
@@ -113,6 +125,7 @@ _DECLARED = {
     "state_Q": ((), "N/m", "shear force at the last step"),
     "state_sigma": ((), "Pa", "bulk tension at the last step"),
     "state_P": ((), "N/m", "normal load at the last step, where the history varies it"),
+    "state_delta": ((), "m", "tangential displacement at the datum prescribed at the last step, where it is"),
     "state_slip": (("x",), "m", "slip at the last step"),
     "state_episode_start": (("x",), "m", "slip at which each point's current slip episode began, at the last step"),
     "state_cycle": ((), "1", "load cycle in progress at the last step (0: none)"),

@@ -6,6 +6,8 @@ import pytest
 import fretting as fr
 from fretting.loading import history as history_module
 from fretting.loading.history import RAMP_STEPS
+from fretting.loading.loads import CONVERTED
+from fretting.models.base import ModelSpec
 
 History = fr.History
 
@@ -216,3 +218,31 @@ def test_passes_over_a_history_by_blocks(monkeypatch):
     History(Q, np.zeros(Q.size), [0], cycle=[0, 1, 1, 1, 0, 0, 2, 2, 3, 3])
     with pytest.raises(fr.HistoryError, match="cycle"):
         History(Q, np.zeros(Q.size), [0], cycle=[0, 1, 1, 2, 0, 1, 2, 2, 3, 3])  # back to 1 in the second block
+
+
+def test_a_history_of_delta_moves_delta_which_a_model_of_Q_runs():
+    """``delta`` is an input `History.moves` reports; the engine turns it into ``Q`` (`CONVERTED`), so
+    a spec that follows ``Q`` runs it and no spec lists ``delta`` in its inputs."""
+    contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5, datum=5e-3)
+    history = fr.History.piecewise_linear(delta=[0, 1e-7, -1e-7], steps_per_segment=2)
+    assert history.moves(contact) == {"Q", "sigma", "delta"} and CONVERTED == {"delta": "Q"}
+    assert fr.models.Grid(16).refusal(contact, history) is None
+    assert not any("delta" in spec.inputs for spec in ModelSpec.registry.values())
+    last = history.loads[4]
+    assert np.isnan(last.Q) and (last.sigma, last.P, last.delta) == (0.0, None, -1e-7)
+    assert last.force().delta is None and fr.History.piecewise_linear([0, 1.0], None, 1).loads[1].delta is None
+    tail = history[2:]
+    assert tail.delta.tolist() == [1e-7, 0.0, -1e-7] and tail.vertex_step.tolist() == [0, 2]
+
+
+def test_histories_of_delta_concatenate():
+    first = fr.History.piecewise_linear(delta=[0, 1e-7], steps_per_segment=2)
+    cycle = fr.History.piecewise_linear(delta=[1e-7, -1e-7, 1e-7], steps_per_segment=2).as_cycle()
+    joined = fr.History.concatenate([first, cycle, cycle])
+    assert joined.delta.tolist() == [0, 5e-8, 1e-7, 0, -1e-7, 0, 1e-7, 0, -1e-7, 0, 1e-7]
+    assert joined.cycle.tolist() == [0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2]
+    assert joined.vertex_step.tolist() == [0, 2, 4, 6, 8, 10]
+    with pytest.raises(fr.HistoryError, match=r"history 2 starts at \(delta, sigma\) = \(0.0, 0.0\)"):
+        fr.History.concatenate([first, fr.History.piecewise_linear(delta=[0, 1e-7], steps_per_segment=2)])
+    with pytest.raises(fr.HistoryError, match="histories of Q and histories of delta"):
+        fr.History.concatenate([first, fr.History.piecewise_linear([0, 1.0], None, 2)])

@@ -137,7 +137,7 @@ def test_a_case_run_by_another_release_is_run_again(swept, cluster, monkeypatch)
         ({}, "grid: found {}, expected keys and lists of their values"),
         (
             {"contact.profile": ["flat"]},
-            "contact.R: unknown key, expected one of: profile, E_star, E, nu, f, P, specimen, a "
+            "contact.R: unknown key, expected one of: profile, E_star, E, nu, f, P, specimen, datum, compliance, a "
             "(in the case contact.profile",
         ),
     ],

@@ -101,6 +101,13 @@ class Mesh(ModelSpec):
     def build(self, contact: Contact, previous: GalerkinModel | None = None) -> GalerkinModel:
         return GalerkinModel(contact, self, previous)
 
+    def holds_for(self, contact, history):
+        """A mesh still to adapt needs the ``Q`` of every step before the run, which a history of
+        ``delta`` finds step by step (`fretting.engine.follow.displaced`)."""
+        if not self.resolved and history is not None and history.displaced:
+            return "the mesh adapts to the Q of every step, which a history of delta finds only as it runs"
+        return None
+
     def model_for(self, contact, history, run, recorded=None):
         """The model on this mesh, or on the mesh adapted to `history` where it is not given
         (`fretting.models.galerkin.adaptation.adapted_model`, which locates the stick ends of the
