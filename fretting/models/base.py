@@ -110,8 +110,8 @@ class ModelSpec(abc.ABC):
         if "name" not in cls.__dict__:
             return
         for name in (cls.name, *cls.recorded_as):
-            known = ModelSpec.registry.setdefault(name, cls)
-            if known is not cls and known.__qualname__ != cls.__qualname__:
+            known = ModelSpec.registry.get(name, cls)
+            if known.__qualname__ != cls.__qualname__:  # the same class defined again (a reload) takes its place
                 raise TypeError(f"the model name {name!r} of {cls.__qualname__} is {known.__qualname__}'s already")
             ModelSpec.registry[name] = cls
 
@@ -249,15 +249,27 @@ class Model(abc.ABC):
         answer does not depend on. A model may ignore it.
         """
 
-    #: True if the model steps a run of increments at once (`window`).
+    #: True if `window` steps a run of increments for less than `increment` one at a time does (the
+    #: engine then takes the unrecorded steps a window at a time).
     windows: bool = False
 
     def window(self, state: State, loads: LoadBlock) -> tuple:
         """The increments from `state` through the `loads` (a `fretting.loading.loads.LoadBlock`) in
-        turn, as rows, where `windows` is True: ``(slip, q, dissipation, memory, still)``, row ``k``
-        what `increment` gives for the ``k``-th loads from the state the rows before it leave, bit
-        for bit (`fretting.models.exact.ExactModel.window` states the arrays)."""
-        raise NotImplementedError(f"{type(self).__name__} does not step increments as rows (windows is False)")
+        turn, as rows: ``(slip, q, dissipation, memory, still)``, row ``k`` what `increment` gives
+        for the ``k``-th loads from the state the rows before it leave, bit for bit
+        (`fretting.models.exact.ExactModel.window` states the arrays). By default the increments
+        one after another, ``still`` where one slipped nowhere; a model whose rows cost less sets
+        `windows`."""
+        slip, q, dissipation, memory, still = [], [], [], [], []
+        for k in range(len(loads)):
+            outcome = self.increment(state, loads[k])
+            state = state.advance(outcome, loads[k], None, None, None)
+            slip.append(outcome.slip)
+            q.append(self.traction(outcome))
+            dissipation.append(outcome.dissipation)
+            memory.append(outcome.memory)
+            still.append(not outcome.ds.any())
+        return np.array(slip), np.array(q), dissipation, memory, np.array(still)
 
     def prepare(self, state: State, loads: LoadBlock) -> None:  # noqa: B027 (a neutral default: most models have nothing to prepare)
         """Prepare the increments from `state` through the `loads` (a `LoadBlock`) that are to come,

@@ -8,6 +8,7 @@ import fretting as fr
 from fretting.engine import follow
 from fretting.engine.follow import skippable
 from fretting.engine.recorder import Recorder
+from fretting.loading.loads import LoadBlock
 from fretting.models.exact import ExactModel
 
 
@@ -61,3 +62,18 @@ def test_a_window_equals_its_steps_one_by_one(hertz, monkeypatch, prepared):
         xr.testing.assert_identical(windowed, one_by_one)
         for name in ("state_slip", "state_episode_start", "state_w", "state_slip_min", "state_slip_max"):
             assert np.array_equal(np.signbit(windowed[name].values), np.signbit(one_by_one[name].values))
+
+
+def test_the_default_window_is_the_increments_one_after_another(hertz):
+    """`Model.window` of a model that does not set `windows` (method 4 on the grid): its rows are the
+    increments stepped one at a time, bit for bit, and ``still`` marks an increment that slipped nowhere."""
+    fP = hertz.f * hertz.P
+    model = fr.models.Grid(32).build(hertz)
+    Q = fP * np.array([0.3, 0.3, -0.2, 0.4])
+    slip, q, dissipation, memory, still = model.window(fr.State.virgin(model), LoadBlock(Q, np.zeros(Q.size)))
+    stepper = fr.Stepper(hertz, fr.models.Grid(32))
+    for k, load in enumerate(Q):
+        outcome = stepper.step(load)
+        assert np.array_equal(slip[k], outcome.slip) and np.array_equal(q[k], model.traction(outcome))
+        assert dissipation[k] == outcome.dissipation and memory[k] == outcome.memory
+    assert still.tolist() == [False, True, False, False]
