@@ -301,7 +301,7 @@ def run_file(
                 "the unrecorded steps inside straight stretches are skipped: sigma_xx_peak and sigma_xx_q_peak "
                 "are not tallied (--every-step solves every step)"
             )
-        try:
+        with _resume_said(checkpoint):
             stepper = Stepper(source.contact, model if state is None else None, state)
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always", ModelFallbackWarning)
@@ -336,11 +336,18 @@ def run_file(
                 _save_part(part, checkpoint, attributes)
             save_joined(_parts(checkpoint), output, attributes)
             shutil.rmtree(checkpoint)
-        except KeyboardInterrupt:  # wherever it came: the parts on disk are the run so far
-            if _parts(checkpoint):
-                raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
-            raise
     return Run(output, notes)
+
+
+@contextlib.contextmanager
+def _resume_said(checkpoint):
+    """A block whose interrupt, wherever it comes, says to resume where parts of the run are on disk."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        if _parts(checkpoint):
+            raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
+        raise
 
 
 def _started(checkpoint, source, model, resume, skipping, attributes):
