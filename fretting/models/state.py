@@ -141,6 +141,9 @@ class State:
     memory : tuple of float
         What the model remembers beyond the slip (the open turning points [N/m] of the exact
         model of ``Q`` alone, oldest first; empty for method 4).
+    slid : float
+        Uniform slip [m] the contact has taken sliding whole (gross slip, `Outcome.slid`), part of
+        `slip`; 0 where it never slid.
     """
 
     loads: Loads
@@ -150,6 +153,7 @@ class State:
     model: ModelSpec
     dissipated: float = 0.0
     memory: tuple = ()
+    slid: float = 0.0
 
     @property
     def Q(self) -> float:
@@ -193,7 +197,7 @@ class State:
         np.copyto(episode_start, slip, where=ds == 0)
         tally = self.tally if w is None else self.tally.add(outcome.dissipation, w, slip, stress, shear)
         dissipated = self.dissipated + outcome.dissipation
-        return State(loads, slip, episode_start, tally, self.model, dissipated, outcome.memory)
+        return State(loads, slip, episode_start, tally, self.model, dissipated, outcome.memory, outcome.slid)
 
     def episode_after(self, slips: np.ndarray, ds: np.ndarray) -> np.ndarray:
         """`episode_start` [m] after a run of increments taken as rows: `slips` the slip before the
@@ -218,7 +222,7 @@ class State:
     def repeats(self, other: State) -> bool:
         """True if this state is `other`'s memory bit for bit: the same loads, slip fields and model memory."""
         return (
-            (self.loads, self.memory) == (other.loads, other.memory)
+            (self.loads, self.memory, self.slid) == (other.loads, other.memory, other.slid)
             and np.array_equal(self.slip, other.slip)
             and np.array_equal(self.episode_start, other.episode_start)
         )
@@ -246,6 +250,7 @@ class State:
             "sigma": self.sigma,
             "dissipated": self.dissipated,
             "tally.dissipation": self.tally.dissipation,
+            "slid": self.slid,
         }
         numbers |= {f"memory[{k}]": value for k, value in enumerate(self.memory)}
         for name, value in numbers.items():
@@ -257,7 +262,7 @@ class State:
                     f"state.{name} = {numbers[name]!r}, expected a finite number >= 0 (energy dissipated)"
                 )
         P = contact.P if self.P is None else self.P
-        if abs(self.Q) >= contact.f * P:
+        if abs(self.Q) > contact.f * P or (abs(self.Q) == contact.f * P and not model.slides):
             raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")
 
 

@@ -101,6 +101,12 @@ _DECLARED = {
         "tangential displacement of the pad relative to the specimen at the datum (depends on the datum L "
         "and the rig compliance, attributes datum and compliance), where the contact has a datum",
     ),
+    "regime": (
+        ("step",),
+        "1",
+        "regime of the increment ending at this step: 0 stick, 1 partial slip, 2 gross slip (the whole contact "
+        "slides), where the contact has a datum",
+    ),
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
     "vertex_Q": (("vertex",), "N/m", "shear force at each vertex of the load path"),
     "vertex_sigma": (("vertex",), "Pa", "bulk tension at each vertex of the load path"),
@@ -120,6 +126,40 @@ _DECLARED = {
         "cycle copied, not solved: its loads and starting state repeat those of the cycle before bit for bit "
         "(which cycles a run copies depends on where it was cut into parts; the values do not)",
     ),
+    "Q_amplitude": (("cycle_number",), "N/m", "half the range of Q over each load cycle (Q*)"),
+    "delta_amplitude": (
+        ("cycle_number",),
+        "m",
+        "half the range of delta over each load cycle (delta*; depends on the datum and the rig compliance)",
+    ),
+    "loop_opening": (
+        ("cycle_number",),
+        "m",
+        "distance between the two crossings of Q = 0 of each cycle's loop of delta (2 delta_0; for a given "
+        "history of Q independent of the datum)",
+    ),
+    "energy_ratio": (
+        ("cycle_number",),
+        "1",
+        "Fouvry's energy ratio A = cycle_dissipation / (4 Q* delta*) of each cycle (depends on the datum)",
+    ),
+    "sliding_ratio": (
+        ("cycle_number",),
+        "1",
+        "Fouvry's sliding ratio B = delta_0 / delta* of each cycle, delta_0 half the loop opening (depends on "
+        "the datum)",
+    ),
+    "cycle_regime": (
+        ("cycle_number",),
+        "1",
+        "largest regime of the increments of each cycle: 0 stick, 1 partial slip, 2 gross slip (-1: not recorded "
+        "whole)",
+    ),
+    "transition": (
+        ("P",),
+        "m",
+        "displacement amplitude at the partial-slip / gross-slip boundary, delta_t (depends on the datum)",
+    ),
     "field_cycle": (("field_cycle",), "1", "load cycle whose fields are stored (the cycle_fields policy's choice)"),
     "cycle_dissipation_max": ((), "J/m", "largest energy dissipated in one complete load cycle (NaN: none yet)"),
     "state_Q": ((), "N/m", "shear force at the last step"),
@@ -127,6 +167,11 @@ _DECLARED = {
     "state_P": ((), "N/m", "normal load at the last step, where the history varies it"),
     "state_delta": ((), "m", "tangential displacement at the datum prescribed at the last step, where it is"),
     "state_slip": (("x",), "m", "slip at the last step"),
+    "state_slid": (
+        (),
+        "m",
+        "uniform slip taken while the whole contact slid (gross slip), part of state_slip, where it slid",
+    ),
     "state_episode_start": (("x",), "m", "slip at which each point's current slip episode began, at the last step"),
     "state_cycle": ((), "1", "load cycle in progress at the last step (0: none)"),
     "state_cycle_dissipation": ((), "J/m", "energy dissipated so far in the cycle in progress"),
