@@ -8,6 +8,7 @@ returns the axes; none shows or saves a figure. `FIGURES` names the figures that
 """
 
 import numpy as np
+from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.ticker import MaxNLocator
 
 from fretting.analysis import nucleation
@@ -494,7 +495,8 @@ def running_condition_map(data, name="cycle_regime", ax=None):
     delta, P = data.delta_amplitude.values * 1e6, data.P.values / 1e3
     values = data[name].values
     if name == "cycle_regime":
-        mesh = ax.pcolormesh(delta, P, values, shading="nearest", cmap="coolwarm", vmin=1, vmax=2)
+        regimes = ListedColormap(["tab:blue", "tab:red"])
+        mesh = ax.pcolormesh(delta, P, values, shading="nearest", cmap=regimes, norm=BoundaryNorm([0.5, 1.5, 2.5], 2))
         ax.figure.colorbar(mesh, ax=ax, ticks=[1, 2], label="regime: 1 partial slip, 2 gross slip")
     else:
         mesh = ax.pcolormesh(delta, P, values, shading="nearest")
