@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import fretting as fr
+from fretting.engine import runner
 from fretting.engine.recorder import REGIMES, final_state
 from fretting.physics.closed_forms import cattaneo_mindlin_compliance, cattaneo_mindlin_slip
 
@@ -133,7 +134,7 @@ def test_mixed_history_split_anywhere_resumes_bit_for_bit(contact):
     """Partial-slip loops, gross slip both ways and reversals inside partial slip, split at every step."""
     delta_t = transition(contact)
     vertices = [0.0, 0.6, -0.4, 1.3, 0.7, 1.1, -1.6, -0.9, -1.2, 0.2]
-    history = fr.History.piecewise_linear(delta=[v * delta_t for v in vertices], steps_per_segment=3)
+    history = fr.History.piecewise_linear(delta=[v * delta_t for v in vertices], steps_per_segment=2)
     whole = fr.simulate(contact, history, fr.models.Exact())
     assert set(whole.regime.values.tolist()) == {0, 1, 2}
     for k in range(1, len(history) - 1):
@@ -143,3 +144,50 @@ def test_mixed_history_split_anywhere_resumes_bit_for_bit(contact):
             assert np.array_equal(later[name].values[1:], whole[name].values[k + 1 :]), (k, name)
         assert np.array_equal(later.dissipation.values[1:], whole.dissipation.values[k + 1 :])
         assert float(later.total_dissipation) == float(whole.total_dissipation)
+
+
+def test_stepper_slides_and_sticks_again(contact):
+    """`Stepper.step(delta=...)` slides past delta_t and sticks again on the way back."""
+    fP, delta_t = contact.f * contact.P, transition(contact)
+    stepper = fr.Stepper(contact, fr.models.Exact().resolved_for(contact, None))
+    stepper.step(delta=1.5 * delta_t)
+    assert stepper.state.Q == fP and stepper.state.slid == pytest.approx(0.5 * delta_t, rel=1e-9)
+    outcome = stepper.step(delta=1.4 * delta_t)
+    assert stepper.state.Q < fP and np.count_nonzero(outcome.ds == 0) > 0  # stuck in the middle
+
+
+FILE = """
+[contact]
+profile = "hertz"
+R = 0.05
+E_star = 115e9
+f = 0.6
+P = 1e5
+datum = 5e-3
+
+[[loading]]
+kind = "linear"
+delta = [3e-6]
+steps_per_segment = 6
+
+[[loading]]
+kind = "linear"
+delta = [-3e-6, 3e-6]
+steps_per_segment = 9
+cycle = true
+"""
+
+
+def test_a_file_that_slides_run_in_chunks_is_the_run_in_one_piece(tmp_path, monkeypatch):
+    """`run_file` continues each chunk from the state the one before left, its uniform slide included."""
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 9)
+    monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)
+    path = tmp_path / "slides.toml"
+    path.write_text(FILE)
+    read, history = fr.read_history(path)
+    chunked = runner.run_file(path, tmp_path / "slides.h5", fr.models.Exact(), record="all").result
+    whole = fr.simulate(read, history, fr.models.Exact())
+    assert 2 in whole.regime.values
+    for name in ("Q", "delta", "slip", "regime", "dissipation"):
+        assert np.array_equal(chunked[name].values, whole[name].values), name
+    assert float(chunked.state_slid) == float(whole.state_slid) != 0
