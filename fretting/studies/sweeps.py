@@ -610,7 +610,7 @@ def _client(distributed, scheduler, scheduler_file, cases):
         try:
             client = Client(scheduler, scheduler_file=None if scheduler_file is None else os.fspath(scheduler_file))
         except ValueError as error:  # a malformed address; one that does not answer raises OSError
-            raise OSError(errno.EINVAL, f"scheduler {scheduler}: {error}") from None
+            raise OSError(errno.EINVAL, f"scheduler {scheduler or scheduler_file}: {error}") from None
         with client:
             yield client
         return
