@@ -33,6 +33,7 @@ import logging
 import math
 import os
 import re
+import time
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -152,6 +153,9 @@ REGIME_COLOURS = ("#eeeeee", "#cfe2f3", "#f4c7c3")
 
 #: Resolution of the map that `save_map` writes, as `fretting plot`'s figures.
 MAP_DPI = 100
+
+#: Seconds a sweep waits for the file of its scheduler to appear (`sweep`'s `scheduler_file`).
+SCHEDULER_FILE_SECONDS = 60.0
 
 #: Variables of a sweep that `fretting plot` draws against the swept values (`curves`).
 CURVES = ("energy_per_cycle", "w_max", "slip_amplitude_max", "total_dissipation")
@@ -606,6 +610,8 @@ def _client(distributed, scheduler, scheduler_file, cases):
     from dask.system import CPU_COUNT  # the cores this process may use; dask comes with distributed
 
     Client, LocalCluster = distributed.Client, distributed.LocalCluster
+    if scheduler_file is not None:
+        _wait_for(Path(scheduler_file))
     if scheduler is not None or scheduler_file is not None:
         try:
             client = Client(scheduler, scheduler_file=None if scheduler_file is None else os.fspath(scheduler_file))
@@ -627,6 +633,17 @@ def _client(distributed, scheduler, scheduler_file, cases):
         Client(cluster) as client,
     ):
         yield client
+
+
+def _wait_for(scheduler_file):
+    """Return once the file `scheduler_file` is there: a scheduler started beside the sweep, in the same batch
+    job, writes it within seconds. Raises FileNotFoundError after `SCHEDULER_FILE_SECONDS` (dask would wait on)."""
+    deadline = time.monotonic() + SCHEDULER_FILE_SECONDS
+    while not scheduler_file.is_file():
+        if time.monotonic() > deadline:
+            problem = f"no scheduler wrote it in {SCHEDULER_FILE_SECONDS:g} s (dask scheduler --scheduler-file FILE)"
+            raise FileNotFoundError(errno.ENOENT, problem, str(scheduler_file))
+        time.sleep(0.1)
 
 
 def _combine(plan, summaries):

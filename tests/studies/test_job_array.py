@@ -133,6 +133,14 @@ def test_a_case_out_of_range_is_a_one_line_error(folder, capsys, k):
     )
 
 
+def test_a_scheduler_file_that_does_not_appear_is_a_one_line_error(folder, capsys, monkeypatch):
+    monkeypatch.setattr(sweeps, "SCHEDULER_FILE_SECONDS", 0.2)
+    assert cli.main(["sweep", "map.toml", "--scheduler-file", "missing.json"]) == cli.EXIT_INPUT
+    assert capsys.readouterr().err == (
+        "fretting: error: missing.json: no scheduler wrote it in 0.2 s (dask scheduler --scheduler-file FILE)\n"
+    )
+
+
 def test_progress_on_stderr_when_it_is_a_terminal(inside, capsys, monkeypatch, no_dask):
     monkeypatch.setattr(cli, "PROGRESS_DELAY", 0.0)
     monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
