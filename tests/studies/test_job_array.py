@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import xarray as xr
 from conftest import HERTZ_TOML
+from conftest import SINE_TOML as SINE
 from matplotlib.figure import Figure
 
 import fretting as fr
@@ -19,18 +20,7 @@ from fretting.results.io import save
 from fretting.studies import sweeps
 from fretting.studies.sweeps import SWEEPS, case_file, figures_for, load_sweep, read_sweep, run_one, summarize
 
-#: Two cycles of Q and sigma in phase; f P = 70 kN/m (60 kN/m at f = 0.6), so Q = 80 kN/m slides.
-SINE = (
-    HERTZ_TOML
-    + """
-[[loading]]
-kind = "sine"
-Q_amplitude = 30e3
-sigma_amplitude = 20e6
-cycles = 2
-steps_per_cycle = 16
-"""
-)
+#: f P = 70 kN/m in `SINE` (60 kN/m at f = 0.6), so Q = 80 kN/m slides.
 GRID = '[grid]\ncontact.f = [0.6, 0.7]\n"loading[1].Q_amplitude" = [20e3, 80e3]\n'
 DIMS = {"contact_f": "contact.f", "loading_1_Q_amplitude": "loading[1].Q_amplitude"}
 
