@@ -182,6 +182,10 @@ def test_vertex_lists_are_swept_as_one_value(folder, capsys, no_dask):
     for k, Q in enumerate(vertices):
         expected = direct(linear.replace("Q = [0.0, 1e3]", f"Q = {Q}"))
         assert float(cases.total_dissipation[k]) == float(expected.total_dissipation) > 0
+    assert list(figures_for(cases)) == ["total_dissipation"]  # no map of one key, no cycles: no last cycle
+    ax = sweeps.curves(cases, "total_dissipation", Figure().subplots())
+    assert [label.get_text() for label in ax.get_xticklabels()] == [json.dumps(Q) for Q in vertices]
+    np.testing.assert_array_equal(ax.lines[0].get_ydata(), cases.total_dissipation.values)
     # the same sweep from Python, its values a NumPy array of rows: the cases above, run again by none
     grid = {"loading[1].Q": np.array(vertices[0])[None, :]}
     again = fr.sweep("linear.toml", grid, output="results/map.h5")
