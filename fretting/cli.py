@@ -53,6 +53,7 @@ from fretting.studies.sweeps import (
     resolve_sweep,
     run_one,
     run_sweep,
+    value_text,
 )
 
 __all__ = ["main"]
@@ -459,10 +460,14 @@ def _sweep(args):
         return
     with _progress("case") as progress:
         swept = run_sweep(plan, args.scheduler, output, scheduler_file=args.scheduler_file, progress=progress)
-    counts = np.bincount(swept.regime.values.ravel(), minlength=len(REGIMES))
-    regimes = ", ".join(f"{count} {name.replace('_', ' ')}" for count, name in zip(counts, REGIMES, strict=True))
     dims = " x ".join(f"{key} ({len(values)})" for key, values in plan.grid.items())
-    print(f"{output}: {swept.regime.size} cases over {dims}: {regimes}")
+    print(f"{output}: {swept.regime.size} cases over {dims}: {_regimes(swept)}")
+
+
+def _regimes(cases):
+    """The cases of the sweep dataset `cases` in each regime, e.g. ``0 stuck, 2 partial slip, 1 gross slip``."""
+    counts = np.bincount(cases.regime.values.ravel(), minlength=len(REGIMES))
+    return ", ".join(f"{count} {name.replace('_', ' ')}" for count, name in zip(counts, REGIMES, strict=True))
 
 
 def _values(values):
@@ -473,15 +478,13 @@ def _values(values):
 def _sweep_info(args):
     cases = load_sweep(args.file)
     attrs, names = cases.attrs, keys(cases)
-    counts = np.bincount(cases.regime.values.ravel(), minlength=len(REGIMES))
     print(args.file)
     print(f"  {'history':<9} {attrs.get('history_file', '?')} (base sha256 {attrs.get('base_sha256', '?')})")
     for n, (dim, key) in enumerate(names.items()):
         units = cases[dim].attrs.get("units")
-        shown = ", ".join(_shown(value) for value in cases[dim].values) + (f" [{units}]" if units else "")
+        shown = ", ".join(value_text(value) for value in cases[dim].values) + (f" [{units}]" if units else "")
         print(f"  {'grid' if n == 0 else '':<9} {key} ({cases.sizes[dim]}): {shown}")
-    regimes = ", ".join(f"{count} {name.replace('_', ' ')}" for count, name in zip(counts, REGIMES, strict=True))
-    print(f"  {'cases':<9} {cases.regime.size}: {regimes}")
+    print(f"  {'cases':<9} {cases.regime.size}: {_regimes(cases)}")
     for n, (name, variable) in enumerate(cases.data_vars.items()):
         values = variable.values[np.isfinite(variable.values)]
         found = f"{values.min():.4g} to {values.max():.4g}" if values.size else "none"
@@ -489,11 +492,6 @@ def _sweep_info(args):
         what = f"{variable.attrs.get('long_name', name)} [{variable.attrs.get('units', '?')}]"
         print(f"  {'recorded' if n == 0 else '':<9} {name}: {what}: {found}" + (f" ({missing} NaN)" if missing else ""))
     print(f"  {'created':<9} {attrs.get('created', '?')}")
-
-
-def _shown(value):
-    """A coordinate's value as `fretting info` shows it."""
-    return f"{value:.4g}" if isinstance(value, (float, np.floating)) else str(value)
 
 
 def _sweep_plot(args):

@@ -75,6 +75,7 @@ __all__ = [
     "save_map",
     "summarize",
     "sweep",
+    "value_text",
 ]
 
 #: The folder of the sweep files shipped with the package, which run by name (`resolve_sweep`).
@@ -807,11 +808,11 @@ def curves(cases, name, ax):
         x, x_label = _axis(cases, x_dim)
     else:
         x, x_label = xr.DataArray(np.arange(cases.sizes[x_dim]), dims=x_dim), keys(cases)[x_dim]
-        ax.set_xticks(x.values, [_label(value) for value in cases[x_dim].values], rotation=30, ha="right")
+        ax.set_xticks(x.values, [value_text(value) for value in cases[x_dim].values], rotation=30, ha="right")
     names = keys(cases)
     for index in itertools.product(*(range(cases.sizes[dim]) for dim in others)):
         where = dict(zip(others, index, strict=True))
-        label = ", ".join(f"{names[dim]} = {_label(cases[dim].values[k])}" for dim, k in where.items())
+        label = ", ".join(f"{names[dim]} = {value_text(cases[dim].values[k])}" for dim, k in where.items())
         xs = x.isel({dim: k for dim, k in where.items() if dim in x.dims}).transpose(x_dim).values
         ax.plot(xs, cases[name].isel(where).transpose(x_dim).values, marker="o", label=label or None)
     if others and len(ax.lines) <= CURVE_LEGEND:
@@ -821,8 +822,8 @@ def curves(cases, name, ax):
     return ax
 
 
-def _label(value):
-    """A coordinate's value as a legend or tick shows it."""
+def value_text(value):
+    """A value of a key as a legend, a tick or `fretting info` shows it: floats to 4 digits."""
     return f"{value:.4g}" if isinstance(value, (float, np.floating)) else str(value)
 
 
