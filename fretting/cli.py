@@ -1,10 +1,11 @@
-"""The command line: ``fretting run | validate | info | plot | stress | examples`` (also ``python -m fretting``).
+"""The command line: ``fretting run | validate | info | plot | stress | examples | sweep`` (``python -m fretting``).
 
 Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
 failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
 """
 
 import argparse
+import contextlib
 import json
 import sys
 from pathlib import Path
@@ -36,13 +37,24 @@ from fretting.engine.recorder import (
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
 from fretting.loading.examples import examples, resolve_history
-from fretting.loading.history_file import read_history_source
+from fretting.loading.history_file import HistoryFileError, read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.results.io import ResultError, load, save
-from fretting.studies.sweeps import add_arguments as add_sweep_arguments
-from fretting.studies.sweeps import run as run_sweep
+from fretting.studies.sweeps import (
+    REGIMES,
+    case_file,
+    figures_for,
+    is_sweep_file,
+    keys,
+    load_sweep,
+    read_sweep,
+    resolve_sweep,
+    run_one,
+    run_sweep,
+    value_text,
+)
 
 __all__ = ["main"]
 
@@ -62,7 +74,7 @@ STRESS_NX, STRESS_NZ, STRESS_DEPTH, STRESS_SPAN = 201, 101, 2.0, 2.0
 #: Criterion of `fretting stress --material` without --criterion: SWT needs only E and nu.
 DEFAULT_CRITERION = "swt"
 
-#: Seconds a run lasts before its progress bar appears: short runs show none.
+#: Seconds a run or a sweep lasts before its progress bar appears: short runs show none.
 PROGRESS_DELAY = 2.0
 
 
@@ -171,12 +183,12 @@ def _parser():
     validate.add_argument("file", metavar="HISTORY", help="history file (TOML), or the name of a shipped example")
     validate.set_defaults(command=_validate)
 
-    info = commands.add_parser("info", parents=[common], help="describe a result file")
-    info.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    info = commands.add_parser("info", parents=[common], help="describe a result or sweep file")
+    info.add_argument("file", metavar="RESULT", help="result file written by `fretting run`, or of `fretting sweep`")
     info.set_defaults(command=_info)
 
-    plot = commands.add_parser("plot", parents=[common, figures], help="draw a result as figure files")
-    plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    plot = commands.add_parser("plot", parents=[common, figures], help="draw a result or sweep as figure files")
+    plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`, or of `fretting sweep`")
     plot.add_argument("-o", "--output", metavar="DIR", help="directory of the figures (default: the result's)")
     plot.add_argument(
         "--body",
@@ -192,10 +204,36 @@ def _parser():
     listing = commands.add_parser("examples", parents=[common], help="list the shipped example histories")
     listing.set_defaults(command=_examples, file="examples")
 
-    sweep = commands.add_parser("sweep", parents=[common], help="run a sweep file on dask.distributed")
-    add_sweep_arguments(sweep)
-    sweep.set_defaults(command=run_sweep)
+    _sweep_parser(commands, common)
     return parser
+
+
+def _sweep_parser(commands, common):
+    sweep = commands.add_parser(
+        "sweep", parents=[common], help="run a sweep file on dask.distributed, or one case of it (job arrays)"
+    )
+    sweep.add_argument("file", metavar="SWEEP", help="sweep file (TOML), or the name of a shipped sweep")
+    sweep.add_argument(
+        "-o", "--output", metavar="OUT", help="dataset (default: results/<sweep stem>.h5); cases go to OUT.cases/"
+    )
+    how = sweep.add_mutually_exclusive_group()
+    how.add_argument(
+        "--scheduler",
+        metavar="ADDR",
+        help="dask scheduler address, e.g. tcp://host:8786 (default: a local cluster, one worker per core)",
+    )
+    how.add_argument(
+        "--scheduler-file", metavar="FILE", help="file of a running dask scheduler (dask scheduler --scheduler-file)"
+    )
+    how.add_argument(
+        "--case",
+        type=int,
+        metavar="K",
+        help="run case K (from 0) alone, in this process, into OUT.cases/: a task of a job array "
+        "(--case $SLURM_ARRAY_TASK_ID); then a sweep without --case joins the cases",
+    )
+    how.add_argument("--list-cases", action="store_true", help="list the cases: number, values, file in OUT.cases/")
+    sweep.set_defaults(command=_sweep)
 
 
 def _stress_parser(commands, common, figures):
@@ -305,12 +343,7 @@ def _run(args):
     history = resolve_history(args.file)
     output = Path(args.output or f"{history.stem}.h5")
     record = None if args.record == "default" else args.record
-    with tqdm(unit="step", delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
-
-        def progress(done, total):
-            bar.total, bar.n = total, done
-            bar.refresh()
-
+    with _progress("step") as progress:
         run = run_file(
             history,
             output,
@@ -328,6 +361,19 @@ def _run(args):
     print(f"{output}: {result.attrs['steps'] - 1} steps, {_cycles(result)} cycles, {_dissipated(result)}")
 
 
+@contextlib.contextmanager
+def _progress(unit):
+    """``progress(done, total)``, drawing a bar of `unit` on stderr when it is a terminal and the work
+    lasts `PROGRESS_DELAY` seconds."""
+    with tqdm(unit=unit, delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
+
+        def progress(done, total):
+            bar.total, bar.n = total, done
+            bar.refresh()
+
+        yield progress
+
+
 def _validate(args):
     source = read_history_source(resolve_history(args.file))
     contact, history = source.contact, source.history
@@ -342,6 +388,8 @@ def _validate(args):
 
 
 def _info(args):
+    if is_sweep_file(args.file):
+        return _sweep_info(args)
     result = load(args.file)
     attrs = result.attrs
     versions = json.loads(attrs.get("versions", "{}"))
@@ -366,6 +414,8 @@ def _info(args):
 
 
 def _plot(args):
+    if is_sweep_file(args.file):
+        return _sweep_plot(args)
     import matplotlib  # here, not at the top: the other commands do without its start-up time
 
     matplotlib.use("Agg")
@@ -388,6 +438,75 @@ def _saved(figure, stem, args):
     path = stem.with_name(f"{stem.name}.{args.format}")
     figure.savefig(path, dpi=args.dpi, format=args.format)
     print(path)
+
+
+def _sweep(args):
+    file = resolve_sweep(args.file)
+    plan = read_sweep(file)
+    output = Path(args.output) if args.output else Path("results") / f"{file.stem}.h5"
+    cases = plan.cases()
+    if args.list_cases:
+        for k, values in enumerate(cases):
+            print(f"{k}\t{_values(values)}\t{case_file(output, plan.base, plan.case(values))}")
+        return
+    if args.case is not None:
+        if not 0 <= args.case < len(cases):
+            expected = f"expected a case from 0 to {len(cases) - 1} (--list-cases lists them)"
+            raise HistoryFileError(file, None, "--case", f"found {args.case}, {expected}")
+        path, summary, ran = run_one(plan, args.case, output)
+        regime = REGIMES[int(summary.regime)].replace("_", " ")
+        again = "" if ran else " (its file was there: not run again)"
+        print(f"{path}: case {args.case} of {len(cases)}, {_values(cases[args.case])}: {regime}{again}")
+        return
+    with _progress("case") as progress:
+        swept = run_sweep(plan, args.scheduler, output, scheduler_file=args.scheduler_file, progress=progress)
+    dims = " x ".join(f"{key} ({len(values)})" for key, values in plan.grid.items())
+    print(f"{output}: {swept.regime.size} cases over {dims}: {_regimes(swept)}")
+
+
+def _regimes(cases):
+    """The cases of the sweep dataset `cases` in each regime, e.g. ``0 stuck, 2 partial slip, 1 gross slip``."""
+    counts = np.bincount(cases.regime.values.ravel(), minlength=len(REGIMES))
+    return ", ".join(f"{count} {name.replace('_', ' ')}" for count, name in zip(counts, REGIMES, strict=True))
+
+
+def _values(values):
+    """The values of a case, ``key = value`` joined by commas (lists as JSON)."""
+    return ", ".join(f"{key} = {json.dumps(value)}" for key, value in values.items())
+
+
+def _sweep_info(args):
+    cases = load_sweep(args.file)
+    attrs, names = cases.attrs, keys(cases)
+    print(args.file)
+    print(f"  {'history':<9} {attrs.get('history_file', '?')} (base sha256 {attrs.get('base_sha256', '?')})")
+    for n, (dim, key) in enumerate(names.items()):
+        units = cases[dim].attrs.get("units")
+        shown = ", ".join(value_text(value) for value in cases[dim].values) + (f" [{units}]" if units else "")
+        print(f"  {'grid' if n == 0 else '':<9} {key} ({cases.sizes[dim]}): {shown}")
+    print(f"  {'cases':<9} {cases.regime.size}: {_regimes(cases)}")
+    for n, (name, variable) in enumerate(cases.data_vars.items()):
+        values = variable.values[np.isfinite(variable.values)]
+        found = f"{values.min():.4g} to {values.max():.4g}" if values.size else "none"
+        missing = variable.size - values.size
+        what = f"{variable.attrs.get('long_name', name)} [{variable.attrs.get('units', '?')}]"
+        print(f"  {'recorded' if n == 0 else '':<9} {name}: {what}: {found}" + (f" ({missing} NaN)" if missing else ""))
+    print(f"  {'created':<9} {attrs.get('created', '?')}")
+
+
+def _sweep_plot(args):
+    import matplotlib  # as in _plot
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    cases = load_sweep(args.file)
+    directory = Path(args.output) if args.output else Path(args.file).parent
+    directory.mkdir(parents=True, exist_ok=True)
+    for name, draw in figures_for(cases).items():
+        figure = Figure(figsize=args.size, layout="constrained")
+        draw(cases, ax=figure.subplots())
+        _saved(figure, directory / f"{Path(args.file).stem}_{name}", args)
 
 
 def _stress(args):
