@@ -608,15 +608,20 @@ def _distributed():
 def _client(distributed, scheduler, scheduler_file, cases):
     """A client of the module `distributed` to the scheduler at `scheduler`, or of `scheduler_file`, or to
     a local cluster for `cases` cases."""
-    from dask.system import CPU_COUNT  # the cores this process may use; dask comes with distributed
+    import dask.config  # dask comes with distributed
+    from dask.system import CPU_COUNT  # the cores this process may use
 
     Client, LocalCluster = distributed.Client, distributed.LocalCluster
     if scheduler_file is not None:
         _wait_for(Path(scheduler_file))
     if scheduler is not None or scheduler_file is not None:
+        default = dask.config.get("scheduler", None)
         try:
             client = Client(scheduler, scheduler_file=None if scheduler_file is None else os.fspath(scheduler_file))
         except ValueError as error:  # a malformed address; one that does not answer raises OSError
+            # the client that failed has made itself dask's default scheduler, for every later
+            # computation of this process (an xarray write included): put back the one before
+            dask.config.set(scheduler=default)
             raise OSError(errno.EINVAL, f"scheduler {scheduler or scheduler_file}: {error}") from None
         with client:
             yield client

@@ -5,6 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import dask.config
 import numpy as np
 import pytest
 import xarray as xr
@@ -193,10 +194,14 @@ def test_bad_sweep_files_exit_2_with_one_line(tmp_path, capsys, text, message):
 def test_malformed_scheduler_address_exits_2(tmp_path, capsys):
     write(tmp_path / "base.toml", BASE.format(Q=20e3, sigma=0.0))
     sweep_file = write(tmp_path / "map.toml", 'history = "base.toml"\n[grid]\n"contact.f" = [0.5]\n')
+    default = dask.config.get("scheduler", None)
     assert cli.main(["sweep", str(sweep_file), "--scheduler", "nonsense"]) == 2
     assert capsys.readouterr().err == (
         f"fretting: error: {sweep_file}: scheduler nonsense: missing port number in address 'nonsense'\n"
     )
+    # the client that failed leaves dask's default scheduler as it was: a later write of this
+    # process does not go to the scheduler that never answered
+    assert dask.config.get("scheduler", None) == default
 
 
 @pytest.mark.slow
