@@ -1398,7 +1398,9 @@ def threshold_of(
     name="x",
     units="",
 ) -> Threshold:
-    """The value of a quantity of a test at which a criterion, read at the critical distance, reaches its limit or a life.
+    """The value of a quantity of a test at which a criterion, read at the critical distance, reaches a target.
+
+    The target is the criterion's fatigue limit, or a life.
 
     A bracketed search (Brent's method, `scipy.optimize.brentq`) over runs: each runs the scene at a value `x`
     (`fretting.simulate`), takes the specimen's stress field over the run's last load cycle
@@ -1476,8 +1478,8 @@ def threshold_of(
     if ends[0] * ends[1] > 0:
         quantity = "the criterion less its limit" if life is None else "atan(log(life / N_f))"
         raise BracketError(
-            f"bracket: {quantity} is {ends[0]:.6g} at {name} = {low:.6g}{units} and {ends[1]:.6g} at {high:.6g}{units}, "
-            f"expected a change of sign between them",
+            f"bracket: {quantity} is {ends[0]:.6g} at {name} = {low:.6g}{units} and {ends[1]:.6g} at "
+            f"{high:.6g}{units}, expected a change of sign between them",
             ends,
         )
     found = brentq(excess, low, high, xtol=xtol)
@@ -1486,7 +1488,7 @@ def threshold_of(
 
 
 def read_last_cycle(contact, history, criterion, material, at="point", nu=None, bulk_state="plane strain", model=None):
-    """The criterion's variables over the last load cycle of a run of `history`, read at `at`, as `threshold_of` reads them.
+    """The criterion's variables over the last load cycle of a run of `history`, read at `at` as `threshold_of` reads.
 
     Arguments as `threshold_of`. Returns a Dataset of scalars (those of `apply`, with its attributes); `life` of
     it is the life there.
