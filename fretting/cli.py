@@ -590,7 +590,7 @@ def _fatigue_parsers(commands, common, figures):
         metavar="N",
         help="target lives [cycles] (default: the criterion's fatigue limit)",
     )
-    threshold.set_defaults(command=_threshold, usage_error=threshold.error)
+    threshold.set_defaults(command=_threshold)
 
     fatigue_map = commands.add_parser(
         "map",
@@ -622,7 +622,7 @@ def _fatigue_parsers(commands, common, figures):
         "-o", "--output", metavar="OUT", help="map file (default: <history stem>_map.h5 in the current folder)"
     )
     fatigue_map.add_argument("--figure", action="store_true", help="also draw the boundary as <OUT stem>.<format>")
-    fatigue_map.set_defaults(command=_map, usage_error=fatigue_map.error)
+    fatigue_map.set_defaults(command=_map)
 
 
 def _materials(args):
@@ -641,7 +641,7 @@ def _search_inputs(args):
     material = dataclasses.replace(material, **override)
     low, high = args.bracket
     if not low < high:
-        args.usage_error(f"--bracket: found {low:g} {high:g}, expected LOW < HIGH")
+        raise HistoryError(f"{args.file}: --bracket: found {low:g} {high:g}, expected LOW < HIGH")
     return path, material, None if args.nodes is None else Grid(args.nodes), args.at.replace("-", " ")
 
 
@@ -650,7 +650,9 @@ def _searched(args, path, search):
     try:
         return search()
     except BracketError as error:
-        args.usage_error(f"--{error}")
+        raise HistoryError(f"{args.file}: --{error}") from None
+    except FrettingError:
+        raise
     except ValueError as error:
         raise MaterialFileError(path, None, str(error).removeprefix("material: ")) from None
 
