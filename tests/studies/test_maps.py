@@ -10,7 +10,7 @@ from matplotlib.figure import Figure
 
 import fretting as fr
 from fretting import cli, plots_maps
-from fretting.analysis.fatigue import Material, threshold
+from fretting.analysis.fatigue import Material, read_last_cycle
 from fretting.loading.history_file import HistoryFileError
 from fretting.models import Grid
 from fretting.studies.maps import FileScene, life_against_size, nucleation_boundary
@@ -63,30 +63,20 @@ def test_a_file_scene_sets_its_keys_and_names_a_bad_one(history):
 
 
 def test_the_boundary_falls_as_the_bulk_stress_grows_and_each_point_is_a_threshold(history):
-    """Each found point is `threshold`'s ``Q_a`` at its ``sigma_a``; above a bulk stress the whole bracket nucleates."""
+    """At each found point the criterion read there is its limit; above a bulk stress the whole bracket nucleates;
+    threads give the same points."""
     scene = FileScene(history, KEYS)
     bracket = (0.02 * 70e3, 0.98 * 70e3)
-    sigmas = [0.0, 30e6, 150e6]
-    boundary = nucleation_boundary(scene, sigmas, bracket, "crossland", WEAK, at="hot spot", nu=NU, model=GRID)
+    options = {"at": "hot spot", "nu": NU, "model": GRID}
+    boundary = nucleation_boundary(scene, [0.0, 30e6, 150e6], bracket, "crossland", WEAK, **options)
     assert list(boundary.side.values) == [0, 0, 1]
     Q = boundary.Q_threshold.values
     assert Q[0] > Q[1] > 0 and np.isnan(Q[2])
-    direct = threshold(
-        scene(0, 30e6)[0],
-        lambda Q_a: scene(Q_a, 30e6)[1],
-        "crossland",
-        WEAK,
-        at="hot spot",
-        bracket=[end / 70e3 for end in bracket],
-        nu=NU,
-        model=GRID,
-    )
-    assert Q[1] == pytest.approx(direct.amplitude, rel=1e-5)
+    at_point = read_last_cycle(*scene(Q[1], 30e6), "crossland", WEAK, **options)
+    assert float(at_point.parameter) == pytest.approx(WEAK.crossland_constants()[1], rel=1e-5)
     assert boundary.attrs["target"] == "fatigue limit" and boundary.Q_threshold.attrs["units"] == "N/m"
-    threads = nucleation_boundary(
-        scene, sigmas, bracket, "crossland", WEAK, at="hot spot", nu=NU, model=GRID, scheduler="threads"
-    )
-    xr.testing.assert_identical(threads, boundary)
+    threads = nucleation_boundary(scene, [30e6], bracket, "crossland", WEAK, scheduler="threads", **options)
+    assert threads.Q_threshold.values[0] == Q[1]
 
 
 def size_scene(a, p0=271e6, ratio=0.3):
