@@ -1419,7 +1419,8 @@ def threshold_of(
         amplitude of ``sigma`` [Pa] (``lambda s: (contact, History.sinusoidal(Q_a, s, cycles=2))``) or a pad radius
         [m]; the history's last load cycle must be recorded whole.
     bracket : (float, float)
-        The values searched between, in the units of `x`.
+        The values searched between, in the units of `x`; a run that slides (``|Q| >= f P``) raises
+        `fretting.GrossSlipError`, so keep the bracket within partial slip.
     criterion : str
         A key of `CRITERIA`.
     material : Material

@@ -54,6 +54,8 @@ _KEY = re.compile(r"contact\.(\w+)|loading\[([1-9]\d*)\]\.(\w+)")
 class FileScene:
     """A history file whose keys take values: ``scene(*values) -> (contact, history)``.
 
+    Each call reads the file again and checks it with the values in place, as `fretting.read_history` does.
+
     Parameters
     ----------
     path : str or os.PathLike
@@ -137,7 +139,8 @@ def nucleation_boundary(
     sigma_amplitudes : sequence of float
         The bulk stress amplitudes [Pa] of the map's points.
     bracket : (float, float)
-        The ``Q_a`` [N/m] searched between, at every point.
+        The ``Q_a`` [N/m] searched between, at every point, below ``f P`` (a run that slides raises
+        `fretting.GrossSlipError`).
     criterion, material, life, at, nu, bulk_state, model
         As `fretting.analysis.fatigue.threshold_of`: the target is the criterion's fatigue limit, or `life`.
     scheduler : str or distributed.Client, optional
