@@ -427,7 +427,8 @@ class ExactModel(Model):
         if len(self._branches) + len(needed) > CACHED_BRANCHES:
             self._branches.clear()
         new = [P_c for P_c in needed if P_c not in self._branches]
-        self._branches |= zip(new, self._hertz_branches(np.array(new, dtype=float)), strict=True)
+        if new:
+            self._branches |= zip(new, self._hertz_branches(np.array(new, dtype=float)), strict=True)
         return self._branches
 
     def _corrective(self, origin, factor, Q):
