@@ -14,8 +14,8 @@ import numpy as np
 
 import fretting as fr
 from fretting import plots
-from fretting.engine.recorder import REGIMES
 from fretting.loading.examples import example_path
+from fretting.results.variables import REGIMES
 from fretting.studies import running
 
 #: The shipped example the page runs.
@@ -60,7 +60,7 @@ def body(table, save_figure):
             number(float(loops.cycle_dissipation.sel(cycle_number=n)) * 1e3),
             number(float(loops.energy_ratio.sel(cycle_number=n)), 3),
             number(float(loops.sliding_ratio.sel(cycle_number=n)), 3),
-            REGIMES[int(loops.cycle_regime.sel(cycle_number=n))],
+            REGIMES[int(loops.cycle_regime.sel(cycle_number=n))].replace("_", " "),
         ]
         for n in loops.cycle_number.values
     ]
@@ -88,7 +88,7 @@ import fretting as fr
 contact = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), f=0.7, P=1e5, datum=5e-3)
 history = fr.History.piecewise_linear(delta=[0, 3e-6, -3e-6, 3e-6], steps_per_segment=64)
 result = fr.simulate(contact, history)   # the exact model of Q alone: it follows gross slip
-result.Q, result.delta, result.regime    # per step; regime 0 stick, 1 partial slip, 2 gross slip
+result.Q, result.delta, result.regime    # per step; regime 0 stuck, 1 partial slip, 2 gross slip
 ```
 
 In a history file, `datum` (and `compliance`) are keys of `[contact]`, and `delta` replaces `Q` in a

@@ -24,7 +24,6 @@ __all__ = [
     "CYCLE_FIELDS_STORED",
     "RECORDED_ENDS",
     "RECORD_ALL_STEPS",
-    "REGIMES",
     "CycleFields",
     "FieldSelector",
     "Recorder",
@@ -366,14 +365,10 @@ def final_state(result: xr.Dataset) -> State:
     )
 
 
-#: The regimes of an increment, by the number the ``regime`` variable records (`regime`).
-REGIMES = ("stick", "partial slip", "gross slip")
-
-
 def regime(model, outcome, state):
-    """The regime of the increment `outcome` that left `state` (an index of `REGIMES`): stick where no
-    node slipped, gross slip where ``|Q|`` reached the friction force (the whole contact slides),
-    partial slip otherwise."""
+    """The regime of the increment `outcome` that left `state`, an index of `fretting.results.variables.REGIMES`:
+    stuck where no node slipped, gross slip where ``|Q|`` reached the friction force (the whole contact
+    slides, or is on the point of sliding), partial slip otherwise."""
     if not outcome.ds.any():
         return 0
     return 2 if abs(state.Q) >= model.friction_force else 1

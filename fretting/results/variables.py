@@ -9,7 +9,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
 
-__all__ = ["ACCUMULATED", "AXES", "CYCLE_FIELDS", "CYCLE_PEAKS", "VARIABLES", "build_dataset", "variable"]
+__all__ = ["ACCUMULATED", "AXES", "CYCLE_FIELDS", "CYCLE_PEAKS", "REGIMES", "VARIABLES", "build_dataset", "variable"]
 
 #: Coordinate name -> its CF attributes in every dataset of `fretting` that has it (results, stress
 #: fields): the axis it runs along, by which CF tools such as cf_xarray find the axes, and for the
@@ -79,6 +79,11 @@ CYCLE_FIELDS = tuple(_FIELDS)
 #: their maxima. Each is on dims (x,), in the units of its per-cycle field.
 ACCUMULATED = {"w_total": "w"} | {f"{name}_max": name for name in CYCLE_FIELDS[1:]}
 
+#: The regimes of an increment (the per-step ``regime``) and of a cycle (``cycle_regime``), by their
+#: code: no node slipped; some slipped; ``|Q|`` reached ``f P``, the whole contact slides. The words
+#: are the CF ``flag_meanings`` of ``regime``, as those of a sweep's (`fretting.studies.sweeps`).
+REGIMES = ("stuck", "partial_slip", "gross_slip")
+
 #: name -> (dims, units, long_name) of the variables that follow from no other.
 _DECLARED = {
     "Q": (("step",), "N/m", "shear force per unit length (prescribed, or found for the prescribed delta)"),
@@ -104,8 +109,8 @@ _DECLARED = {
     "regime": (
         ("step",),
         "1",
-        "regime of the increment ending at this step: 0 stick, 1 partial slip, 2 gross slip (the whole contact "
-        "slides), where the contact has a datum",
+        "regime of the increment ending at this step: 0 stuck, 1 partial slip, 2 gross slip (|Q| reached f P: "
+        "the whole contact slides), where the contact has a datum",
     ),
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
     "vertex_Q": (("vertex",), "N/m", "shear force at each vertex of the load path"),
@@ -152,7 +157,7 @@ _DECLARED = {
     "cycle_regime": (
         ("cycle_number",),
         "1",
-        "largest regime of the increments of each cycle: 0 stick, 1 partial slip, 2 gross slip (-1: not recorded "
+        "largest regime of the increments of each cycle: 0 stuck, 1 partial slip, 2 gross slip (-1: not recorded "
         "whole)",
     ),
     "transition": (
@@ -211,6 +216,8 @@ def variable(name: str, values: ArrayLike, dims: tuple[str, ...] | None = None) 
     ``("field_cycle", "x")``)."""
     declared, units, long_name = VARIABLES[name]
     attrs = {"units": units, "long_name": long_name} | AXES.get(name, {})
+    if name == "regime":  # CF flags
+        attrs |= {"flag_values": np.arange(len(REGIMES), dtype=np.int8), "flag_meanings": " ".join(REGIMES)}
     return xr.Variable(declared if dims is None else dims, np.asarray(values), attrs)
 
 

@@ -22,14 +22,13 @@ import numpy as np
 import xarray as xr
 
 from fretting.analysis.nucleation import complete_cycles
-from fretting.engine.recorder import REGIMES
 from fretting.engine.simulation import simulate
 from fretting.loading.history import History
 from fretting.loading.loads import Loads
 from fretting.models.exact import Exact
 from fretting.models.state import State
 from fretting.physics.contact import Contact
-from fretting.results.variables import variable
+from fretting.results.variables import REGIMES, variable
 
 __all__ = [
     "fit_datum",
@@ -78,7 +77,7 @@ def loop_cycles(result: xr.Dataset) -> xr.Dataset:
     [m], each interpolated by a cubic in ``Q`` through the steps of its branch (at most four,
     where ``Q`` is strictly monotonic); ``cycle_dissipation`` [J/m]; ``energy_ratio`` and
     ``sliding_ratio`` (Fouvry's ``A`` and ``B``); ``cycle_regime`` the largest regime of its
-    increments (`fretting.engine.recorder.REGIMES`).
+    increments (`fretting.results.variables.REGIMES`).
 
     Raises
     ------
