@@ -5,6 +5,7 @@ refusing it, and split runs resumed bit for bit."""
 
 import numpy as np
 import pytest
+from conftest import HERTZ_TOML
 
 import fretting as fr
 from fretting.engine import runner
@@ -157,14 +158,9 @@ def test_stepper_slides_and_sticks_again(contact):
     assert stepper.state.Q < fP and np.count_nonzero(outcome.ds == 0) > 0  # stuck in the middle
 
 
-FILE = """
-[contact]
-profile = "hertz"
-R = 0.05
-E_star = 115e9
-f = 0.6
-P = 1e5
-datum = 5e-3
+FILE = (
+    HERTZ_TOML
+    + """datum = 5e-3
 
 [[loading]]
 kind = "linear"
@@ -177,6 +173,7 @@ delta = [-3e-6, 3e-6]
 steps_per_segment = 9
 cycle = true
 """
+)
 
 
 def test_a_file_that_slides_run_in_chunks_is_the_run_in_one_piece(tmp_path, monkeypatch):

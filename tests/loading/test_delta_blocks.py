@@ -3,19 +3,12 @@ block of Q with its numbers, read as delta; and the one-line errors naming the f
 
 import numpy as np
 import pytest
+from conftest import HERTZ_TOML
 
 import fretting as fr
 from fretting.loading.history_file import HistoryFileError
 
-CONTACT = """
-[contact]
-profile = "hertz"
-R = 0.05
-E_star = 115e9
-f = 0.6
-P = 1e5
-datum = 5e-3
-"""
+CONTACT = HERTZ_TOML + "datum = 5e-3\n"
 
 
 def read(tmp_path, *blocks, table="delta\n5e-7\n-5e-7\n1e-6\n"):
