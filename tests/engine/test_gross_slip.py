@@ -12,6 +12,7 @@ from fretting.engine import runner
 from fretting.engine.recorder import final_state
 from fretting.physics.closed_forms import cattaneo_mindlin_compliance, cattaneo_mindlin_slip
 from fretting.results.variables import REGIMES
+from fretting.studies.running import loop_cycles, sliding_cycles, transition_displacement
 
 #: Datum [m]: about 21 half-widths from the middle of the contact below.
 L = 5e-3
@@ -36,14 +37,6 @@ def branch_delta(contact, Q, origin, delta_origin, factor):
     return delta_origin + K * (Q - origin) + factor * cattaneo_mindlin_compliance(contact, (Q - origin) / factor)
 
 
-def sliding_cycles(contact, ratio, count, steps):
-    """A ramp from rest to ``ratio delta_t``, then `count` cycles ``+-ratio delta_t``."""
-    star = ratio * transition(contact)
-    ramp = fr.History.piecewise_linear(delta=[0.0, star], steps_per_segment=steps)
-    cycle = fr.History.piecewise_linear(delta=[star, -star, star], steps_per_segment=2 * steps)
-    return fr.History.concatenate([ramp, *[cycle.as_cycle()] * count])
-
-
 def test_transition_displacement_is_the_closed_form(contact):
     """Loaded from rest, ``Q`` reaches ``f P`` exactly at ``delta_t``; a hair below, it does not."""
     fP, delta_t = contact.f * contact.P, transition(contact)
@@ -58,7 +51,7 @@ def test_every_step_follows_the_closed_form_branches(contact):
     curve, on Mindlin & Deresiewicz's branch from the last sliding extreme (factor 2), or at ``+-f P``
     sliding; the regime says which."""
     fP = contact.f * contact.P
-    result = fr.simulate(contact, sliding_cycles(contact, 1.5, 2, 8), fr.models.Exact())
+    result = fr.simulate(contact, sliding_cycles(1.5 * transition(contact), 2, 8), fr.models.Exact())
     Q, delta, regime = result.Q.values, result.delta.values, result.regime.values
     origin, delta_origin, factor = 0.0, 0.0, 1.0
     for k in range(1, Q.size):
@@ -83,7 +76,7 @@ def test_gross_slip_loop_energy(contact, ratio):
     (eq D8), to 1e-6; of it, ``4 f P (delta* - delta_t)`` by sliding."""
     fP, K = contact.f * contact.P, contact.displacement_compliance
     star = ratio * transition(contact)
-    result = fr.simulate(contact, sliding_cycles(contact, ratio, 2, 16), fr.models.Exact())
+    result = fr.simulate(contact, sliding_cycles(ratio * transition(contact), 2, 16), fr.models.Exact())
     expected = 4 * fP * star - 4 * K * fP**2 - fP * contact.f * contact.p0 * contact.a / contact.E_star
     assert np.allclose(result.cycle_dissipation.values, expected, rtol=1e-6, atol=0)
 
@@ -114,7 +107,7 @@ def test_sliding_erases_the_memory_of_partial_slip(contact):
 def test_force_control_still_refuses_gross_slip(contact):
     """Feed the Q a displacement run found to force control: the same up to the first sliding step,
     where force control stops with GrossSlipError."""
-    moved = fr.simulate(contact, sliding_cycles(contact, 1.5, 1, 8), fr.models.Exact())
+    moved = fr.simulate(contact, sliding_cycles(1.5 * transition(contact), 1, 8), fr.models.Exact())
     first = int(np.argmax(moved.regime.values == 2))
     history = fr.History(moved.Q.values[:first], np.zeros(first), [0, first - 1])
     forced = fr.simulate(contact, history, fr.models.Exact())
@@ -128,7 +121,7 @@ def test_force_control_still_refuses_gross_slip(contact):
 
 def test_a_model_that_does_not_slide_says_so(contact):
     with pytest.raises(fr.GrossSlipError, match=r"only fretting\.models\.Exact follows gross slip") as caught:
-        fr.simulate(contact, sliding_cycles(contact, 1.5, 1, 4), fr.models.Grid(32))
+        fr.simulate(contact, sliding_cycles(1.5 * transition(contact), 1, 4), fr.models.Grid(32))
     assert "\n" not in str(caught.value)
 
 
@@ -189,3 +182,22 @@ def test_a_file_that_slides_run_in_chunks_is_the_run_in_one_piece(tmp_path, monk
     for name in ("Q", "delta", "slip", "regime", "dissipation"):
         assert np.array_equal(chunked[name].values, whole[name].values), name
     assert float(chunked.state_slid) == float(whole.state_slid) != 0
+
+
+@pytest.mark.parametrize("profile", [fr.RoundedFlat(2e-4, 0.02), fr.FlatPunch(3e-4)], ids=["rounded_flat", "flat"])
+def test_other_symmetric_profiles_slide(profile):
+    """Beyond the transition each cycle's energy grows by ``4 f P`` per unit of delta* (eq D8, whatever
+    the profile); the sharp flat punch, which sticks whole until it slides, starts to slide at
+    ``delta_t = K f P`` and dissipates only by sliding, ``4 f P (delta* - delta_t)``."""
+    contact = fr.Contact(profile, 115e9, 0.6, 1e5, datum=L)
+    fP, delta_t = contact.f * contact.P, transition_displacement(contact)
+    energy = [
+        float(
+            loop_cycles(fr.simulate(contact, sliding_cycles(r * delta_t, 1, 8), fr.models.Exact())).cycle_dissipation[0]
+        )
+        for r in (1.3, 1.7)
+    ]
+    assert energy[1] - energy[0] == pytest.approx(4 * fP * 0.4 * delta_t, rel=1e-9)
+    if isinstance(profile, fr.FlatPunch):
+        assert delta_t == pytest.approx(contact.displacement_compliance * fP, rel=1e-12)
+        assert energy[0] == pytest.approx(4 * fP * 0.3 * delta_t, rel=1e-9)
