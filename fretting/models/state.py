@@ -22,7 +22,7 @@ __all__ = ["Nodes", "Solved", "State", "Tally"]
 
 class Nodes(Protocol):
     """What a `State` reads of the model it is formed on (a `fretting.models.base.Model`): the
-    nodes ``x`` [m] of its slip field and its resolved spec.
+    nodes ``x`` [m] of its slip field, its resolved spec and whether it follows gross slip.
 
     The state lies below the model contract, which holds states: it names what it needs of a model
     rather than importing the contract."""
@@ -33,10 +33,14 @@ class Nodes(Protocol):
     @property
     def spec(self) -> Any: ...
 
+    @property
+    def slides(self) -> bool: ...
+
 
 class Solved(Protocol):
     """What `State.advance` reads of an increment solved (a `fretting.models.base.Outcome`): the
-    slip [m] after it and its increment, the energy it dissipated [J/m] and the model's memory."""
+    slip [m] after it and its increment, the energy it dissipated [J/m], the model's memory and the
+    uniform slip of gross slip [m]."""
 
     @property
     def slip(self) -> np.ndarray: ...
@@ -49,6 +53,9 @@ class Solved(Protocol):
 
     @property
     def memory(self) -> tuple: ...
+
+    @property
+    def slid(self) -> float: ...
 
 
 @dataclass(frozen=True, eq=False)
