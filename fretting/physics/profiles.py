@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import abc
 import ast
+import itertools
 import re
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import NoReturn
@@ -20,7 +21,16 @@ from scipy import fft, optimize, special
 
 from fretting._validate import positive
 
-__all__ = ["Profile", "Hertz", "RoundedFlat", "FlatPunch", "Gap", "profile_class", "recorded_profile"]
+__all__ = [
+    "Profile",
+    "Hertz",
+    "RoundedFlat",
+    "FlatPunch",
+    "Gap",
+    "profile_class",
+    "recorded_profile",
+    "table_breakpoints",
+]
 
 #: A gap ``h0(x)`` [m] or its slope [-] at positions ``x`` [m] (vectorised).
 GapFunction = Callable[[np.ndarray], np.ndarray]
@@ -357,10 +367,7 @@ class Gap(Profile):
     def __init__(self, h0: GapFunction, slope: GapFunction | None = None, breakpoints: Sequence[float] = ()) -> None:
         if not callable(h0) or (slope is not None and not callable(slope)):
             raise ValueError("Gap needs callables h0(x) and, optionally, slope(x)")
-        points = np.asarray(breakpoints, dtype=float)
-        if points.ndim != 1 or not np.all(np.isfinite(points)):
-            raise ValueError(f"breakpoints must be a list of positions [m], found {breakpoints!r}")
-        self.h0, self._slope, self.breakpoints = h0, slope, tuple(np.unique(points).tolist())
+        self.h0, self._slope, self.breakpoints = h0, slope, tuple(_positions(breakpoints).tolist())
         #: ``(x, h0)`` [m] of a profile made by `from_table`, else None.
         self.table = None
 
@@ -373,13 +380,22 @@ class Gap(Profile):
         return f"Gap.from_table(x={x}, h0={h0}, breakpoints={points})"
 
     @classmethod
-    def from_table(cls, x: ArrayLike, h0: ArrayLike, breakpoints: Sequence[float] = ()) -> Gap:
-        """Profile from a table of gaps ``h0`` [m] at increasing positions ``x`` [m] (cubic spline)."""
+    def from_table(cls, x: ArrayLike, h0: ArrayLike, breakpoints: Sequence[float] | None = None) -> Gap:
+        """Profile from a table of gaps ``h0`` [m] at increasing positions ``x`` [m], by cubic splines.
+
+        A cubic spline has a continuous curvature, so across a jump of the table's curvature (the end
+        of a flat, two radii meeting) it rings, and the pressure and traction next to the jump with it.
+        The table is therefore interpolated by one spline between each two `breakpoints` (`_Segments`),
+        each carried on to the breakpoints from its side. `breakpoints` None: those the table shows
+        (`table_breakpoints`); a sequence, those (empty: none, one spline over the whole table).
+        """
         from scipy.interpolate import CubicSpline
 
         x, h0 = np.asarray(x, float), np.asarray(h0, float)
-        spline = CubicSpline(x, h0)
-        profile = cls(spline, spline.derivative(), breakpoints)
+        points = table_breakpoints(x, h0) if breakpoints is None else _positions(breakpoints)
+        inside = points[(points > x[0]) & (points < x[-1])]
+        spline = CubicSpline(x, h0) if not inside.size else _Segments.fit(x, h0, inside)
+        profile = cls(spline, spline.derivative(), points)
         profile.table = (x, h0)
         return profile
 
@@ -518,6 +534,94 @@ class Gap(Profile):
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = (self.slope(centre + a * np.cos(u)) - self.slope(centre + a * t)[:, None, None]) / apart
         return np.sum(np.where((width > 0) & (apart != 0), ratio * width * _PSI_WEIGHTS, 0.0), axis=(1, 2))
+
+
+#: A jump of the table's curvature (`table_breakpoints`) is a change of its second divided differences across an
+#: interval larger than `JUMP_RATIO` times their changes over as many rows on either side, and than
+#: `JUMP_FLOOR` times their largest magnitude (above rounding).
+JUMP_RATIO = 10.0
+JUMP_FLOOR = 1e-3
+
+
+def _positions(breakpoints: Sequence[float]) -> np.ndarray:
+    """`breakpoints` [m] as an ascending array without repeats; ValueError unless a list of finite numbers."""
+    points = np.asarray(breakpoints, dtype=float)
+    if points.ndim != 1 or not np.all(np.isfinite(points)):
+        raise ValueError(f"breakpoints must be a list of positions [m], found {breakpoints!r}")
+    return np.unique(points)
+
+
+def table_breakpoints(x: np.ndarray, h0: np.ndarray) -> np.ndarray:
+    """Positions [m] where the curvature of the table ``h0(x)`` [m] jumps, found from its rows.
+
+    ``D_i``, twice the second divided difference of rows ``i - 1, i, i + 1``, is the curvature there for a
+    smooth gap, and changes little from row to row (by the third derivative times the spacing). Across a
+    jump between rows ``k`` and ``k + 1`` the curvature to its left, ``D_(k-1)``, and to its right,
+    ``D_(k+2)``, differ by the jump, far more (`JUMP_RATIO`) than over as many rows on either side. The
+    jump is then placed where the parabolas through rows ``k - 2 .. k`` and ``k + 1 .. k + 3`` meet with a
+    common slope, the vertex of their difference, which is ``(J / 2) (x - b)^2`` for a gap continuous
+    with its slope and of constant curvature on either side; a vertex outside ``[x_k, x_(k+1)]`` is no
+    jump there. Tables of fewer than 8 rows show none. Cusps (an unbounded curvature) are not looked for.
+    """
+    if x.size < 8:
+        return np.zeros(0)
+    D = 2 * np.diff(np.diff(h0) / np.diff(x)) / (x[2:] - x[:-2])  # D[i - 1] at row i
+    k = np.arange(3, x.size - 4)  # intervals [x_k, x_(k+1)] with 3 rows left and 4 right of them
+    change = np.abs(D[k + 1] - D[k - 2])
+    beside = np.maximum(np.abs(D[k - 2] - D[k - 3]), np.abs(D[k + 2] - D[k + 1])) * 3
+    found = []
+    for i in k[(change > JUMP_RATIO * beside) & (change > JUMP_FLOOR * np.abs(D).max())].tolist():
+        left = np.polyfit(x[i - 2 : i + 1], h0[i - 2 : i + 1], 2)
+        right = np.polyfit(x[i + 1 : i + 4], h0[i + 1 : i + 4], 2)
+        difference = right - left
+        if difference[0] != 0:
+            spacing = x[i + 1] - x[i]
+            vertex = -difference[1] / (2 * difference[0])  # a jump at a row: its rounding may leave it just outside
+            if x[i] - 1e-3 * spacing <= vertex <= x[i + 1] + 1e-3 * spacing:
+                vertex = min(max(vertex, x[i]), x[i + 1])
+                if not any(abs(vertex - b) <= spacing for b in found):
+                    found.append(float(vertex))
+    return np.array(found)
+
+
+class _Segments:
+    """Cubic splines of a table between its breakpoints, called as a `scipy.interpolate.CubicSpline` is.
+
+    Each spline is fitted to the rows from one breakpoint to the next (a row at a breakpoint ends both
+    of its pieces) and carried on to them from its side (`Gap.from_table`).
+    """
+
+    def __init__(self, splines, bounds):
+        self.splines, self.bounds = splines, bounds
+
+    @classmethod
+    def fit(cls, x: np.ndarray, h0: np.ndarray, bounds: np.ndarray) -> _Segments:
+        """The splines of the table `x`, `h0` [m] between the ascending `bounds` [m] inside it."""
+        from scipy.interpolate import CubicSpline
+
+        edges = np.concatenate([[x[0]], bounds, [x[-1]]])
+        splines = []
+        for low, high in itertools.pairwise(edges.tolist()):
+            rows = (x >= low) & (x <= high)
+            if np.count_nonzero(rows) < 2:
+                raise ValueError(
+                    f"breakpoints: fewer than 2 rows of the table lie in [{low:.6g}, {high:.6g}] m, between two of "
+                    f"the breakpoints {bounds.tolist()}, expected a spline's worth on each piece"
+                )
+            splines.append(CubicSpline(x[rows], h0[rows]))
+        return cls(splines, bounds)
+
+    def __call__(self, x: ArrayLike, nu: int = 0) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        piece = np.searchsorted(self.bounds, x)
+        values = np.empty(x.shape)
+        for k, spline in enumerate(self.splines):
+            on = piece == k
+            values[on] = spline(x[on], nu)
+        return values
+
+    def derivative(self) -> _Segments:
+        return _Segments([spline.derivative() for spline in self.splines], self.bounds)
 
 
 #: Taylor coefficients of ``x - sin x = sum_k (-1)^k x^(2k+3) / (2k+3)!``, k = 0 .. 7.
