@@ -318,6 +318,11 @@ class RoundedFlat(Profile):
 #: Chebyshev series stays well inside this (a bounded pressure is a sum of terms that fall off).
 NEGATIVE_PRESSURE = 1e-6
 
+#: Narrowest contact of a table, relative to the spacing of its rows there, that `Gap.check` accepts: on a
+#: contact of a share r of an interval the spline's slope loses a factor 1/r to the cancellation of its
+#: terms and the table's rounding (7 digits: 1e-4 relative in the contact's a at r = 2e-3).
+TABLE_RESOLUTION = 1e-2
+
 #: Points, in theta, where `Gap.check` looks for a negative pressure.
 CHECK_POINTS = 4096
 
@@ -420,7 +425,8 @@ class Gap(Profile):
         return cls.from_table(x, h0, breakpoints.tolist())
 
     def check(self, a: float, centre: float, P: float, E_star: float) -> None:  # noqa: B027 (a default: closed-form profiles pass)
-        """Raise ValueError naming where the contact fails: outside the table, or a negative pressure.
+        """Raise ValueError naming where the contact fails: outside the table, too narrow for its rows
+        (`TABLE_RESOLUTION`), or a negative pressure.
 
         The pressure is sampled at `CHECK_POINTS` Chebyshev angles; one below `NEGATIVE_PRESSURE`
         of the largest is negative. For a table, the message starts with the first knot in the
@@ -431,6 +437,16 @@ class Gap(Profile):
             x = self.table[0]
             table = f"[{x[0]:.6g}, {x[-1]:.6g}] m"
             self._refuse(x[0], x[-1], f"the contact [{low:.6g}, {high:.6g}] m leaves the table's x in {table}")
+        if self.table is not None:
+            x = self.table[0]
+            row = min(max(int(np.searchsorted(x, centre)), 1), x.size - 1)
+            spacing = x[row] - x[row - 1]
+            if 2 * a < TABLE_RESOLUTION * spacing:
+                raise ValueError(
+                    f"the contact [{low:.6g}, {high:.6g}] m is narrower than {TABLE_RESOLUTION:g} of the spacing "
+                    f"{spacing:.6g} m of the table's rows there, where the spline's slope is lost to rounding: "
+                    "tabulate the gap finer where the bodies touch"
+                )
         t = np.cos((np.arange(CHECK_POINTS) + 0.5) * np.pi / CHECK_POINTS)[::-1]
         p = self.pressure(t, a, centre, P, E_star)
         negative = np.flatnonzero(p < -NEGATIVE_PRESSURE * p.max())
@@ -469,9 +485,16 @@ class Gap(Profile):
 
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         load = lambda a: np.pi * a * E_star * self._coefficients(a, self._centre(a))[1] / 4  # noqa: E731
-        low, high = _bracket(lambda a: load(a) - P, 0.5, 2.0, lower=0.0)
-        a = optimize.brentq(lambda a: load(a) / P - 1, low, high, xtol=1e-300, rtol=_RTOL)
-        return a, self._centre(a)
+        try:
+            with np.errstate(over="ignore"):  # an overflowing load is above P: the bracket narrows
+                low, high = _bracket(lambda a: load(a) - P, 0.5, 2.0, lower=0.0)
+                a = optimize.brentq(lambda a: load(a) / P - 1, low, high, xtol=1e-300, rtol=_RTOL)
+            return a, self._centre(a)
+        except RuntimeError:  # brentq's: the load, or b_0 of the centre, is not monotonic to rounding
+            raise ValueError(
+                f"profile: no contact solution found for P = {P:g} N/m: the load does not converge in the half-width "
+                "(rounding of the slope on a contact far narrower than the gap's features, such as a table's rows)"
+            ) from None
 
     def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
         """The pressure [Pa]: the sine series of the Notes, or where the contact holds a breakpoint, its integral.
