@@ -12,7 +12,7 @@ histories: 20 sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments 
 """
 
 import argparse
-import time
+import timeit
 
 import numpy as np
 
@@ -51,15 +51,6 @@ def histories():
     }
 
 
-def best(run, repeats):
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
-    return min(times)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
@@ -69,8 +60,8 @@ def main():
         print(f"{model:8s} {nodes} nodes, sigma = {tau} f p0: largest error {error:.2e} p0, (x - e) / b = {where:.4f}")
     for name, history in histories().items():
         result = fr.simulate(CONTACT, history)
-        run = best(lambda history=history: fr.simulate(CONTACT, history), repeats)
-        stress = best(lambda result=result: nucleation.surface_stress(result), repeats)
+        run = min(timeit.repeat(lambda history=history: fr.simulate(CONTACT, history), number=1, repeat=repeats))
+        stress = min(timeit.repeat(lambda result=result: nucleation.surface_stress(result), number=1, repeat=repeats))
         size = f"{result.sizes['step']} steps x {result.sizes['x']} nodes"
         print(f"{name} ({result.attrs['model']}, {size}): simulate {run:.3f} s, surface_stress {stress:.3f} s")
 
