@@ -252,7 +252,7 @@ def _gap(table):
     if back.size:
         k = back[0]
         raise table.error("table", f"{path}: found x = {x[k + 1]:.6g} after {x[k]:.6g}, expected x increasing")
-    return Gap.from_table(x, h0, table.get("breakpoints", _numbers, default=()))
+    return Gap.from_table(x, h0, table.get("breakpoints", _numbers, default=None))
 
 
 #: profile name -> (its keys, reader of the profile from the [contact] table).

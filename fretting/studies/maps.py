@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import copy
 import math
-import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -39,15 +38,13 @@ from fretting.analysis import fatigue
 from fretting.analysis.fatigue import BracketError, read_last_cycle, threshold_of
 from fretting.errors import MissingDependencyError
 from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
+from fretting.studies.sweeps import KEY, put
 
 __all__ = ["FileScene", "RUNOUT", "life_against_size", "nucleation_boundary"]
 
 #: Default run-out life [cycles] of `life_against_size`: tests that reach it unbroken are stopped (10^7 is the usual
 #: end of fretting-fatigue tests on aluminium alloys, e.g. Nowell & Hills 1990).
 RUNOUT = 1e7
-
-#: A dotted key a `FileScene` sets: ``contact.NAME`` or ``loading[N].NAME`` (blocks from 1).
-_KEY = re.compile(r"contact\.(\w+)|loading\[([1-9]\d*)\]\.(\w+)")
 
 
 @dataclass(frozen=True)
@@ -61,8 +58,9 @@ class FileScene:
     path : str or os.PathLike
         History file (format of `fretting.read_history`).
     keys : tuple of str
-        Dotted keys, ``contact.NAME`` or ``loading[N].NAME`` (blocks counted from 1), one per value; a key may be
-        one the file leaves at its default, in a table the file has.
+        Dotted keys as a sweep's grid has them (`fretting.studies.sweeps.KEY`: ``contact.NAME``,
+        ``loading[N].NAME`` with blocks counted from 1), one per value; a key may be one the file leaves at its
+        default, in a table the file has.
 
     Raises
     ------
@@ -95,23 +93,13 @@ class FileScene:
 
 
 def _with(path, data, key, value):
-    """A copy of the history file's `data` with `key` set to `value` (None: only check that its table exists)."""
-    parts = _KEY.fullmatch(key) if isinstance(key, str) else None
-    if parts is None:
+    """A copy of the history file's `data` with the dotted `key` set to `value` (None: only check that its
+    table exists), as a sweep sets its grid keys (`fretting.studies.sweeps.put`)."""
+    if not (isinstance(key, str) and KEY.fullmatch(key)):
         raise HistoryFileError(path, None, key, 'found a malformed key, expected one like "loading[1].Q_amplitude"')
-    name, block, block_name = parts.groups()
     data = copy.deepcopy(data)
-    if name is not None:
-        table = data.get("contact")
-    else:
-        blocks = data.get("loading")
-        index = int(block) - 1
-        table = blocks[index] if isinstance(blocks, list) and index < len(blocks) else None
-        name = block_name
-    if not isinstance(table, dict):
+    if not put(data, key, value):
         raise HistoryFileError(path, None, key, "found no such table, expected a key of one of the file's tables")
-    if value is not None:
-        table[name] = value
     return data
 
 

@@ -53,6 +53,7 @@ from fretting.physics.contact import Contact
 from fretting.results.io import ENGINE, ResultError, recorded_path, save, with_current_units
 
 __all__ = [
+    "KEY",
     "REGIMES",
     "SWEEPS",
     "VARIABLES",
@@ -67,6 +68,7 @@ __all__ = [
     "is_sweep_file",
     "keys",
     "load_sweep",
+    "put",
     "read_sweep",
     "resolve_sweep",
     "run_case",
@@ -165,7 +167,7 @@ CURVES = ("energy_per_cycle", "w_max", "slip_amplitude_max", "total_dissipation"
 CURVE_LEGEND = 10
 
 #: A grid key: names with block numbers from 1, joined by dots.
-_KEY = re.compile(r"[A-Za-z_]\w*(\[[1-9]\d*\])*(\.[A-Za-z_]\w*(\[[1-9]\d*\])*)*")
+KEY = re.compile(r"[A-Za-z_]\w*(\[[1-9]\d*\])*(\.[A-Za-z_]\w*(\[[1-9]\d*\])*)*")
 _PART = re.compile(r"\[(\d+)\]|(\w+)")
 
 
@@ -395,7 +397,7 @@ def _checked_grid(base, grid, origin):
     checked = {}
     for key, values in grid.items():
         label = f"grid.{key}"
-        if not isinstance(key, str) or not _KEY.fullmatch(key):
+        if not isinstance(key, str) or not KEY.fullmatch(key):
             problem = 'found a malformed key, expected one like "loading[1].Q_amplitude"'
             raise HistoryFileError(origin, None, label, problem)
         if not isinstance(values, (list, tuple, np.ndarray)) or not len(values):
@@ -441,7 +443,7 @@ def _scene(base, case, origin, tables=None):
     """
     data = copy.deepcopy(base.data)
     for key, value in case.items():
-        if not _put(data, key, value):
+        if not put(data, key, value):
             problem = f"found no such table in {base.path}, expected a key of one of its tables (blocks from 1)"
             raise HistoryFileError(origin, None, f"grid.{key}", problem)
     try:
@@ -453,8 +455,9 @@ def _scene(base, case, origin, tables=None):
         raise HistoryFileError(error.path, error.line, error.key, f"{error.problem} (in the case {values})") from None
 
 
-def _put(data, key, value):
-    """Set `key` to `value` in the TOML mapping `data`; False when the table that holds the key is missing."""
+def put(data, key, value):
+    """Set the dotted `key` (`KEY`) to `value` in the TOML mapping `data` of a history file; False when the
+    table that holds the key is missing."""
     parts = [int(number) - 1 if number else name for number, name in _PART.findall(key)]
     table = data
     for part in parts[:-1]:
