@@ -18,14 +18,16 @@ class GrossSlipError(FrettingError, RuntimeError):
         The loads of that step [N/m], [Pa].
     limit : float
         ``f P`` on the collocation grid [N/m].
+    note : str or None
+        What else the message says (which model would follow it).
     """
 
-    def __init__(self, step, Q, sigma, limit):
-        self.step, self.Q, self.sigma, self.limit = step, Q, sigma, limit
+    def __init__(self, step, Q, sigma, limit, note=None):
+        self.step, self.Q, self.sigma, self.limit, self.note = step, Q, sigma, limit, note
         where = "in this increment" if step is None else f"at step {step}"
         super().__init__(
             f"gross slip {where}: Q = {Q:.6g}, sigma = {sigma:.6g} leave no stick zone "
-            f"(|Q| must stay below f P = {limit:.6g})"
+            f"(|Q| must stay below f P = {limit:.6g})" + ("" if note is None else f"; {note}")
         )
 
 

@@ -10,6 +10,7 @@ drawn once and named together in the legend (``cycle 2 (= 3, 4)``).
 """
 
 import numpy as np
+from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.ticker import MaxNLocator
 
 from fretting.analysis import nucleation
@@ -21,9 +22,11 @@ __all__ = [
     "cycle_energy",
     "dissipation_density",
     "figures_for",
+    "fretting_loops",
     "hysteresis",
     "loops",
     "peak_density",
+    "running_condition_map",
     "sigma_loops",
     "slip",
     "slip_amplitude",
@@ -504,3 +507,44 @@ def _label(result, row):
     return f"step {int(result.step[row])}: $Q/(fP)$ = {Q / (result.attrs['f'] * P):.2f}, " + (
         f"$\\sigma/(f p_0)$ = {sigma / (result.attrs['f'] * result.attrs['p0']):.2f}"
     )
+
+
+def fretting_loops(result, cycles=None, ax=None):
+    """Fretting loops as a rig records them: ``Q / (f P)`` against the displacement ``delta`` [um] at
+    the datum, one curve per cycle recorded whole (the cycles as for `loops`). The elastic slope of
+    each branch, and so ``delta``, depends on the datum and the rig compliance; the area is the
+    energy per cycle.
+
+    Raises
+    ------
+    ValueError
+        Where the result has no ``delta`` (its contact has no datum) or no cycle recorded whole.
+    """
+    if "delta" not in result:
+        raise ValueError("the result has no delta: its contact has no datum (fretting.Contact(..., datum=L))")
+    fP = result.attrs["f"] * result.attrs["P"]
+    ax, _ = _loops(result, cycles, ax, "delta", 1e6, result.Q.values / fP)
+    ax.set(xlabel="displacement at the datum, $\\delta$ [µm]", ylabel="$Q / (f P)$", title="fretting loops")
+    return ax
+
+
+def running_condition_map(data, name="cycle_regime", ax=None):
+    """A running-condition map (`fretting.studies.running.running_map`): the variable `name` over the
+    displacement amplitude [um] and the normal load [kN/m], with the partial-slip / gross-slip boundary
+    ``delta_t(P)`` drawn over it. The regime is drawn in two colours, any other variable as a colour scale."""
+    ax = _axes(ax)
+    delta, P = data.delta_amplitude.values * 1e6, data.P.values / 1e3
+    values = data[name].values
+    if name == "cycle_regime":
+        regimes = ListedColormap(["tab:blue", "tab:red"])
+        mesh = ax.pcolormesh(delta, P, values, shading="nearest", cmap=regimes, norm=BoundaryNorm([0.5, 1.5, 2.5], 2))
+        ax.figure.colorbar(mesh, ax=ax, ticks=[1, 2], label="regime: 1 partial slip, 2 gross slip")
+    else:
+        mesh = ax.pcolormesh(delta, P, values, shading="nearest")
+        ax.figure.colorbar(mesh, ax=ax, label=f"{name} [{data[name].attrs.get('units', '')}]")
+    ax.plot(data.transition.values * 1e6, P, color="k", marker="o", label="transition $\\delta_t(P)$")
+    ax.set(
+        xlabel="displacement amplitude $\\delta^*$ [µm]", ylabel="normal load $P$ [kN/m]", title="running-condition map"
+    )
+    ax.legend(fontsize="small")
+    return ax

@@ -2,8 +2,8 @@
 
 Run from the repository root:  python scripts/make_validation.py [--only closed-forms trajectories ...]
 
-Writes docs/validation/{closed-forms,trajectories,performance,galerkin-constants}.md, docs/examples.md and
-docs/guide/size-effect.md, with their
+Writes docs/validation/{closed-forms,trajectories,performance,galerkin-constants}.md, docs/examples.md,
+docs/guide/size-effect.md and docs/guide/displacement.md, with their
 figures in docs/validation/figures/ (100 dpi). Every figure and table is computed here, by the
 engine against closed forms or against the converged references of benchmarks/trajectories.py
 (cached in benchmarks/.cache), and each page is stamped with the version, the UTC date and this
@@ -30,6 +30,7 @@ from fretting.physics import closed_forms as cf  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
+import displacement_guide  # noqa: E402
 import galerkin_constants  # noqa: E402
 import size_effect  # noqa: E402
 import stepping  # noqa: E402
@@ -544,6 +545,18 @@ def size_effect_page():
     )
 
 
+# -- Displacement control ----------------------------------------------------------------------------
+
+
+def displacement_page():
+    write_page(
+        DOCS / "guide" / "displacement.md",
+        "Displacement control, gross slip and fretting maps",
+        "It ran the example and the map of scripts/displacement_guide.py.",
+        displacement_guide.body(markdown_table, save_figure),
+    )
+
+
 PAGE_BUILDERS = {
     "closed-forms": closed_forms_page,
     "trajectories": trajectories_page,
@@ -551,6 +564,7 @@ PAGE_BUILDERS = {
     "examples": examples_page,
     "galerkin-constants": galerkin_constants_page,
     "size-effect": size_effect_page,
+    "displacement": displacement_page,
 }
 
 

@@ -143,6 +143,32 @@ def test_surface_stress_figure_shows_the_specimen_by_default(cycled):
     assert "pad (body 1" in plots.surface_stress(cycled, body=1, ax=axes()).get_title()
 
 
+def test_fretting_loops_and_running_map_draw():
+    """Loops of Q against delta through gross slip, and a map whose boundary is drawn over it."""
+    from fretting.studies import running
+
+    contact = fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e5, datum=5e-3)
+    star = 1.5 * running.transition_displacement(contact)
+    result = fr.simulate(contact, running.sliding_cycles(star, 2, 8), fr.models.Exact())
+    ax = axes()
+    assert plots.fretting_loops(result, ax=ax) is ax
+    assert [line.get_label() for line in ax.lines] == ["cycle 1 (= 2)"] and "[µm]" in ax.get_xlabel()
+    drawn = ax.lines[0].get_xdata()
+    assert np.max(drawn) == pytest.approx(star * 1e6, rel=1e-9)
+    data = running.running_map(contact, [5e4, 1e5], [0.5 * star, star], cycles=1, steps=4)
+    for name in ("cycle_regime", "energy_ratio"):
+        ax = axes()
+        assert plots.running_condition_map(data, name, ax=ax) is ax
+        assert np.array_equal(ax.lines[0].get_xdata(), data.transition.values * 1e6)
+    with pytest.raises(ValueError, match="no delta"):
+        plots.fretting_loops(
+            fr.simulate(
+                fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e5), fr.History.sinusoidal(3e4, cycles=1, steps_per_cycle=8)
+            ),
+            ax=axes(),
+        )
+
+
 def test_curves_the_same_to_the_eye_are_drawn_once_and_named_together(contact):
     """Under Q alone the steady cycles repeat: their loops and densities are one curve, whose legend
     names every cycle it stands for; the first cycle, from the unloaded state, is its own."""

@@ -31,7 +31,7 @@ from fretting.loading.loads import Loads
 from fretting.models.state import State, Tally
 from fretting.physics.surface import bulk_stress
 
-__all__ = ["BRACKET", "STRAIGHT", "advance", "displaced", "follow", "skippable"]
+__all__ = ["BRACKET", "STRAIGHT", "UNFOLLOWED", "advance", "displaced", "follow", "skippable", "slid"]
 
 #: Largest ``|sin|`` of the turn between two increments, in units of ``(f P, f p0)``, that counts
 #: as straight: the steps of a linear segment meet it to rounding, and a sampled curve with a
@@ -62,12 +62,17 @@ def displaced(model, state, loads, step=None):
     to the loads returned is the force-controlled one (`advance`), so the memory is carried as
     under force control. `step` names the step in an error.
 
+    A model that slides (`Model.slides`, the exact model) is tried at ``+-f P`` itself where the
+    bracket holds no root: ``Q`` is found between the bracket's end and ``+-f P``, or, beyond
+    ``delta(+-f P)``, is ``+-f P``: gross slip, which `advance` takes as a uniform slide
+    (docs/theory/displacement.md#gross-slip).
+
     Raises
     ------
     HistoryError
         Where the contact has no datum, or the normal load varies (not yet followed).
     GrossSlipError
-        Where ``delta`` is not reached below the friction force (gross slip: not yet followed).
+        Where ``delta`` is not reached below the friction force by a model that does not slide.
     """
     if loads.delta is None:
         return loads
@@ -93,11 +98,31 @@ def displaced(model, state, loads, step=None):
     if start == 0:
         return replace(loads, Q=held.Q)
     end = math.copysign(sliding * (1 - BRACKET), -start)
-    if missed(end) * start > 0:
-        raise GrossSlipError(step, math.copysign(sliding, end), loads.sigma, sliding)
     eps = np.finfo(float).eps
+    if missed(end) * start > 0:
+        if not model.slides:
+            raise GrossSlipError(step, math.copysign(sliding, end), loads.sigma, sliding, UNFOLLOWED)
+        limit = math.copysign(sliding, end)
+        if missed(limit) * start > 0:
+            return replace(loads, Q=limit)  # gross slip
+        held, end = replace(held, Q=end), limit
     Q = brentq(missed, held.Q, end, xtol=eps * sliding, rtol=4 * eps)
     return replace(loads, Q=float(Q))
+
+
+#: What a `GrossSlipError` of displacement control adds where the model does not slide.
+UNFOLLOWED = "under displacement control only fretting.models.Exact follows gross slip (Q alone, constant P)"
+
+
+def slid(model, state, loads):
+    """`Outcome` of gross slip from `state` to `loads` (``Q = +-friction_force``, found by `displaced`):
+    the increment to ``+-f P``, then the uniform slide ``du`` [m] that meets ``loads.delta``
+    (`Model.slide`). ``du`` has the sign of ``Q``, or is 0: where Brent's method found ``Q`` at ``+-f P``
+    within its tolerance, or the step holds the state's delta."""
+    contact, force = model.contact, loads.force()
+    reached = model.increment(state, force)
+    du = loads.delta - contact.displacement(loads.Q, model.delta_Q(reached))
+    return model.slide(state, force, du if du * loads.Q > 0 else 0.0)
 
 
 def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=True, stress=True):
@@ -114,12 +139,13 @@ def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=Tru
     """
     Q, sigma = loads.Q, loads.sigma
     sliding = min(model.friction_force, model.contact.f * loads.normal(model.contact))  # no stick zone from here on
-    if abs(Q) >= sliding:
+    sliding_whole = loads.delta is not None and model.slides and abs(Q) == sliding
+    if abs(Q) >= sliding and not sliding_whole:
         raise GrossSlipError(step, Q, sigma, sliding)
     if at_rest:
         return model.at_rest(state), state
     try:
-        outcome = model.increment(state, loads.force(), guess)
+        outcome = slid(model, state, loads) if sliding_whole else model.increment(state, loads.force(), guess)
     except GrossSlipError:  # within rounding of the friction force: the increment found no stick zone
         raise GrossSlipError(step, Q, sigma, sliding) from None
     if not outcome.dissipation >= 0:
@@ -311,6 +337,8 @@ class _Run:
         sticks or reverses (`State.episode_after`).
         """
         history, model = self.history, self.model
+        if state.slid:  # the rows are the Masing sums alone: after gross slip, step by step
+            return None
         ahead = self.solved[solved : solved + PREPARED_STEPS]
         sliding = min(model.friction_force, model.contact.f * model.contact.P)
         ahead = ahead[: _leading(self.windowed[ahead] & (np.abs(history.Q[ahead]) < sliding))]

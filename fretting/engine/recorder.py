@@ -30,6 +30,7 @@ __all__ = [
     "final_state",
     "recorded_spec",
     "recorded_steps",
+    "regime",
 ]
 
 #: Default recording: every step of histories up to this many steps; of longer ones the first
@@ -230,6 +231,7 @@ class Recorder:
         }
         if model.contact.datum is not None:
             self.fields["delta"] = np.empty(steps.size)
+            self.fields["regime"] = np.empty(steps.size, dtype=np.int8)
         self.zones = [()] * steps.size
         self.cycles = []  # (number, tally, copied) of every cycle the run touches
 
@@ -247,6 +249,7 @@ class Recorder:
         self.fields["delta_Q"][k] = delta_Q = model.delta_Q(outcome)
         if "delta" in self.fields:
             self.fields["delta"][k] = model.contact.displacement(state.Q, delta_Q)
+            self.fields["regime"][k] = regime(model, outcome, state)
         self.fields["delta_sigma"][k] = model.delta_sigma(outcome)
         self.zones[k] = model.stick_zones(outcome, state)
 
@@ -296,6 +299,7 @@ class Recorder:
             | ({} if spec.memory_variable is None else {spec.memory_variable: np.array(state.memory, dtype=float)})
             | ({} if history.P is None else _normal_loads(model, history, steps, state))
             | ({} if state.loads.delta is None else {"state_delta": state.loads.delta})
+            | ({} if not state.slid else {"state_slid": state.slid})
             | ({} if history.delta is None else {"vertex_delta": history.delta[history.vertex_step]})
         )
 
@@ -357,7 +361,17 @@ def final_state(result: xr.Dataset) -> State:
         spec,
         float(result.total_dissipation),
         tuple(result[memory].values.tolist()) if memory is not None and memory in result else (),
+        float(result.state_slid) if "state_slid" in result else 0.0,
     )
+
+
+def regime(model, outcome, state):
+    """The regime of the increment `outcome` that left `state`, an index of `fretting.results.variables.REGIMES`:
+    stuck where no node slipped, gross slip where ``|Q|`` reached the friction force (the whole contact
+    slides, or is on the point of sliding), partial slip otherwise."""
+    if not outcome.ds.any():
+        return 0
+    return 2 if abs(state.Q) >= model.friction_force else 1
 
 
 def recorded_spec(result: xr.Dataset) -> ModelSpec:
@@ -416,6 +430,7 @@ def _zone_ends(contact, zones):
     """`stick_start` and `stick_end` [m] from per-step lists of normalised stick intervals."""
     ends = np.full((len(zones), max((len(z) for z in zones), default=0), 2), np.nan)
     for k, z in enumerate(zones):
-        ends[k, : len(z)] = z
+        if z:  # none in gross slip
+            ends[k, : len(z)] = z
     ends = contact.centre + contact.a * ends
     return {"stick_start": ends[..., 0], "stick_end": ends[..., 1]}

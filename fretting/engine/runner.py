@@ -395,7 +395,7 @@ def _chunks(stepper, history, record, start, skipping):
         try:
             state = stepper.run(chunk, recorder)
         except GrossSlipError as error:
-            raise GrossSlipError(start + error.step, error.Q, error.sigma, error.limit) from None
+            raise GrossSlipError(start + error.step, error.Q, error.sigma, error.limit, error.note) from None
         yield recorder.dataset(state)
         start, first = stop, stop + 1
         fast = time.monotonic() - began < CHUNK_SECONDS

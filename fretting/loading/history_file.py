@@ -271,10 +271,6 @@ def _sequence(tables, start):
         kind = table.get("kind", _choice(BLOCKS))
         keys, build = BLOCKS[kind]
         table.reject_unknown(("kind", *keys))
-        if np.isnan(start[0]) and kind not in ("linear", "repeat"):
-            raise table.error(
-                "kind", f"found a {kind} block of Q after a block of delta, expected a linear block of delta"
-            )
         histories.append(build(table, start))
         start = _end(histories[-1])
     return History.concatenate(histories)
@@ -287,26 +283,47 @@ def _end(history):
     return (*history.end, history.normal_end, delta)
 
 
+def _displaced(table, start, Q_key, delta_key, Q_given, delta_given, at=None):
+    """True if the block `table` prescribes ``delta`` (`delta_key` given) rather than ``Q`` (`Q_key`), from
+    `start` ``(Q, sigma, P, delta)``; a HistoryFileError naming the key `at` (default `delta_key`) where it
+    gives both, neither after a block of ``delta``, or ``delta`` after a block of ``Q`` (whose ``delta`` is
+    not known before the run)."""
+    at = delta_key if at is None else at
+    if delta_given and Q_given:
+        raise table.error(at, f"found both {Q_key} and {delta_key}, expected one of them")
+    if not delta_given and np.isnan(start[0]):
+        raise table.error(None, f"found neither Q nor delta after a block of delta, expected {delta_key}")
+    if delta_given and start[3] is None:
+        raise table.error(
+            at, f"found {delta_key} after a block of Q, whose delta is not known before the run; expected Q"
+        )
+    return delta_given
+
+
+def _from(start, displaced):
+    """The start ``(Q, sigma, P)`` of a block, its ``Q`` the ``delta`` reached where it prescribes ``delta``."""
+    return (start[3], *start[1:3]) if displaced else start[:3]
+
+
+def _moved(history, displaced):
+    """`history` built as one of ``Q``, read as one of ``delta`` where the block prescribes it."""
+    return history.explicit().displacements() if displaced else history
+
+
 def _linear(table, start):
     loads = [table.get(name, _numbers, None) for name in LOADS]
     delta = table.get("delta", _numbers, None)
-    if delta is not None and loads[0] is not None:
-        raise table.error("delta", "found both Q and delta, expected the vertices of one of them")
-    if delta is None and np.isnan(start[0]):
-        raise table.error(None, "found neither Q nor delta after a block of delta, expected the vertices of delta")
-    if delta is None:
-        return _polyline(table, loads, start[:3], LINEAR_STEPS)
-    if start[3] is None:
-        raise table.error(
-            "delta", "found delta after a block of Q, whose delta is not known before the run; expected Q"
-        )
-    return _polyline(table, [delta, *loads[1:]], (start[3], *start[1:3]), LINEAR_STEPS).explicit().displacements()
+    displaced = _displaced(table, start, "Q", "delta", loads[0] is not None, delta is not None)
+    loads[0] = delta if displaced else loads[0]
+    return _moved(_polyline(table, loads, _from(start, displaced), LINEAR_STEPS), displaced)
 
 
 def _series(table, start):
     path = table.file("file")
-    columns = _read_columns(table, "file", path, LOADS, all_required=False)
-    return _polyline(table, [columns.get(name) for name in LOADS], start[:3], CSV_STEPS)
+    columns = _read_columns(table, "file", path, (*LOADS, "delta"), all_required=False)
+    displaced = _displaced(table, start, "column Q", "column delta", "Q" in columns, "delta" in columns, "file")
+    loads = [columns.get("delta" if displaced and name == "Q" else name) for name in LOADS]
+    return _moved(_polyline(table, loads, _from(start, displaced), CSV_STEPS), displaced)
 
 
 def _polyline(table, loads, start, default_steps):
@@ -329,38 +346,54 @@ def _polyline(table, loads, start, default_steps):
     return history.as_cycle() if table.get("cycle", _boolean, False) else history
 
 
+def _tangential(table, start):
+    """(prescribes delta, amplitude, mean) of the tangential load of a `sine` or `random` block: its
+    ``Q_amplitude`` and ``Q_mean`` [N/m], or its ``delta_amplitude`` and ``delta_mean`` [m]."""
+    given = {name: name in table.data for name in ("Q_amplitude", "Q_mean", "delta_amplitude", "delta_mean")}
+    delta_key = "delta_mean" if given["delta_mean"] and not given["delta_amplitude"] else "delta_amplitude"
+    Q_given = given["Q_amplitude"] or given["Q_mean"]
+    delta_given = given["delta_amplitude"] or given["delta_mean"]
+    displaced = _displaced(table, start, "Q_amplitude", delta_key, Q_given, delta_given)
+    prefix = "delta" if displaced else "Q"
+    return displaced, table.get(f"{prefix}_amplitude", _non_negative, 0.0), table.get(f"{prefix}_mean", _number, 0.0)
+
+
 def _sine(table, start):
-    return History.sinusoidal(
-        table.get("Q_amplitude", _non_negative, 0.0),
+    displaced, amplitude, mean = _tangential(table, start)
+    history = History.sinusoidal(
+        amplitude,
         table.get("sigma_amplitude", _non_negative, 0.0),
         table.get("phase_deg", _number, 0.0),
         table.get("cycles", _count, 1),
         table.get("steps_per_cycle", _count_from(4), 64),
-        table.get("Q_mean", _number, 0.0),
+        mean,
         table.get("sigma_mean", _number, 0.0),
-        start=start[:3],
+        start=_from(start, displaced),
         ramp_steps=table.get("ramp_steps", _count, RAMP_STEPS),
         P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
         P_mean=table.get("P_mean", _positive, start[2]),
         P_phase_deg=table.get("P_phase_deg", _number, 0.0),
         by_cycle=True,
     )
+    return _moved(history, displaced)
 
 
 def _random(table, start):
-    return History.random_amplitude(
+    displaced, amplitude, mean = _tangential(table, start)
+    history = History.random_amplitude(
         table.get("cycles", _count),
-        table.get("Q_amplitude", _non_negative, 0.0),
+        amplitude,
         table.get("sigma_amplitude", _non_negative, 0.0),
-        table.get("Q_mean", _number, 0.0),
+        mean,
         table.get("sigma_mean", _number, 0.0),
         table.get("seed", _count_from(0)),
         table.get("steps_per_segment", _count, LINEAR_STEPS),
-        start=start[:3],
+        start=_from(start, displaced),
         P_amplitude=table.get("P_amplitude", _non_negative, 0.0),
         P_mean=table.get("P_mean", _positive, start[2]),
         vertices=True,
     )
+    return _moved(history, displaced)
 
 
 def _repeat(table, start):
@@ -389,6 +422,8 @@ BLOCKS = {
             "Q_mean",
             "sigma_mean",
             "ramp_steps",
+            "delta_amplitude",
+            "delta_mean",
             "P_amplitude",
             "P_mean",
             "P_phase_deg",
@@ -404,6 +439,8 @@ BLOCKS = {
             "sigma_mean",
             "seed",
             "steps_per_segment",
+            "delta_amplitude",
+            "delta_mean",
             "P_amplitude",
             "P_mean",
         ),

@@ -61,6 +61,10 @@ class Outcome:
         Stick intervals in ``t`` where the model knows them exactly (None: found from the slip).
     delta_Q : float, optional
         ``delta_Q`` [m] where the model gives it exactly (None: from the slip).
+    slid : float
+        Uniform slip [m] taken while the whole contact slid (gross slip under displacement control,
+        `Model.slide`), summed since the contact was formed and included in `slip`; 0 for a model
+        that does not slide.
     """
 
     g: np.ndarray
@@ -70,6 +74,7 @@ class Outcome:
     memory: tuple = ()
     zones: list | None = None
     delta_Q: float | None = None
+    slid: float = 0.0
 
 
 class ModelSpec(abc.ABC):
@@ -248,6 +253,15 @@ class Model(abc.ABC):
         is the slip direction (+1, -1, 0) to try first at each node; a start only, which the
         answer does not depend on. A model may ignore it.
         """
+
+    #: True if the model follows gross slip under displacement control (`slide`): its `increment`
+    #: reaches ``|Q| = friction_force`` exactly (the exact model of ``Q`` alone).
+    slides: bool = False
+
+    def slide(self, state: State, loads: Loads, du: float) -> Outcome:
+        """`Outcome` of the increment to ``loads.Q = +-friction_force`` and a uniform slide `du` [m] of the
+        whole contact (`slides`). A model that does not slide refuses it."""
+        raise NotImplementedError(f"{self.spec.description} does not follow gross slip")
 
     #: True if `window` steps a run of increments for less than `increment` one at a time does (the
     #: engine then takes the unrecorded steps a window at a time).

@@ -249,19 +249,47 @@ class ExactModel(Model):
     def at_rest(self, state):
         return self.increment(state, state.loads)
 
+    @property
+    def slides(self):
+        """True: the exact model of ``Q`` alone reaches ``|Q| = f P`` exactly and follows gross slip
+        (`slide`); not a subclass with increments of its own (`fretting.models.inphase`)."""
+        return type(self).increment is ExactModel.increment
+
     def increment(self, state, loads, guess=None):
         """`Outcome` from `state` (its ``Q``, slip and open turning points) to the shear force ``loads.Q`` [N/m].
 
-        ``sigma`` is zero for this model (`Exact.holds_for`); `guess` is not needed.
+        ``sigma`` is zero for this model (`Exact.holds_for`); `guess` is not needed. ``|Q| = f P``
+        is the contact on the point of sliding whole (the corrective load ``P_c = 0``, no stick zone).
         """
-        Q = loads.Q
+        return self._increment(state, loads.Q, state.slid, 0.0)
+
+    def slide(self, state, loads, du):
+        """`Outcome` of gross slip: the increment to ``loads.Q = +-f P`` [N/m], then the whole contact
+        slides by the uniform `du` [m] (the sign of ``Q``) under ``q = +-f p``, dissipating ``f P |du|``.
+
+        The Masing walk to ``+-f P`` closes every open turning point (return-point memory): the memory
+        of the partial slip before is erased, and a reversal starts Mindlin & Deresiewicz's branch
+        from ``+-f P`` (docs/theory/displacement.md#gross-slip). The uniform slip is kept apart
+        (`fretting.models.state.State.slid`), so that the nodes a later increment leaves stuck keep
+        their slip bit for bit.
+        """
+        return self._increment(state, loads.Q, state.slid + du, self.friction_force * abs(du))
+
+    def _increment(self, state, Q, slid, sliding):
+        """`Outcome` from `state` to `Q` [N/m] with the uniform slip `slid` [m] of gross slip (`State.slid`)
+        added to the Masing sum, and the energy `sliding` [J/m] of its change added to the branch's."""
         if Q == state.Q:
-            slip, q, delta_Q, _ = self._at(state.memory, Q)
-            return ExactOutcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q, Q=Q)
-        turning, dissipation = self._walked(state.memory, state.Q, Q)
+            turning, dissipation = state.memory, 0.0
+        else:
+            turning, dissipation = self._walked(state.memory, state.Q, Q)
         slip, q, delta_Q, c = self._at(turning, Q)
+        if slid:
+            slip, delta_Q = slip + slid, delta_Q + slid  # a uniform slip is its own delta_Q (eq D4)
         a = self.contact.a
-        return ExactOutcome(q, slip - state.slip, slip, dissipation, turning, [(-c / a, c / a)], delta_Q, Q=Q)
+        zones = [] if c == 0 else [(-c / a, c / a)]
+        if Q == state.Q and slid == state.slid:
+            return ExactOutcome(q, np.zeros(slip.size), slip, 0.0, turning, [(-1.0, 1.0)], delta_Q, slid, Q=Q)
+        return ExactOutcome(q, slip - state.slip, slip, dissipation + sliding, turning, zones, delta_Q, slid, Q=Q)
 
     def surface_at(self, outcome):
         """`Model.surface`; on Hertz, the surface stress of the traction's elliptical loads in closed form.
@@ -287,7 +315,9 @@ class ExactModel(Model):
             return np.zeros(self.t.size)
         P_c = self._corrective(origin, factor, Q)
         c = self._branch(P_c).c / self.contact.a
-        unit = ellipse_stress(self.t, 1.0) - c * ellipse_stress(self.t, c, self._offset_of(P_c) / self.contact.a)
+        unit = ellipse_stress(self.t, 1.0)
+        if c:  # none at the onset of gross slip (P_c = 0): q = f p
+            unit = unit - c * ellipse_stress(self.t, c, self._offset_of(P_c) / self.contact.a)
         return signed * self.contact.f * self.contact.p0 * unit
 
     def _memory_stress(self, turning):
@@ -461,7 +491,7 @@ class ExactModel(Model):
     def _corrective(self, origin, factor, Q):
         """Corrective load ``P_c = P - |Q - origin| / (factor f)`` [N/m] of the branch from `origin` [N/m]
         at `Q`; of arrays elementwise."""
-        return self.contact.P - abs(Q - origin) / (factor * self.contact.f)
+        return np.maximum(self.contact.P - abs(Q - origin) / (factor * self.contact.f), 0.0)  # 0 at |Q| = f P
 
     def _solution(self, origin, factor, Q):
         """`_Branch` at `Q` [N/m] of the branch from `origin` [N/m] with `factor` (`_branch`)."""
@@ -507,11 +537,14 @@ class ExactModel(Model):
         contact, profile = self.contact, self.contact.profile
         a, f, E_star = contact.a, contact.f, contact.E_star
         c = profile.half_width(P_c, E_star)[0][:, None]
-        t = self.x / c
-        inside = np.abs(t) < 1
-        p_c = np.where(inside, profile.pressure(np.where(inside, t, 0.0), c, 0.0, P_c[:, None], E_star), 0.0)
+        whole = c == 0  # P_c = 0: on the point of sliding whole, q = f p and the slip f x^2 / (2R)
+        b = np.where(whole, 1.0, c)  # c where it is not 0; a placeholder where nothing is inside
+        t = self.x / b
+        inside = (np.abs(t) < 1) & ~whole
+        p_c = np.where(inside, profile.pressure(np.where(inside, t, 0.0), b, 0.0, P_c[:, None], E_star), 0.0)
         q = f * (self._p - p_c)
-        slip = f * hertz_slip_shape(self.x, c) / (2 * profile.R)
+        shape = hertz_slip_shape(self.x, b)
+        slip = f * np.where(whole, self.x**2, shape) / (2 * profile.R)
         c = c[:, 0]
         Q = f * contact.P * ((a - c) * (a + c) / a**2)
         energy = cattaneo_mindlin_dissipation(contact, Q) / f**2

@@ -22,7 +22,7 @@ __all__ = ["Nodes", "Solved", "State", "Tally"]
 
 class Nodes(Protocol):
     """What a `State` reads of the model it is formed on (a `fretting.models.base.Model`): the
-    nodes ``x`` [m] of its slip field and its resolved spec.
+    nodes ``x`` [m] of its slip field, its resolved spec and whether it follows gross slip.
 
     The state lies below the model contract, which holds states: it names what it needs of a model
     rather than importing the contract."""
@@ -33,10 +33,14 @@ class Nodes(Protocol):
     @property
     def spec(self) -> Any: ...
 
+    @property
+    def slides(self) -> bool: ...
+
 
 class Solved(Protocol):
     """What `State.advance` reads of an increment solved (a `fretting.models.base.Outcome`): the
-    slip [m] after it and its increment, the energy it dissipated [J/m] and the model's memory."""
+    slip [m] after it and its increment, the energy it dissipated [J/m], the model's memory and the
+    uniform slip of gross slip [m]."""
 
     @property
     def slip(self) -> np.ndarray: ...
@@ -49,6 +53,9 @@ class Solved(Protocol):
 
     @property
     def memory(self) -> tuple: ...
+
+    @property
+    def slid(self) -> float: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -169,6 +176,9 @@ class State:
     memory : tuple of float
         What the model remembers beyond the slip (the open turning points [N/m] of the exact
         model of ``Q`` alone, oldest first; empty for method 4).
+    slid : float
+        Uniform slip [m] the contact has taken sliding whole (gross slip, `Outcome.slid`), part of
+        `slip`; 0 where it never slid.
     """
 
     loads: Loads
@@ -178,6 +188,7 @@ class State:
     model: Any  # a resolved fretting.models.base.ModelSpec
     dissipated: float = 0.0
     memory: tuple = ()
+    slid: float = 0.0
 
     @property
     def Q(self) -> float:
@@ -221,7 +232,7 @@ class State:
         np.copyto(episode_start, slip, where=ds == 0)
         tally = self.tally if w is None else self.tally.add(outcome.dissipation, w, slip, stress, shear)
         dissipated = self.dissipated + outcome.dissipation
-        return State(loads, slip, episode_start, tally, self.model, dissipated, outcome.memory)
+        return State(loads, slip, episode_start, tally, self.model, dissipated, outcome.memory, outcome.slid)
 
     def episode_after(self, slips: np.ndarray, ds: np.ndarray) -> np.ndarray:
         """`episode_start` [m] after a run of increments taken as rows: `slips` the slip before the
@@ -246,7 +257,7 @@ class State:
     def repeats(self, other: State) -> bool:
         """True if this state is `other`'s memory bit for bit: the same loads, slip fields and model memory."""
         return (
-            (self.loads, self.memory) == (other.loads, other.memory)
+            (self.loads, self.memory, self.slid) == (other.loads, other.memory, other.slid)
             and np.array_equal(self.slip, other.slip)
             and np.array_equal(self.episode_start, other.episode_start)
         )
@@ -274,6 +285,7 @@ class State:
             "sigma": self.sigma,
             "dissipated": self.dissipated,
             "tally.dissipation": self.tally.dissipation,
+            "slid": self.slid,
         }
         numbers |= {f"memory[{k}]": value for k, value in enumerate(self.memory)}
         for name, value in numbers.items():
@@ -285,7 +297,7 @@ class State:
                     f"state.{name} = {numbers[name]!r}, expected a finite number >= 0 (energy dissipated)"
                 )
         P = contact.P if self.P is None else self.P
-        if abs(self.Q) >= contact.f * P:
+        if abs(self.Q) > contact.f * P or (abs(self.Q) == contact.f * P and not model.slides):
             raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")
 
 

@@ -293,6 +293,8 @@ class RoundedFlat(Profile):
         return E_star * (2 * a * _x_minus_sin(2 * e) + 4 * self.b * root / a) / (4 * self.R)
 
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
+        if P == 0:  # the flat touches at no load (the corrective contact at the onset of gross slip)
+            return self.b, 0.0
         high = 2 * self.b
         while self.load(high, E_star) < P:
             high *= 2

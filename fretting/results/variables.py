@@ -9,7 +9,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
 
-__all__ = ["ACCUMULATED", "AXES", "CYCLE_FIELDS", "CYCLE_PEAKS", "VARIABLES", "build_dataset", "variable"]
+__all__ = ["ACCUMULATED", "AXES", "CYCLE_FIELDS", "CYCLE_PEAKS", "REGIMES", "VARIABLES", "build_dataset", "variable"]
 
 #: Coordinate name -> its CF attributes in every dataset of `fretting` that has it (results, stress
 #: fields): the axis it runs along, by which CF tools such as cf_xarray find the axes, and for the
@@ -79,6 +79,11 @@ CYCLE_FIELDS = tuple(_FIELDS)
 #: their maxima. Each is on dims (x,), in the units of its per-cycle field.
 ACCUMULATED = {"w_total": "w"} | {f"{name}_max": name for name in CYCLE_FIELDS[1:]}
 
+#: The regimes of an increment (the per-step ``regime``) and of a cycle (``cycle_regime``), by their
+#: code: no node slipped; some slipped; ``|Q|`` reached ``f P``, the whole contact slides. The words
+#: are the CF ``flag_meanings`` of ``regime``, as those of a sweep's (`fretting.studies.sweeps`).
+REGIMES = ("stuck", "partial_slip", "gross_slip")
+
 #: name -> (dims, units, long_name) of the variables that follow from no other.
 _DECLARED = {
     "Q": (("step",), "N/m", "shear force per unit length (prescribed, or found for the prescribed delta)"),
@@ -101,6 +106,12 @@ _DECLARED = {
         "tangential displacement of the pad relative to the specimen at the datum (depends on the datum L "
         "and the rig compliance, attributes datum and compliance), where the contact has a datum",
     ),
+    "regime": (
+        ("step",),
+        "1",
+        "regime of the increment ending at this step: 0 stuck, 1 partial slip, 2 gross slip (|Q| reached f P: "
+        "the whole contact slides), where the contact has a datum",
+    ),
     "vertex_step": (("vertex",), "1", "step at which each vertex of the load path is reached"),
     "vertex_Q": (("vertex",), "N/m", "shear force at each vertex of the load path"),
     "vertex_sigma": (("vertex",), "Pa", "bulk tension at each vertex of the load path"),
@@ -120,6 +131,40 @@ _DECLARED = {
         "cycle copied, not solved: its loads and starting state repeat those of the cycle before bit for bit "
         "(which cycles a run copies depends on where it was cut into parts; the values do not)",
     ),
+    "Q_amplitude": (("cycle_number",), "N/m", "half the range of Q over each load cycle (Q*)"),
+    "delta_amplitude": (
+        ("cycle_number",),
+        "m",
+        "half the range of delta over each load cycle (delta*; depends on the datum and the rig compliance)",
+    ),
+    "loop_opening": (
+        ("cycle_number",),
+        "m",
+        "distance between the two crossings of Q = 0 of each cycle's loop of delta (2 delta_0; for a given "
+        "history of Q independent of the datum)",
+    ),
+    "energy_ratio": (
+        ("cycle_number",),
+        "1",
+        "Fouvry's energy ratio A = cycle_dissipation / (4 Q* delta*) of each cycle (depends on the datum)",
+    ),
+    "sliding_ratio": (
+        ("cycle_number",),
+        "1",
+        "Fouvry's sliding ratio B = delta_0 / delta* of each cycle, delta_0 half the loop opening (depends on "
+        "the datum)",
+    ),
+    "cycle_regime": (
+        ("cycle_number",),
+        "1",
+        "largest regime of the increments of each cycle: 0 stuck, 1 partial slip, 2 gross slip (-1: not recorded "
+        "whole)",
+    ),
+    "transition": (
+        ("P",),
+        "m",
+        "displacement amplitude at the partial-slip / gross-slip boundary, delta_t (depends on the datum)",
+    ),
     "field_cycle": (("field_cycle",), "1", "load cycle whose fields are stored (the cycle_fields policy's choice)"),
     "cycle_dissipation_max": ((), "J/m", "largest energy dissipated in one complete load cycle (NaN: none yet)"),
     "state_Q": ((), "N/m", "shear force at the last step"),
@@ -127,6 +172,11 @@ _DECLARED = {
     "state_P": ((), "N/m", "normal load at the last step, where the history varies it"),
     "state_delta": ((), "m", "tangential displacement at the datum prescribed at the last step, where it is"),
     "state_slip": (("x",), "m", "slip at the last step"),
+    "state_slid": (
+        (),
+        "m",
+        "uniform slip taken while the whole contact slid (gross slip), part of state_slip, where it slid",
+    ),
     "state_episode_start": (("x",), "m", "slip at which each point's current slip episode began, at the last step"),
     "state_cycle": ((), "1", "load cycle in progress at the last step (0: none)"),
     "state_cycle_dissipation": ((), "J/m", "energy dissipated so far in the cycle in progress"),
@@ -166,6 +216,8 @@ def variable(name: str, values: ArrayLike, dims: tuple[str, ...] | None = None) 
     ``("field_cycle", "x")``)."""
     declared, units, long_name = VARIABLES[name]
     attrs = {"units": units, "long_name": long_name} | AXES.get(name, {})
+    if name == "regime":  # CF flags
+        attrs |= {"flag_values": np.arange(len(REGIMES), dtype=np.int8), "flag_meanings": " ".join(REGIMES)}
     return xr.Variable(declared if dims is None else dims, np.asarray(values), attrs)
 
 

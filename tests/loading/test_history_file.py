@@ -48,9 +48,12 @@ def test_examples_stay_in_partial_slip(path):
     contact, history = read_history(path)
     assert 100 < len(history) <= 2000
     assert history.cycle_count >= 3
+    assert np.abs(history.sigma).max() <= contact.f * contact.p0
+    if history.displaced:  # Q is found as it runs, and may reach f P: gross slip, followed under delta
+        assert np.isnan(history.Q).all() and (history.delta[0], history.sigma[0]) == (0.0, 0.0)
+        return
     P = contact.P if history.P is None else history.P  # a varying normal load: f P of each step
     assert np.all(np.abs(history.Q) <= 0.8 * contact.f * P)
-    assert np.abs(history.sigma).max() <= contact.f * contact.p0
     assert (history.Q[0], history.sigma[0]) == (0.0, 0.0)
 
 

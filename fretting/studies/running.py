@@ -1,0 +1,242 @@
+"""Fretting loops and running-condition maps under displacement control (docs/guide/displacement.md).
+
+A rig that imposes ``+-delta*`` records, cycle by cycle, the loop of ``Q`` against ``delta``;
+`loop_cycles` reduces each loop to the numbers of Fouvry, Kapsa & Vincent (1995): the amplitudes
+``Q*`` and ``delta*``, the opening ``2 delta_0`` at ``Q = 0``, the energy ``E_d``, the energy ratio
+``A = E_d / (4 Q* delta*)``, the sliding ratio ``B = delta_0 / delta*`` and the regime of the cycle.
+`running_map` runs the exact model over a grid of normal loads and displacement amplitudes and
+maps them, with the partial-slip / gross-slip boundary ``delta_t(P)`` (`transition_displacement`,
+eq D6 of docs/theory/displacement.md). `fit_datum` finds the datum of a rig from a measured loop.
+
+Which numbers depend on the datum ``L`` and the rig compliance ``C``: ``delta*``, ``A`` and ``B``
+do; for a given history of ``Q``, ``Q*``, the opening and ``E_d`` do not (docs/theory/displacement.md#datum-dependence).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from fretting.analysis.nucleation import complete_cycles
+from fretting.engine.simulation import simulate
+from fretting.loading.history import History
+from fretting.loading.loads import Loads
+from fretting.models.exact import Exact
+from fretting.models.state import State
+from fretting.physics.contact import Contact
+from fretting.results.variables import REGIMES, variable
+
+__all__ = [
+    "fit_datum",
+    "loop_cycles",
+    "read_loop",
+    "running_map",
+    "sliding_cycles",
+    "transition_displacement",
+]
+
+#: Steps per quarter cycle of the histories of `running_map`: the loop opening, interpolated at
+#: ``Q = 0`` by a cubic through four steps, is then within 1e-6 of its closed form on Hertz
+#: (tests/studies/test_running.py).
+QUARTER_STEPS = 16
+
+
+def transition_displacement(contact: Contact) -> float:
+    """Displacement ``delta_t`` [m] at which `contact`, loaded from rest, starts to slide whole.
+
+    ``delta_t = (C_L + C) f P + delta_Q(f P)`` (eq D6), ``delta_Q`` that of the exact model at the
+    onset of sliding (Hertz: ``f p0 a / (2 E_star)``). It is also the amplitude of ``+-delta*``
+    cycles beyond which each cycle slides both ways: Masing's branch from ``+f P`` reaches ``-f P``
+    after a change of ``2 delta_t`` (eq D7). Depends on the datum.
+    """
+    if contact.datum is None:
+        raise ValueError("the contact has no datum: give fretting.Contact(..., datum=L)")
+    model = Exact().resolved_for(contact, None).build(contact)
+    fP = contact.f * contact.P
+    return contact.displacement(fP, model.delta_Q(model.increment(State.virgin(model), Loads(fP))))
+
+
+def sliding_cycles(delta_star: float, cycles: int, steps: int = QUARTER_STEPS) -> History:
+    """A ramp from rest to `delta_star` [m], then `cycles` load cycles ``+delta* -> -delta* -> +delta*``,
+    `steps` steps per quarter cycle."""
+    ramp = History.piecewise_linear(delta=[0.0, delta_star], steps_per_segment=steps)
+    cycle = History.piecewise_linear(delta=[delta_star, -delta_star, delta_star], steps_per_segment=2 * steps)
+    return History.concatenate([ramp, *[cycle.as_cycle()] * cycles])
+
+
+def loop_cycles(result: xr.Dataset) -> xr.Dataset:
+    """The fretting loop of each load cycle of a displacement-controlled `result`, recorded whole.
+
+    Variables on ``cycle_number`` (NaN, and regime -1, for a cycle not recorded whole):
+    ``Q_amplitude`` half the range of ``Q`` [N/m]; ``delta_amplitude`` half the range of
+    ``delta`` [m]; ``loop_opening`` the distance between the loop's two crossings of ``Q = 0``
+    [m], each interpolated by a cubic in ``Q`` through the steps of its branch (at most four,
+    where ``Q`` is strictly monotonic); ``cycle_dissipation`` [J/m]; ``energy_ratio`` and
+    ``sliding_ratio`` (Fouvry's ``A`` and ``B``); ``cycle_regime`` the largest regime of its
+    increments (`fretting.results.variables.REGIMES`).
+
+    Raises
+    ------
+    ValueError
+        Where the result has no ``delta`` (its contact has no datum) or no load cycles.
+    """
+    if "delta" not in result or "cycle_number" not in result.dims:
+        raise ValueError("the result has no delta or no load cycles: run a history of delta cycles on a datum")
+    Q, delta, regime = result.Q.values, result.delta.values, result.regime.values
+    rows = complete_cycles(result)
+    n = len(rows)
+    out = {name: np.full(n, np.nan) for name in ("Q_amplitude", "delta_amplitude", "loop_opening")}
+    cycle_regime = np.full(n, -1, dtype=np.int8)
+    for k, row in enumerate(rows):
+        if row is None:
+            continue
+        out["Q_amplitude"][k] = np.ptp(Q[row]) / 2
+        out["delta_amplitude"][k] = np.ptp(delta[row]) / 2
+        out["loop_opening"][k] = _opening(Q[row], delta[row])
+        cycle_regime[k] = regime[row][1:].max()
+    energy = result.cycle_dissipation.values
+    work = 4 * out["Q_amplitude"] * out["delta_amplitude"]
+    data = {name: variable(name, values) for name, values in out.items()}
+    data |= {
+        "cycle_dissipation": variable("cycle_dissipation", energy),
+        "energy_ratio": variable("energy_ratio", energy / work),
+        "sliding_ratio": variable("sliding_ratio", out["loop_opening"] / 2 / out["delta_amplitude"]),
+        "cycle_regime": variable("cycle_regime", cycle_regime),
+    }
+    return xr.Dataset(data, coords={"cycle_number": result.cycle_number.values}, attrs=_datum(result.attrs))
+
+
+def _opening(Q, delta):
+    """Distance [m] between the ``delta`` of the falling and of the rising crossing of ``Q = 0`` of
+    one loop (NaN where it does not cross both ways)."""
+    at = {}
+    for i in np.flatnonzero((Q[:-1] > 0) & (Q[1:] <= 0) | (Q[:-1] < 0) & (Q[1:] >= 0)):
+        way = int(np.sign(Q[i + 1] - Q[i]))
+        if way not in at:
+            at[way] = _crossing(Q, delta, i, way)
+    return abs(at[-1] - at[1]) if len(at) == 2 else np.nan
+
+
+def _crossing(Q, delta, i, way):
+    """``delta`` [m] at ``Q = 0`` between steps `i` and ``i + 1``, where ``Q`` moves `way` (+-1): a
+    cubic in ``Q`` through up to four steps around them along which ``Q`` moves strictly that way."""
+    lo, hi = i, i + 1
+    while hi - lo < 3:
+        if lo > 0 and (Q[lo] - Q[lo - 1]) * way > 0:
+            lo -= 1
+        elif hi + 1 < Q.size and (Q[hi + 1] - Q[hi]) * way > 0:
+            hi += 1
+        else:
+            break
+    scale = np.abs(Q[lo : hi + 1]).max()
+    fit = np.polyfit(Q[lo : hi + 1] / scale, delta[lo : hi + 1], hi - lo)
+    return float(np.polyval(fit, 0.0))
+
+
+def _datum(attrs):
+    return {name: attrs[name] for name in ("datum", "compliance", "f") if name in attrs}
+
+
+def running_map(contact: Contact, P, delta_amplitude, cycles: int = 2, steps: int = QUARTER_STEPS) -> xr.Dataset:
+    """Running-condition map of `contact` over the normal loads `P` [N/m] and displacement amplitudes
+    `delta_amplitude` [m]: each point runs the exact model over `sliding_cycles` and keeps the
+    last cycle's `loop_cycles` numbers.
+
+    Returns a dataset on ``(P, delta_amplitude)`` of ``Q_amplitude``, ``cycle_dissipation``,
+    ``loop_opening``, ``energy_ratio``, ``sliding_ratio`` and ``cycle_regime``, with the boundary
+    ``transition`` (`transition_displacement`) on ``P``. The contact's profile, moduli, ``f``,
+    datum and compliance are kept; its ``P`` is replaced by each of `P`.
+    """
+    P, amplitudes = np.asarray(P, dtype=float), np.asarray(delta_amplitude, dtype=float)
+    names = ("Q_amplitude", "cycle_dissipation", "loop_opening", "energy_ratio", "sliding_ratio", "cycle_regime")
+    values = {name: np.empty((P.size, amplitudes.size)) for name in names}
+    boundary = np.empty(P.size)
+    for i, load in enumerate(P):
+        loaded = _at_load(contact, load)
+        boundary[i] = transition_displacement(loaded)
+        for j, amplitude in enumerate(amplitudes):
+            result = simulate(loaded, sliding_cycles(amplitude, cycles, steps), Exact())
+            last = loop_cycles(result).isel(cycle_number=-1)
+            for name in names:
+                values[name][i, j] = last[name].values
+    dims = ("P", "delta_amplitude")
+    data = {name: variable(name, values[name], dims) for name in names}
+    data["cycle_regime"] = variable("cycle_regime", values["cycle_regime"].astype(np.int8), dims)
+    data["transition"] = variable("transition", boundary)
+    coords = {
+        "P": xr.Variable("P", P, {"units": "N/m", "long_name": "normal load per unit length of each row of the map"}),
+        "delta_amplitude": variable("delta_amplitude", amplitudes, ("delta_amplitude",)),
+    }
+    attrs = {"regimes": ", ".join(f"{k} {name}" for k, name in enumerate(REGIMES)), "cycles": cycles}
+    return xr.Dataset(data, coords=coords, attrs=attrs | _datum(vars(contact)))
+
+
+def _at_load(contact, P):
+    """`contact` formed at the normal load `P` [N/m] instead, with its datum and compliance."""
+    return Contact(
+        contact.profile,
+        contact.E_star,
+        contact.f,
+        P,
+        contact.specimen,
+        contact.nu,
+        datum=contact.datum,
+        compliance=contact.compliance,
+    )
+
+
+def read_loop(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
+    """``(delta [m], Q [N/m])`` of a measured loop: a CSV file with a header naming the columns
+    ``delta`` and ``Q`` (others are ignored), one row per sample in time order.
+
+    Raises
+    ------
+    ValueError
+        Naming the file, the column and what was expected.
+    """
+    path = Path(path)
+    with path.open(newline="") as file:
+        rows = list(csv.DictReader(file))
+    columns = {}
+    for name in ("delta", "Q"):
+        try:
+            columns[name] = np.array([float(row[name]) for row in rows])
+        except (KeyError, TypeError):
+            raise ValueError(f"{path}: no column {name!r}, expected a header with delta and Q") from None
+        except ValueError as error:
+            raise ValueError(f"{path}: column {name!r}: {error}, expected numbers") from None
+        if columns[name].size < 3 or not np.all(np.isfinite(columns[name])):
+            raise ValueError(f"{path}: column {name!r} must hold at least 3 finite numbers")
+    return columns["delta"], columns["Q"]
+
+
+def fit_datum(contact: Contact, delta, Q) -> tuple[float, float]:
+    """Datum ``L`` [m] and stuck compliance ``K = C_L + C`` [m per N/m] that reproduce the elastic slope
+    of a measured loop of ``delta`` [m] against ``Q`` [N/m] in partial slip on `contact`.
+
+    ``delta = K Q + delta_Q + delta_0`` (eq D4) with ``delta_Q`` the exact model's for the measured
+    history of ``Q`` (force control, from rest at the first sample): ``K`` and the offset
+    ``delta_0`` are the least-squares line of ``delta - delta_Q`` against ``Q``. ``L`` is eq D3
+    inverted for ``K`` less the contact's rig compliance ``C``: ``a cosh(pi E_star (K - C) / 2)``.
+
+    Raises
+    ------
+    ValueError
+        Where the loop reaches gross slip, or its slope leaves no positive ``C_L`` for a datum.
+    """
+    delta, Q = np.asarray(delta, dtype=float), np.asarray(Q, dtype=float)
+    fP = contact.f * contact.P
+    if np.abs(Q).max() >= fP:
+        raise ValueError(f"the loop reaches |Q| = {np.abs(Q).max():.6g} >= f P = {fP:.6g}: fit a partial-slip loop")
+    bare = Contact(contact.profile, contact.E_star, contact.f, contact.P, contact.specimen, contact.nu)
+    history = History(np.concatenate([[0.0], Q]), np.zeros(Q.size + 1), [0, Q.size])
+    slip = simulate(bare, history, Exact()).delta_Q.values[1:]
+    K, offset = np.polyfit(Q, delta - slip, 1)
+    C_L = K - contact.compliance
+    if not C_L > 0:
+        raise ValueError(f"the loop's elastic slope gives K = {K:.6g} m per N/m, not above the rig compliance")
+    return contact.a * math.cosh(math.pi * contact.E_star * C_L / 2), float(K)
