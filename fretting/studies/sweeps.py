@@ -51,6 +51,7 @@ from fretting.loading.history import History
 from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
 from fretting.physics.contact import Contact
 from fretting.results.io import ENGINE, ResultError, recorded_path, save, with_current_units
+from fretting.results.variables import REGIMES
 
 __all__ = [
     "KEY",
@@ -84,7 +85,6 @@ __all__ = [
 SWEEPS = EXAMPLES / "sweeps"
 
 #: Contact regimes, by their code in the variable ``regime``.
-REGIMES = ("stuck", "partial_slip", "gross_slip")
 STUCK, PARTIAL_SLIP, GROSS_SLIP = range(len(REGIMES))
 
 #: Variables of a case that follow from its last load cycle (NaN without cycles).
@@ -99,7 +99,8 @@ VARIABLES = {
         "1",
         "contact regime over the history",
         "0 stuck: no energy dissipated at any step, so no point ever slipped; 1 partial slip; "
-        "2 gross slip: a step left no stick zone (|Q| reached f P)",
+        "2 gross slip: a step left no stick zone (|Q| reached f P: the end of a force-controlled run; "
+        "under displacement control the contact slides and the run goes on)",
     ),
     "total_dissipation": (
         "J/m",
@@ -499,7 +500,18 @@ def summarize(result):
             "w_max": float(nucleation.peak_dissipation_density(result).w_max[-1]),
             "slip_amplitude_max": float(nucleation.slip_amplitude(result)[-1].max()),
         }
-    return _summary(result.attrs, PARTIAL_SLIP if total > 0 else STUCK, -1, energies)
+    return _summary(result.attrs, *_regime(result, total), energies)
+
+
+def _regime(result, total):
+    """``(regime, first step of gross slip or -1)`` of a run that finished: from its steps' regimes where
+    it records them (displacement control, under which the contact slides and the run goes on), else
+    partial slip where it dissipated energy and stuck where not."""
+    if "regime" not in result:
+        return (PARTIAL_SLIP if total > 0 else STUCK), -1
+    regimes = result.regime.values
+    sliding = np.flatnonzero(regimes == GROSS_SLIP)
+    return int(regimes.max(initial=STUCK)), int(result.step.values[sliding[0]]) if sliding.size else -1
 
 
 def _summary(contact, regime, step, energies):

@@ -16,7 +16,7 @@ import fretting as fr
 from fretting import cli
 from fretting.loading.examples import EXAMPLES
 from fretting.loading.history_file import HistoryFileError
-from fretting.studies import sweeps
+from fretting.studies import running, sweeps
 from fretting.studies.sweeps import REGIMES, VARIABLES, dimension, read_sweep, save_map, summarize
 
 #: A short cyclic history: f P = 70 kN/m, so Q = 75 kN/m slides and Q = sigma = 0 sticks.
@@ -241,3 +241,16 @@ def test_shipped_fretting_map(swept, tmp_path):
     assert plan.base.path.name == "hertz_fretting_fatigue.toml"
     assert [len(values) for values in plan.grid.values()] == [8, 8]
     assert save_map(swept[2], tmp_path / "map.png").stat().st_size > 0
+
+
+def test_a_displacement_run_that_slides_is_summarized_as_gross_slip():
+    """Under displacement control the contact slides and the run goes on: the case's regime is read
+    from its steps' regimes (gross slip, from the first step that slid), not from its energy alone."""
+    contact = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5, datum=5e-3, compliance=1e-12)
+    star = 1.5 * running.transition_displacement(contact)
+    result = fr.simulate(contact, running.sliding_cycles(star, 1), fr.models.Exact())
+    summary = summarize(result)
+    first = int(result.step.values[np.argmax(result.regime.values == 2)])
+    assert (int(summary.regime), int(summary.gross_slip_step)) == (2, first)
+    partial = fr.simulate(contact, running.sliding_cycles(0.5 * star / 1.5, 1), fr.models.Exact())
+    assert (int(summarize(partial).regime), int(summarize(partial).gross_slip_step)) == (1, -1)
