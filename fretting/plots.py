@@ -196,6 +196,25 @@ def sigma_loops(result, cycles=None, ax=None):
     return ax
 
 
+def fretting_loops(result, cycles=None, ax=None):
+    """Fretting loops as a rig records them: ``Q / (f P)`` against the displacement ``delta`` [um] at
+    the datum, one curve per cycle recorded whole (the cycles as for `loops`). The elastic slope of
+    each branch, and so ``delta``, depends on the datum and the rig compliance; the area is the
+    energy per cycle.
+
+    Raises
+    ------
+    ValueError
+        Where the result has no ``delta`` (its contact has no datum) or no cycle recorded whole.
+    """
+    if "delta" not in result:
+        raise ValueError("the result has no delta: its contact has no datum (fretting.Contact(..., datum=L))")
+    fP = result.attrs["f"] * result.attrs["P"]
+    ax, _ = _loops(result, cycles, ax, "delta", 1e6, result.Q.values / fP)
+    ax.set(xlabel="displacement at the datum, $\\delta$ [µm]", ylabel="$Q / (f P)$", title="fretting loops")
+    return ax
+
+
 def dissipation_density(result, cycles=None, ax=None):
     """Energy dissipated per unit area in each of several cycles, ``w(x)`` [J/m^2], against ``x / a``.
 
@@ -354,6 +373,7 @@ FIGURES = {
     "surface_stress": surface_stress,
     "hysteresis": hysteresis,
     "loops": loops,
+    "fretting_loops": fretting_loops,
     "sigma_loops": sigma_loops,
     "energy": cycle_energy,
     "dissipation_density": dissipation_density,
@@ -369,7 +389,8 @@ def figures_for(result):
 
     Snapshots always, and the whole path's loop of Q unless Q is zero throughout; per-cycle
     figures when the history counts cycles: the energy per cycle always, the loops of Q (of
-    sigma) when Q (sigma) varies in a cycle recorded whole, densities and slip amplitudes when
+    sigma) when Q (sigma) varies in a cycle recorded whole (and of Q against the displacement at
+    the datum, ``fretting_loops``, where the contact has one), densities and slip amplitudes when
     they are known for a cycle and stored for every cycle (not for a long run whose
     ``cycle_fields`` policy stored them for some cycles: `fretting.analysis.nucleation` refuses
     those, and the result's ``w_total`` and ``*_max`` fields hold what every cycle adds up to).
@@ -383,6 +404,8 @@ def figures_for(result):
         for load, name in (("Q", "loops"), ("sigma", "sigma_loops")):
             if any(np.ptp(result[load].values[rows]) > 0 for rows in whole):
                 names.add(name)
+        if "loops" in names and "delta" in result:
+            names.add("fretting_loops")
         if "field_cycle" not in result.dims and not np.isnan(nucleation.dissipation_density(result).values).all():
             names |= {"dissipation_density", "accumulated_density", "slip_amplitude", "peak_density"}
     return [name for name in FIGURES if name in names]
@@ -507,25 +530,6 @@ def _label(result, row):
     return f"step {int(result.step[row])}: $Q/(fP)$ = {Q / (result.attrs['f'] * P):.2f}, " + (
         f"$\\sigma/(f p_0)$ = {sigma / (result.attrs['f'] * result.attrs['p0']):.2f}"
     )
-
-
-def fretting_loops(result, cycles=None, ax=None):
-    """Fretting loops as a rig records them: ``Q / (f P)`` against the displacement ``delta`` [um] at
-    the datum, one curve per cycle recorded whole (the cycles as for `loops`). The elastic slope of
-    each branch, and so ``delta``, depends on the datum and the rig compliance; the area is the
-    energy per cycle.
-
-    Raises
-    ------
-    ValueError
-        Where the result has no ``delta`` (its contact has no datum) or no cycle recorded whole.
-    """
-    if "delta" not in result:
-        raise ValueError("the result has no delta: its contact has no datum (fretting.Contact(..., datum=L))")
-    fP = result.attrs["f"] * result.attrs["P"]
-    ax, _ = _loops(result, cycles, ax, "delta", 1e6, result.Q.values / fP)
-    ax.set(xlabel="displacement at the datum, $\\delta$ [µm]", ylabel="$Q / (f P)$", title="fretting loops")
-    return ax
 
 
 def running_condition_map(data, name="cycle_regime", ax=None):
