@@ -35,7 +35,7 @@ from fretting.engine.recorder import (
 )
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
-from fretting.loading.examples import examples, resolve_history
+from fretting.loading.examples import copy_example, examples, resolve_history
 from fretting.loading.history_file import read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
@@ -189,8 +189,14 @@ def _parser():
 
     _stress_parser(commands, common, figures)
 
-    listing = commands.add_parser("examples", parents=[common], help="list the shipped example histories")
-    listing.set_defaults(command=_examples, file="examples")
+    listing = commands.add_parser(
+        "examples", parents=[common], help="list the shipped example histories, or copy one to edit"
+    )
+    listing.add_argument(
+        "--copy", metavar="NAME", help="copy the example NAME, with the tables it names, into DIR to edit"
+    )
+    listing.add_argument("folder", nargs="?", metavar="DIR", help="folder of the copies (default: the current one)")
+    listing.set_defaults(command=_examples, file="examples", usage_error=listing.error)
 
     sweep = commands.add_parser("sweep", parents=[common], help="run a sweep file on dask.distributed")
     add_sweep_arguments(sweep)
@@ -288,6 +294,12 @@ def _model(args):
 
 
 def _examples(args):
+    if args.copy is not None:
+        for path in copy_example(args.copy, args.folder or "."):
+            print(path)
+        return
+    if args.folder is not None:
+        args.usage_error(f"DIR {args.folder!r}: a folder is for --copy NAME")
     for name, description in examples().items():
         print(f"{name:<32} {description}")
 

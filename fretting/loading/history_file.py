@@ -22,7 +22,14 @@ from fretting.loading.history import RAMP_STEPS, History, PiecewiseLinear
 from fretting.physics.contact import POISSON_RANGE, SPECIMEN, Contact, plane_strain_modulus
 from fretting.physics.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 
-__all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_data", "read_history_source"]
+__all__ = [
+    "HistoryFileError",
+    "HistorySource",
+    "named_files",
+    "read_history",
+    "read_history_data",
+    "read_history_source",
+]
 
 #: Keys of the [contact] table besides those of the profile.
 CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P", "specimen", "datum", "compliance")
@@ -30,6 +37,9 @@ CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P", "specimen", "datum", "
 #: Largest table file (`csv` blocks, tabulated profiles) read [bytes]: a device, a pipe or a file
 #: larger than this would hang the run or fill the memory before any error could be said.
 MAX_TABLE_BYTES = 2**30
+
+#: Keys whose value names a file, read next to the history file: a gap profile's table, a csv block's file.
+FILE_KEYS = ("table", "file")
 
 #: Default steps per segment of a `linear` block, and of a `csv` block: one row, one step.
 LINEAR_STEPS, CSV_STEPS = 16, 1
@@ -129,6 +139,26 @@ def read_history_data(path, text, data):
     and tables named by `data` are read next to `path`.
     """
     return _Document(path, text, data).read()
+
+
+def named_files(path):
+    """The tables that the history file at `path` names (a gap profile's ``table``, the ``file`` of
+    ``csv`` blocks, inside ``repeat`` blocks too), as paths next to it, in the order they appear."""
+    path = Path(path)
+    named = []
+
+    def walk(value, key=None):
+        if isinstance(value, dict):
+            for inner, item in value.items():
+                walk(item, inner)
+        elif isinstance(value, list):
+            for item in value:
+                walk(item)
+        elif key in FILE_KEYS and isinstance(value, str):
+            named.append(path.parent / value)
+
+    walk(tomllib.loads(path.read_text(encoding="utf-8")))
+    return list(dict.fromkeys(named))
 
 
 class _Document:
