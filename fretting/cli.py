@@ -1,4 +1,5 @@
-"""The command line: ``fretting run | validate | info | plot | stress | examples`` (also ``python -m fretting``).
+"""The command line: ``fretting run | validate | info | plot | stress | export | examples | sweep``
+(also ``python -m fretting``).
 
 Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
 failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
@@ -41,6 +42,7 @@ from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.results.io import ResultError, load, save
+from fretting.results.tables import cycle_table, step_table, write_csv
 from fretting.studies.sweeps import add_arguments as add_sweep_arguments
 from fretting.studies.sweeps import run as run_sweep
 
@@ -188,6 +190,18 @@ def _parser():
     plot.set_defaults(command=_plot)
 
     _stress_parser(commands, common, figures)
+
+    export = commands.add_parser(
+        "export", parents=[common], help="write a result's per-cycle (or per-step) table as CSV"
+    )
+    export.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    export.add_argument(
+        "-o", "--output", metavar="FILE", help="CSV file (default: <result stem>_cycles.csv, or _steps.csv, beside it)"
+    )
+    export.add_argument(
+        "--steps", action="store_true", help="the loads and scalars of each recorded step instead of each cycle"
+    )
+    export.set_defaults(command=_export)
 
     listing = commands.add_parser(
         "examples", parents=[common], help="list the shipped example histories, or copy one to edit"
@@ -400,6 +414,18 @@ def _saved(figure, stem, args):
     path = stem.with_name(f"{stem.name}.{args.format}")
     figure.savefig(path, dpi=args.dpi, format=args.format)
     print(path)
+
+
+def _export(args):
+    result = load(args.file)
+    kind = "steps" if args.steps else "cycles"
+    try:
+        table = step_table(result) if args.steps else cycle_table(result)
+    except ValueError as error:
+        raise ResultError(f"{args.file}: {error}") from None
+    output = Path(args.output or Path(args.file).with_name(f"{Path(args.file).stem}_{kind}.csv"))
+    write_csv(table, output, f"fretting export of {Path(args.file).name}")
+    print(f"{output}: {table.sizes[next(iter(table.dims))]} {kind}, {len(table.data_vars) + 1} columns")
 
 
 def _stress(args):
