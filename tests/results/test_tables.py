@@ -38,7 +38,7 @@ def runs(tmp_path_factory):
 
 
 def _read(path):
-    return pd.read_csv(path, comment="#")
+    return pd.read_csv(path, comment="#", float_precision="round_trip")
 
 
 def test_the_cycle_table_reads_back_to_the_result(runs, capsys):
