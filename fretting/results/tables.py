@@ -2,8 +2,8 @@
 
 The CSV file opens with comment lines (``#``): what it was taken from, then one line per column
 with its units and meaning; then a header row of the column names and a row of numbers per cycle
-or step. ``pandas.read_csv(path, comment="#", float_precision="round_trip")`` reads it back
-exactly; a spreadsheet shows the comments as the first rows. Numbers are written in the shortest
+or step. ``pandas.read_csv(path, comment="#")`` reads it (every digit from pandas 3.1 on); a
+spreadsheet shows the comments as the first rows. Numbers are written in the shortest
 form that reads back to the same value of their type (float64, or float32 for the fields stored
 in single precision).
 """
