@@ -36,6 +36,16 @@ P = 1e5
 """
 
 
+def hertz_sine_toml(cycles, steps_per_cycle, phase_deg=0):
+    """`HERTZ_TOML` under `cycles` sine cycles of Q = 30 kN/m (f P = 70 kN/m) and sigma = 20 MPa,
+    sigma leading by `phase_deg` [deg]."""
+    phase = f"phase_deg = {phase_deg}\n" if phase_deg else ""
+    blocks = (
+        f"Q_amplitude = 30e3\nsigma_amplitude = 20e6\n{phase}cycles = {cycles}\nsteps_per_cycle = {steps_per_cycle}\n"
+    )
+    return f'{HERTZ_TOML}\n[[loading]]\nkind = "sine"\n{blocks}'
+
+
 @pytest.fixture
 def hertz():
     return hertz_contact()

@@ -15,7 +15,7 @@ import numpy as np
 import pint
 import pytest
 import xarray as xr
-from conftest import HERTZ_TOML
+from conftest import hertz_sine_toml
 
 import fretting as fr
 from fretting import cli
@@ -28,17 +28,7 @@ from fretting.studies import sweeps
 UNITS = pint.UnitRegistry()
 
 #: A short cyclic history of the Hertzian contact of conftest (f P = 70 kN/m).
-SINE = (
-    HERTZ_TOML
-    + """
-[[loading]]
-kind = "sine"
-Q_amplitude = 30e3
-sigma_amplitude = 20e6
-cycles = 2
-steps_per_cycle = 16
-"""
-)
+SINE = hertz_sine_toml(cycles=2, steps_per_cycle=16)
 
 
 @pytest.fixture(scope="module")

@@ -4,25 +4,14 @@ read back to the values of the result, the fields a policy did not store left em
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import HERTZ_TOML
+from conftest import HERTZ_TOML, hertz_sine_toml
 
 from fretting import cli
 from fretting.results.io import load
 from fretting.results.tables import cycle_table, write_csv
 
-#: Four cycles of Q and sigma out of phase on the Hertzian contact of conftest (f P = 70 kN/m).
-CYCLES = (
-    HERTZ_TOML
-    + """
-[[loading]]
-kind = "sine"
-Q_amplitude = 30e3
-sigma_amplitude = 20e6
-phase_deg = 90
-cycles = 4
-steps_per_cycle = 8
-"""
-)
+#: Four cycles of Q and sigma out of phase on the Hertzian contact of conftest.
+CYCLES = hertz_sine_toml(cycles=4, steps_per_cycle=8, phase_deg=90)
 
 
 @pytest.fixture(scope="module")
