@@ -61,6 +61,10 @@ def test_the_listed_packages_are_those_of_the_source_tree():
         return
     setuptools = tomllib.loads((tree / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["setuptools"]
     found = {".".join(path.parent.relative_to(tree).parts) for path in (tree / "fretting").rglob("__init__.py")}
-    assert set(setuptools["packages"]) == found | {"fretting.histories"}
+    shipped = {
+        "fretting.histories",
+        *(f"fretting.histories.{d.name}" for d in (tree / "histories").iterdir() if d.is_dir()),
+    }
+    assert set(setuptools["packages"]) == found | shipped
     assert setuptools["package-dir"] == {"fretting.histories": "histories"}
     assert "graft histories" in (tree / "MANIFEST.in").read_text(encoding="utf-8").splitlines()
