@@ -21,9 +21,10 @@ from pathlib import Path
 import numpy as np
 
 import fretting as fr
+from fretting.loading.examples import example_path
 from fretting.physics.closed_forms import mindlin_deresiewicz_energy
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "fretting" / "examples" / "hertz_shear_cycling.toml"
+EXAMPLE = example_path("hertz_shear_cycling")
 Q_AMPLITUDE = 35e3
 
 

@@ -53,9 +53,10 @@ from pathlib import Path
 import numpy as np
 
 import fretting as fr
+from fretting.loading.examples import example_path
 from fretting.physics.closed_forms import cattaneo_mindlin_dissipation, masing_increment
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "fretting" / "examples" / "hertz_shear_cycling.toml"
+EXAMPLE = example_path("hertz_shear_cycling")
 Q_AMPLITUDE, SIGMA_AMPLITUDE, STEPS_PER_SEGMENT, SEED = 40e3, 1e8, 16, 1
 
 #: Nodes of the fixed grid run beside the default (that of its fallback): the cost of the steps

@@ -46,6 +46,10 @@ def hertz_sine_toml(cycles, steps_per_cycle, phase_deg=0):
     return f'{HERTZ_TOML}\n[[loading]]\nkind = "sine"\n{blocks}'
 
 
+#: Two cycles of Q and sigma in phase on that contact (f P = 70 kN/m): a short cyclic history file.
+SINE_TOML = hertz_sine_toml(cycles=2, steps_per_cycle=16)
+
+
 @pytest.fixture
 def hertz():
     return hertz_contact()

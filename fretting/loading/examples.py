@@ -13,7 +13,7 @@ import os
 import shutil
 from pathlib import Path
 
-from fretting.loading.history_file import named_files
+from fretting.loading.history_file import read_history_data
 
 __all__ = ["EXAMPLES", "copy_example", "example_path", "examples", "resolve_history"]
 
@@ -92,8 +92,9 @@ def copy_example(name, folder="."):
     FileNotFoundError
         When no example has that name (`example_path`).
     """
-    history, folder = example_path(name), Path(folder)
-    sources = [history, *named_files(history)]
+    history, folder, tables = example_path(name), Path(folder), []
+    read_history_data(history, history.read_text(encoding="utf-8"), None, tables)  # the tables it reads
+    sources = [history, *dict.fromkeys(tables)]
     targets = [folder / source.relative_to(history.parent) for source in sources]
     for target in targets:
         if target.exists():

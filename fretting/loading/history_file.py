@@ -28,7 +28,6 @@ from fretting.physics.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 __all__ = [
     "HistoryFileError",
     "HistorySource",
-    "named_files",
     "read_history",
     "read_history_data",
     "read_history_source",
@@ -56,9 +55,6 @@ CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P", "specimen", "datum", "
 #: Largest table file (`csv` blocks, tabulated profiles) read [bytes]: a device, a pipe or a file
 #: larger than this would hang the run or fill the memory before any error could be said.
 MAX_TABLE_BYTES = 2**30
-
-#: Keys whose value names a file, read next to the history file: a gap profile's table, a csv block's file.
-FILE_KEYS = ("table", "file")
 
 #: Default steps per segment of a `linear` block, and of a `csv` block: one row, one step.
 LINEAR_STEPS, CSV_STEPS = 16, 1
@@ -151,42 +147,24 @@ def read_history_source(path):
     return HistorySource(path, text, hashlib.sha256(data).hexdigest(), contact, history)
 
 
-def read_history_data(path, text, data):
+def read_history_data(path, text, data, tables=None):
     """Contact and load history of `data`: the TOML `text` of the history file at `path`, parsed and possibly changed.
 
     Checked as `read_history` checks a file; errors name `path` and the line of the key in `text`,
-    and tables named by `data` are read next to `path`.
+    and tables named by `data` are read next to `path`. The path of each table file read is
+    appended to the list `tables`, when given (what a sweep's case depends on besides `data`).
     """
-    return _Document(path, text, data).read()
-
-
-def named_files(path):
-    """The tables that the history file at `path` names (a gap profile's ``table``, the ``file`` of
-    ``csv`` blocks, inside ``repeat`` blocks too), as paths next to it, in the order they appear."""
-    path = Path(path)
-    named = []
-
-    def walk(value, key=None):
-        if isinstance(value, dict):
-            for inner, item in value.items():
-                walk(item, inner)
-        elif isinstance(value, list):
-            for item in value:
-                walk(item)
-        elif key in FILE_KEYS and isinstance(value, str):
-            named.append(path.parent / value)
-
-    walk(tomllib.loads(path.read_text(encoding="utf-8")))
-    return list(dict.fromkeys(named))
+    return _Document(path, text, data, tables).read()
 
 
 class _Document:
     """The parsed TOML of one file, with the line of every key written on a line of its own.
 
-    `data` is `text` already parsed (and possibly changed); when None, `text` is parsed here.
+    `data` is `text` already parsed (and possibly changed); when None, `text` is parsed here. The
+    path of each table file read is appended to `tables`.
     """
 
-    def __init__(self, path, text, data=None):
+    def __init__(self, path, text, data=None, tables=None):
         self.path = path
         try:
             self.data = tomllib.loads(text) if data is None else data
@@ -194,6 +172,7 @@ class _Document:
             line = re.search(r"at line (\d+)", str(error))
             raise HistoryFileError(path, int(line[1]) if line else None, None, f"TOML syntax: {error}") from None
         self.lines = _key_lines(text)
+        self.tables = [] if tables is None else tables
         self.units = {}  # kind -> (the unit of the file's plain numbers of that kind, its factor to SI)
 
     def read(self):
@@ -271,7 +250,9 @@ class _Table:
 
     def file(self, key):
         """Path of the file named by `key`, relative to the history file's directory."""
-        return self.document.path.parent / self.get(key, _text)
+        path = self.document.path.parent / self.get(key, _text)
+        self.document.tables.append(path)
+        return path
 
 
 def _contact(table):
@@ -315,7 +296,7 @@ def _gap(table):
     if back.size:
         k = back[0]
         raise table.error("table", f"{path}: found x = {x[k + 1]:.6g} after {x[k]:.6g}, expected x increasing")
-    return Gap.from_table(x, h0, table.get("breakpoints", _numbers, default=()))
+    return Gap.from_table(x, h0, table.get("breakpoints", _numbers, default=None))
 
 
 #: profile name -> (its keys, reader of the profile from the [contact] table).

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cache
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -17,10 +17,38 @@ from fretting.errors import HistoryError
 from fretting.loading.loads import Loads
 from fretting.results.variables import CYCLE_PEAKS
 
-if TYPE_CHECKING:
-    from fretting.models.base import Model, ModelSpec, Outcome
+__all__ = ["Nodes", "Solved", "State", "Tally"]
 
-__all__ = ["State", "Tally"]
+
+class Nodes(Protocol):
+    """What a `State` reads of the model it is formed on (a `fretting.models.base.Model`): the
+    nodes ``x`` [m] of its slip field and its resolved spec.
+
+    The state lies below the model contract, which holds states: it names what it needs of a model
+    rather than importing the contract."""
+
+    @property
+    def x(self) -> np.ndarray: ...
+
+    @property
+    def spec(self) -> Any: ...
+
+
+class Solved(Protocol):
+    """What `State.advance` reads of an increment solved (a `fretting.models.base.Outcome`): the
+    slip [m] after it and its increment, the energy it dissipated [J/m] and the model's memory."""
+
+    @property
+    def slip(self) -> np.ndarray: ...
+
+    @property
+    def ds(self) -> np.ndarray: ...
+
+    @property
+    def dissipation(self) -> float: ...
+
+    @property
+    def memory(self) -> tuple: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -134,7 +162,7 @@ class State:
     tally : Tally
         Energy and slip range of the cycle in progress, so that a run continued from this
         state reports that cycle whole.
-    model : ModelSpec
+    model : fretting.models.base.ModelSpec
         The resolved model the state was computed with (its nodes are those of `slip`).
     dissipated : float
         Energy dissipated since the contact was formed [J/m], summed step by step.
@@ -147,7 +175,7 @@ class State:
     slip: np.ndarray
     episode_start: np.ndarray
     tally: Tally
-    model: ModelSpec
+    model: Any  # a resolved fretting.models.base.ModelSpec
     dissipated: float = 0.0
     memory: tuple = ()
 
@@ -167,14 +195,14 @@ class State:
         return self.loads.P
 
     @classmethod
-    def virgin(cls, model: Model) -> State:
+    def virgin(cls, model: Nodes) -> State:
         """The contact of `model` (a `fretting.models.base.Model`) just formed: no load and no slip."""
         slip = np.zeros(model.x.size)
         return cls(Loads(0.0, 0.0), slip, slip, Tally.begin(0, slip), model.spec)
 
     def advance(
         self,
-        outcome: Outcome,
+        outcome: Solved,
         loads: Loads,
         w: np.ndarray | None,
         stress: np.ndarray | None,
@@ -223,7 +251,7 @@ class State:
             and np.array_equal(self.episode_start, other.episode_start)
         )
 
-    def check(self, contact, model):
+    def check(self, contact, model: Nodes) -> None:
         """Raise HistoryError unless this state can be continued on `contact` with `model` (a `Model`)."""
         N = model.x.size
         fields = {"slip": self.slip, "episode_start": self.episode_start, "tally.w": self.tally.w}

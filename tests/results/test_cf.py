@@ -15,7 +15,7 @@ import numpy as np
 import pint
 import pytest
 import xarray as xr
-from conftest import hertz_sine_toml
+from conftest import SINE_TOML as SINE
 
 import fretting as fr
 from fretting import cli
@@ -26,9 +26,6 @@ from fretting.results.variables import VARIABLES
 from fretting.studies import sweeps
 
 UNITS = pint.UnitRegistry()
-
-#: A short cyclic history of the Hertzian contact of conftest (f P = 70 kN/m).
-SINE = hertz_sine_toml(cycles=2, steps_per_cycle=16)
 
 
 @pytest.fixture(scope="module")
