@@ -1,6 +1,6 @@
 """`fretting run` of 10^5 Hertz cycles: wall time, peak memory, file size and energy per cycle.
 
-The history file is `fretting/examples/hertz_shear_cycling.toml`'s contact under one `sine` block of
+The history file is `histories/hertz_shear_cycling.toml`'s contact under one `sine` block of
 `Q_amplitude = 35e3` (`Q*/fP = 0.5`), 64 steps per cycle, `cycles = 100000` (6.4 million steps),
 run at default settings in a fresh process. Its peak memory is the child's maximum resident
 set (`resource.getrusage`); every cycle after the first is compared with the Masing closed
@@ -21,9 +21,10 @@ from pathlib import Path
 import numpy as np
 
 import fretting as fr
+from fretting.loading.examples import example_path
 from fretting.physics.closed_forms import mindlin_deresiewicz_energy
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "fretting" / "examples" / "hertz_shear_cycling.toml"
+EXAMPLE = example_path("hertz_shear_cycling")
 Q_AMPLITUDE = 35e3
 
 

@@ -1,6 +1,6 @@
 """Service lives through `fretting run`: CPU time, peak memory and energy error of long random histories.
 
-The targets of issue 21, on the contact of `fretting/examples/hertz_shear_cycling.toml` under a
+The targets of issue 21, on the contact of `histories/hertz_shear_cycling.toml` under a
 `random` block (16 steps a segment, 32 a cycle, seed 1; ``Q_amplitude = 40e3``, 0.57 f P, and,
 in phase, ``sigma_amplitude = 1e8``, 0.53 f p0), each run at default settings by `fretting run`
 in a fresh process, on one BLAS thread:
@@ -53,9 +53,10 @@ from pathlib import Path
 import numpy as np
 
 import fretting as fr
+from fretting.loading.examples import example_path
 from fretting.physics.closed_forms import cattaneo_mindlin_dissipation, masing_increment
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "fretting" / "examples" / "hertz_shear_cycling.toml"
+EXAMPLE = example_path("hertz_shear_cycling")
 Q_AMPLITUDE, SIGMA_AMPLITUDE, STEPS_PER_SEGMENT, SEED = 40e3, 1e8, 16, 1
 
 #: Nodes of the fixed grid run beside the default (that of its fallback): the cost of the steps

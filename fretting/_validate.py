@@ -30,17 +30,30 @@ def finite(name, value, unit="1"):
     return number
 
 
-def finite_array(name, values, ndim=1):
-    """Return `values` as a float array of `ndim` dimensions with finite entries."""
-    try:
-        array = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of numbers, found {values!r}") from None
+def finite_array(name, values, ndim=1, unit="1"):
+    """Return `values` as a float array in `unit` (SI) of `ndim` dimensions with finite entries.
+
+    `values` may be an array quantity (``[10, 20] * ureg("kN/m")``) or a sequence of quantities.
+    """
+    array = array_in_unit(name, values, unit)
     if array.ndim != ndim:
         raise ValueError(f"{name} must be {ndim}-dimensional, found shape {array.shape}")
     if not np.all(np.isfinite(array)):
         raise ValueError(f"{name} must hold finite numbers only")
     return array
+
+
+def array_in_unit(name, values, unit):
+    """`values` (numbers, an array quantity, or a sequence of numbers and quantities) as a float
+    array in `unit` (SI); NaN and infinite entries are kept."""
+    if isinstance(values, (list, tuple)):
+        values = [in_unit(name, value, unit) for value in values]
+    else:
+        values = in_unit(name, values, unit)
+    try:
+        return np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be an array of numbers, found {values!r}") from None
 
 
 def in_unit(name, value, unit):

@@ -1,5 +1,5 @@
-"""The command line: ``fretting run | validate | info | plot | stress | examples | sweep | materials | threshold | map``
-(also ``python -m fretting``).
+"""The command line: ``fretting run | validate | info | plot | stress | export | examples | sweep | materials |
+threshold | map`` (also ``python -m fretting``).
 
 Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
 failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
@@ -43,12 +43,13 @@ from fretting.engine.recorder import (
 )
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
-from fretting.loading.examples import examples, resolve_history
+from fretting.loading.examples import copy_example, examples, resolve_history
 from fretting.loading.history_file import HistoryFileError, read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.results.io import ResultError, load, save
+from fretting.results.tables import cycle_table, step_table, write_csv
 from fretting.studies.maps import FileScene, nucleation_boundary
 from fretting.studies.sweeps import (
     REGIMES,
@@ -209,8 +210,26 @@ def _parser():
 
     _stress_parser(commands, common, figures)
 
-    listing = commands.add_parser("examples", parents=[common], help="list the shipped example histories")
-    listing.set_defaults(command=_examples, file="examples")
+    export = commands.add_parser(
+        "export", parents=[common], help="write a result's per-cycle (or per-step) table as CSV"
+    )
+    export.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    export.add_argument(
+        "-o", "--output", metavar="FILE", help="CSV file (default: <result stem>_cycles.csv, or _steps.csv, beside it)"
+    )
+    export.add_argument(
+        "--steps", action="store_true", help="the loads and scalars of each recorded step instead of each cycle"
+    )
+    export.set_defaults(command=_export)
+
+    listing = commands.add_parser(
+        "examples", parents=[common], help="list the shipped example histories, or copy one to edit"
+    )
+    listing.add_argument(
+        "--copy", metavar="NAME", help="copy the example NAME, with the tables it names, into DIR to edit"
+    )
+    listing.add_argument("folder", nargs="?", metavar="DIR", help="folder of the copies (default: the current one)")
+    listing.set_defaults(command=_examples, file="examples", usage_error=listing.error)
 
     _sweep_parser(commands, common)
     _fatigue_parsers(commands, common, figures)
@@ -335,6 +354,12 @@ def _model(args):
 
 
 def _examples(args):
+    if args.copy is not None:
+        for path in copy_example(args.copy, args.folder or "."):
+            print(path)
+        return
+    if args.folder is not None:
+        args.usage_error(f"DIR {args.folder!r}: a folder is for --copy NAME")
     for name, description in examples().items():
         print(f"{name:<32} {description}")
 
@@ -447,6 +472,18 @@ def _saved(figure, stem, args):
     path = stem.with_name(f"{stem.name}.{args.format}")
     figure.savefig(path, dpi=args.dpi, format=args.format)
     print(path)
+
+
+def _export(args):
+    result = load(args.file)
+    kind = "steps" if args.steps else "cycles"
+    try:
+        table = step_table(result) if args.steps else cycle_table(result)
+    except ValueError as error:
+        raise ResultError(f"{args.file}: {error}") from None
+    output = Path(args.output or Path(args.file).with_name(f"{Path(args.file).stem}_{kind}.csv"))
+    write_csv(table, output, f"fretting export of {Path(args.file).name}")
+    print(f"{output}: {table.sizes[next(iter(table.dims))]} {kind}, {len(table.data_vars) + 1} columns")
 
 
 def _sweep(args):

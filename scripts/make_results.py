@@ -2,7 +2,7 @@
 
 Run from the repository root after installing the package:  python scripts/make_results.py
 
-Each history of fretting/examples/ is run with the default settings and drawn by `fretting plot`;
+Each history of histories/ is run with the default settings and drawn by `fretting plot`;
 the datasets named in KEEP stay in results/ (the others would make it tens of MB; any of them
 is one `fretting run` away). The Table A comparison figure is redrawn too.
 """

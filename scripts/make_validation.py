@@ -490,7 +490,7 @@ def examples_page():
         images = "\n".join(f'![{name}: {f}](validation/figures/{f}){{ width="32%" }}' for f in gallery_figures(name))
         sections.append(
             f"## {name}\n\n{leading_comment(EXAMPLES / f'{name}.toml')}\n\n"
-            f"Run it: `fretting run {name}` (the history file: `fretting/examples/{name}.toml`), "
+            f"Run it: `fretting run {name}` (the history file: `histories/{name}.toml`), "
             f"then `fretting plot {name}.h5`.\n\n{images}\n"
         )
     scope = {}

@@ -116,7 +116,7 @@ force `Q` between `+-Q*` with the specimen's bulk stress between `+-sigma_a` in 
 fretting-fatigue test rig): the contact half-width `a` varies over {SIZES[0]:g} to {SIZES[-1]:g} times the
 critical distance `L` = {L * 1e6:g} um of the material, at the same peak pressure `p0` = {P0 / 1e6:g} MPa,
 `Q*/(f P)` = {LOAD:g} (`f` = {F:g}) and `sigma_a / (f p0)` = {BULK:g}, so that `R` and `P` scale with `a`. The
-material is the illustrative steel of `fretting/examples/materials/steel.toml`
+material is the illustrative steel of `histories/materials/steel.toml`
 ([multiaxial fatigue](fatigue.md#material-files)).
 
 For each size the script runs the history with the default model, computes the specimen's stress field over

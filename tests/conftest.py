@@ -35,18 +35,19 @@ f = 0.7
 P = 1e5
 """
 
+
+def hertz_sine_toml(cycles, steps_per_cycle, phase_deg=0):
+    """`HERTZ_TOML` under `cycles` sine cycles of Q = 30 kN/m (f P = 70 kN/m) and sigma = 20 MPa,
+    sigma leading by `phase_deg` [deg]."""
+    phase = f"phase_deg = {phase_deg}\n" if phase_deg else ""
+    blocks = (
+        f"Q_amplitude = 30e3\nsigma_amplitude = 20e6\n{phase}cycles = {cycles}\nsteps_per_cycle = {steps_per_cycle}\n"
+    )
+    return f'{HERTZ_TOML}\n[[loading]]\nkind = "sine"\n{blocks}'
+
+
 #: Two cycles of Q and sigma in phase on that contact (f P = 70 kN/m): a short cyclic history file.
-SINE_TOML = (
-    HERTZ_TOML
-    + """
-[[loading]]
-kind = "sine"
-Q_amplitude = 30e3
-sigma_amplitude = 20e6
-cycles = 2
-steps_per_cycle = 16
-"""
-)
+SINE_TOML = hertz_sine_toml(cycles=2, steps_per_cycle=16)
 
 
 @pytest.fixture

@@ -1,4 +1,7 @@
-"""The shipped example histories: listed by name, found by name from any directory, a path wins over a name."""
+"""The shipped example histories: listed by name, found by name from any directory, a path wins over a name,
+copied to be edited."""
+
+from pathlib import Path
 
 import pytest
 from conftest import HERTZ_TOML
@@ -58,3 +61,48 @@ def test_unknown_name_is_a_one_line_input_error(empty, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1
     assert err.startswith("fretting: error: no_such_example: No such file or directory, nor a shipped example")
+
+
+def test_copy_writes_an_editable_copy_with_its_tables(empty, capsys):
+    assert cli.main(["examples", "--copy", "asymmetric_pad_measured_cycle", "mine"]) == 0
+    written = capsys.readouterr().out.split()
+    assert written == [
+        "mine/asymmetric_pad_measured_cycle.toml",
+        "mine/asymmetric_pad_gap.csv",
+        "mine/measured_cycle.csv",
+    ]
+    for name in written:
+        assert (empty / name).read_bytes() == (EXAMPLES / Path(name).name).read_bytes()
+    edited = empty / written[0]
+    edited.write_text(edited.read_text().replace("count = 3", "count = 2"))
+    assert cli.main(["validate", str(edited)]) == 0
+    assert "2 cycles" in capsys.readouterr().out
+
+
+def test_copy_into_the_current_folder_runs_by_path(empty, capsys):
+    assert cli.main(["examples", "--copy", "hertz_random.toml"]) == 0
+    assert capsys.readouterr().out.split() == ["hertz_random.toml"]
+    assert resolve_history("hertz_random.toml") == Path("hertz_random.toml")
+
+
+def test_copy_overwrites_nothing(empty, capsys):
+    (empty / "measured_cycle.csv").write_text("mine")
+    assert cli.main(["examples", "--copy", "asymmetric_pad_measured_cycle"]) == cli.EXIT_INPUT
+    err = capsys.readouterr().err
+    assert err == "fretting: error: measured_cycle.csv: File exists, not overwritten by the example\n"
+    assert sorted(path.name for path in empty.iterdir()) == ["measured_cycle.csv"]
+    assert (empty / "measured_cycle.csv").read_text() == "mine"
+
+
+def test_copy_of_an_unknown_name_is_a_one_line_input_error(empty, capsys):
+    assert cli.main(["examples", "--copy", "no_such_example"]) == cli.EXIT_INPUT
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no_such_example: No such file or directory, nor a shipped example" in err
+    assert list(empty.iterdir()) == []
+
+
+def test_a_folder_without_copy_is_a_usage_error(empty, capsys):
+    with pytest.raises(SystemExit) as exited:
+        cli.main(["examples", "somewhere"])
+    assert exited.value.code == 2
+    assert capsys.readouterr().err.splitlines()[-1].endswith("DIR 'somewhere': a folder is for --copy NAME")

@@ -1,4 +1,5 @@
-"""The package ships its PEP 561 marker, ``fretting/py.typed``, in the wheel and in the sdist.
+"""The package ships its PEP 561 marker, ``fretting/py.typed``, and the example histories of the
+top-level ``histories/`` folder (as ``fretting/histories/``), in the wheel and in the sdist.
 
 Run from a checkout these read the source tree; CI runs them from the installed wheel (away from
 the checkout) and from the unpacked sdist, where they check what was built.
@@ -6,9 +7,19 @@ the checkout) and from the unpacked sdist, where they check what was built.
 
 import importlib.metadata
 import importlib.resources
+import tomllib
 from pathlib import Path
 
 import fretting
+from fretting.loading.examples import EXAMPLES, examples
+
+PACKAGE = Path(fretting.__file__).resolve().parent
+
+
+def _source_tree():
+    """The source tree (or unpacked sdist) the package is imported from; None where it is installed."""
+    tree = PACKAGE.parent
+    return tree if (tree / "pyproject.toml").is_file() and (tree / "MANIFEST.in").is_file() else None
 
 
 def test_py_typed_is_package_data():
@@ -18,11 +29,42 @@ def test_py_typed_is_package_data():
 def test_installed_package_lists_py_typed():
     """Installed from a wheel, the distribution's file list (RECORD) names the marker; from a
     source tree or sdist, pyproject.toml's package data and MANIFEST.in name it."""
-    package = Path(fretting.__file__).resolve().parent
-    tree = package.parent
-    if (tree / "pyproject.toml").is_file() and (tree / "MANIFEST.in").is_file():
+    tree = _source_tree()
+    if tree is not None:
         assert '"py.typed"' in (tree / "pyproject.toml").read_text(encoding="utf-8")
         assert "include fretting/py.typed" in (tree / "MANIFEST.in").read_text(encoding="utf-8").splitlines()
     else:
         recorded = {str(f).replace("\\", "/") for f in importlib.metadata.files("fretting") or ()}
         assert "fretting/py.typed" in recorded, sorted(recorded)[:20]
+
+
+def test_the_example_histories_are_found_where_they_ship():
+    """``histories/`` beside the package in a source tree, ``fretting/histories/`` once installed;
+    the histories, their tables, the sweep and the material are all there."""
+    tree = _source_tree()
+    assert EXAMPLES == (PACKAGE / "histories" if tree is None else tree / "histories")
+    assert len(examples()) >= 7 and (EXAMPLES / "hertz_shear_cycling.toml").is_file()
+    for shipped in ("asymmetric_pad_gap.csv", "sweeps/hertz_fretting_map.toml", "materials/steel.toml"):
+        assert (EXAMPLES / shipped).is_file(), shipped
+    if tree is None:
+        recorded = {str(f).replace("\\", "/") for f in importlib.metadata.files("fretting") or ()}
+        assert "fretting/histories/hertz_shear_cycling.toml" in recorded
+
+
+def test_the_listed_packages_are_those_of_the_source_tree():
+    """pyproject.toml lists the packages (histories/ is mapped to one): every package of the tree is
+    listed, and the mapped folder with it, so none is left out of the wheel."""
+    tree = _source_tree()
+    if tree is None:  # installed: the wheel holds a module of every package the source tree had
+        found = {path.parent for path in PACKAGE.rglob("__init__.py")}
+        assert {path.name for path in found} >= {"analysis", "engine", "galerkin", "loading", "results", "studies"}
+        return
+    setuptools = tomllib.loads((tree / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["setuptools"]
+    found = {".".join(path.parent.relative_to(tree).parts) for path in (tree / "fretting").rglob("__init__.py")}
+    shipped = {
+        "fretting.histories",
+        *(f"fretting.histories.{d.name}" for d in (tree / "histories").iterdir() if d.is_dir()),
+    }
+    assert set(setuptools["packages"]) == found | shipped
+    assert setuptools["package-dir"] == {"fretting.histories": "histories"}
+    assert "graft histories" in (tree / "MANIFEST.in").read_text(encoding="utf-8").splitlines()

@@ -1,18 +1,27 @@
 """The example history files shipped with the package, found by name.
 
-Each example is a history file in ``fretting/examples/`` (with the CSV tables it names); its name
-is the file's stem, e.g. ``hertz_shear_cycling``, and its description the first line of its
-leading comment. Sweep files are in ``fretting/examples/sweeps/``.
+Each example is a history file in the ``histories/`` folder of the source tree (with the CSV
+tables it names); its name is the file's stem, e.g. ``hertz_shear_cycling``, and its description
+the first line of its leading comment. Sweep files of these histories are in ``histories/sweeps/``,
+the illustrative material of the fatigue criteria in ``histories/materials/``. The wheel installs
+the folder as ``fretting/histories/`` (pyproject.toml maps the one to the other), so examples run
+by name from any folder.
 """
 
 import errno
 import os
+import shutil
 from pathlib import Path
 
-__all__ = ["EXAMPLES", "example_path", "examples", "resolve_history"]
+from fretting.loading.history_file import read_history_data
 
-#: The directory of the shipped examples.
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+__all__ = ["EXAMPLES", "copy_example", "example_path", "examples", "resolve_history"]
+
+_PACKAGE = Path(__file__).resolve().parents[1]
+
+#: The folder of the shipped examples: ``fretting/histories/`` where the package is installed from
+#: a wheel, else ``histories/`` beside the package (a source tree, or an editable install of one).
+EXAMPLES = _PACKAGE / "histories" if (_PACKAGE / "histories").is_dir() else _PACKAGE.parent / "histories"
 
 
 def examples():
@@ -59,6 +68,41 @@ def example_path(name):
         problem = f"{os.strerror(errno.ENOENT)}, nor a shipped example: expected a history file or one of: {names}"
         raise FileNotFoundError(errno.ENOENT, problem, name)
     return path
+
+
+def copy_example(name, folder="."):
+    """Copy the shipped example `name`, with the tables it names, into `folder`: an editable copy.
+
+    Parameters
+    ----------
+    name : str
+        An example's name (`example_path`).
+    folder : str or os.PathLike
+        Where the copies go; made if missing.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written: the history file first, then its tables.
+
+    Raises
+    ------
+    FileExistsError
+        When a file of that name is already in `folder`: nothing is copied then.
+    FileNotFoundError
+        When no example has that name (`example_path`).
+    """
+    history, folder, tables = example_path(name), Path(folder), []
+    read_history_data(history, history.read_text(encoding="utf-8"), None, tables)  # the tables it reads
+    sources = [history, *dict.fromkeys(tables)]
+    targets = [folder / source.relative_to(history.parent) for source in sources]
+    for target in targets:
+        if target.exists():
+            raise FileExistsError(errno.EEXIST, f"{os.strerror(errno.EEXIST)}, not overwritten by the example", target)
+    for source, target in zip(sources, targets, strict=True):
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(source, target)
+    return targets
 
 
 def resolve_history(file):

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fretting._validate import finite, finite_array, positive
+from fretting._validate import array_in_unit, finite, finite_array, positive
 from fretting.errors import HistoryError
 from fretting.loading.loads import LoadBlock
 
@@ -63,7 +63,7 @@ class History:
 
     def __post_init__(self):
         Q, delta = (_loads("Q", self.Q), None) if self.delta is None else _prescribed(self.Q, self.delta)
-        sigma = _loads("sigma", self.sigma)
+        sigma = _loads("sigma", self.sigma, "Pa")
         if Q.shape != sigma.shape:
             raise HistoryError(f"Q and sigma must have the same length, found {Q.size} and {sigma.size}")
         vertex_step = np.asarray(self.vertex_step, dtype=np.int64)
@@ -366,6 +366,7 @@ class History:
             )
         if delta is None:
             return PiecewiseLinear.through(Q, sigma, steps_per_segment, P).explicit()
+        delta = _loads("delta", delta, "m")  # in m here: `through` takes its vertices as those of Q
         return PiecewiseLinear.through(delta, sigma, steps_per_segment, P).explicit().displacements()
 
     @classmethod
@@ -425,7 +426,7 @@ class History:
         True
         """
         amplitude, mean = _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean)
-        phase = np.radians(_number("phase_deg", phase_deg))
+        phase = np.radians(_number("phase_deg", phase_deg, unit="deg"))
         steps = _count("steps_per_cycle", steps_per_cycle, minimum=4)
         theta = np.remainder(np.arange(steps + 1, dtype=float), steps)
         theta *= 2 * np.pi
@@ -435,8 +436,8 @@ class History:
         sigma = _wave(theta, amplitude[1], mean[1])
         P = None
         if P_mean is not None:
-            theta += np.radians(_number("P_phase_deg", P_phase_deg)) - phase
-            P = _wave(theta, _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean))
+            theta += np.radians(_number("P_phase_deg", P_phase_deg, unit="deg")) - phase
+            P = _wave(theta, _number("P_amplitude", P_amplitude, 0.0, "N/m"), _number("P_mean", P_mean, unit="N/m"))
         waves = Periodic(History(Q, sigma, [0, steps], None, P), _count("cycles", cycles))
         history = _reached_from(start, waves, _count("ramp_steps", ramp_steps))
         return history if by_cycle else history.explicit()
@@ -493,7 +494,7 @@ class History:
         start = _start(start)
         P = None
         if P_mean is not None:
-            P_amplitude, P_mean = _number("P_amplitude", P_amplitude, 0.0), _number("P_mean", P_mean)
+            P_amplitude, P_mean = _number("P_amplitude", P_amplitude, 0.0, "N/m"), _number("P_mean", P_mean, unit="N/m")
             P = np.concatenate([[start[2] if len(start) > 2 else P_mean], P_mean + P_amplitude * excursion])
         path = PiecewiseLinear.through(
             np.concatenate([[start[0]], mean[0] + amplitude[0] * excursion]),
@@ -599,7 +600,7 @@ class PiecewiseLinear(Formed):
     """
 
     def __init__(self, vertex_Q, vertex_sigma, steps, segment_cycle=None, vertex_P=None):
-        arrays = {"vertex_Q": _loads("Q", vertex_Q), "vertex_sigma": _loads("sigma", vertex_sigma)}
+        arrays = {"vertex_Q": _loads("Q", vertex_Q), "vertex_sigma": _loads("sigma", vertex_sigma, "Pa")}
         arrays["steps"] = np.asarray(steps, dtype=np.int64)
         if arrays["vertex_sigma"].shape != arrays["vertex_Q"].shape or arrays["steps"].shape != (
             arrays["vertex_Q"].size - 1,
@@ -713,7 +714,7 @@ class PiecewiseLinear(Formed):
     def through(cls, Q, sigma=None, steps_per_segment=16, P=None):
         """`History.piecewise_linear`'s history, held by its vertices (the same parameters)."""
         Q = _loads("Q", Q)
-        sigma = np.zeros_like(Q) if sigma is None else _loads("sigma", sigma)
+        sigma = np.zeros_like(Q) if sigma is None else _loads("sigma", sigma, "Pa")
         if Q.shape != sigma.shape:
             raise HistoryError(f"Q and sigma need one value per vertex, found {Q.size} and {sigma.size}")
         steps = np.broadcast_to(np.asarray(steps_per_segment), (Q.size - 1,))
@@ -975,13 +976,17 @@ def _wave(theta, amplitude, mean):
 
 def _amplitudes_means(Q_amplitude, sigma_amplitude, Q_mean, sigma_mean):
     """Validated amplitudes (>= 0) and means, each as a pair ``(Q, sigma)``."""
-    amplitude = (_number("Q_amplitude", Q_amplitude, minimum=0.0), _number("sigma_amplitude", sigma_amplitude, 0.0))
-    return amplitude, (_number("Q_mean", Q_mean), _number("sigma_mean", sigma_mean))
+    amplitude = (
+        _number("Q_amplitude", Q_amplitude, 0.0, "N/m"),
+        _number("sigma_amplitude", sigma_amplitude, 0.0, "Pa"),
+    )
+    return amplitude, (_number("Q_mean", Q_mean, unit="N/m"), _number("sigma_mean", sigma_mean, unit="Pa"))
 
 
-def _number(name, value, minimum=None):
+def _number(name, value, minimum=None, unit="1"):
+    """`value` (a number, or a quantity converted to `unit`) as a finite float, at least `minimum`."""
     try:
-        number = finite(name, value)
+        number = finite(name, value, unit)
     except ValueError as error:
         raise HistoryError(str(error)) from None
     if minimum is not None and number < minimum:
@@ -996,11 +1001,17 @@ def _count(name, value, minimum=1):
 
 
 def _start(start):
-    """``start`` as a tuple of floats ``(Q, sigma)``, or ``(Q, sigma, P)``."""
-    values = _loads("start", start)
-    if values.size not in (2, 3):
+    """``start`` as a tuple of floats ``(Q, sigma)`` [N/m], [Pa], or ``(Q, sigma, P)`` [N/m, Pa, N/m]."""
+    if not isinstance(start, (list, tuple, np.ndarray)) or len(start) not in (2, 3):
         raise HistoryError(f"start must be a pair (Q, sigma) or a triple (Q, sigma, P), found {start!r}")
-    return tuple(float(value) for value in values)
+    return tuple(
+        _number(f"start[{k}]", value, unit=unit)
+        for k, (value, unit) in enumerate(zip(start, _START_UNITS[: len(start)], strict=True))
+    )
+
+
+#: Units of the loads of a `start` tuple ``(Q, sigma, P)``.
+_START_UNITS = ("N/m", "Pa", "N/m")
 
 
 def _normal_loads(P, n):
@@ -1022,7 +1033,10 @@ def _lift_off(P, step):
 def _prescribed(Q, delta):
     """`Q` [N/m] and `delta` [m] of a history, checked: each step prescribes exactly one of them
     (a finite number), the other NaN there."""
-    Q, delta = np.asarray(Q, dtype=float), np.asarray(delta, dtype=float)
+    try:
+        Q, delta = array_in_unit("Q", Q, "N/m"), array_in_unit("delta", delta, "m")
+    except ValueError as error:
+        raise HistoryError(str(error)) from None
     if Q.ndim != 1 or Q.shape != delta.shape or Q.size == 0:
         raise HistoryError(f"Q and delta must give one value per step, found {Q.size} and {delta.size}")
     for name, values in (("Q", Q), ("delta", delta)):
@@ -1037,9 +1051,11 @@ def _prescribed(Q, delta):
     return Q, delta
 
 
-def _loads(name, values):
+def _loads(name, values, unit="N/m"):
+    """`values` of the load `name` (numbers in `unit` (SI), or quantities converted to it) as a
+    non-empty 1-D float array of finite numbers."""
     try:
-        values = finite_array(name, values)
+        values = finite_array(name, values, unit=unit)
     except ValueError as error:
         raise HistoryError(str(error)) from None
     if values.size == 0:

@@ -2,6 +2,9 @@
 
 Every value is checked here, at the boundary, and every problem raises `HistoryFileError`
 naming the file, the line where it can be found, the key, what was found and what was expected.
+Values are SI unless the file says otherwise: a value written with its units (``R = "50 mm"``),
+or a ``[units]`` table giving the units of its plain numbers (`UNIT_KINDS`); both are converted
+to SI floats here, by pint (an optional dependency, needed only by a file that says units).
 """
 
 from __future__ import annotations
@@ -22,7 +25,29 @@ from fretting.loading.history import RAMP_STEPS, History, PiecewiseLinear
 from fretting.physics.contact import POISSON_RANGE, SPECIMEN, Contact, plane_strain_modulus
 from fretting.physics.profiles import FlatPunch, Gap, Hertz, RoundedFlat
 
-__all__ = ["HistoryFileError", "HistorySource", "read_history", "read_history_data", "read_history_source"]
+__all__ = [
+    "HistoryFileError",
+    "HistorySource",
+    "read_history",
+    "read_history_data",
+    "read_history_source",
+]
+
+#: The kinds of quantity a history file's numbers are, each with its SI unit, in which plain numbers
+#: are read unless the file's ``[units]`` table names another unit of that kind.
+UNIT_KINDS = {"length": "m", "stress": "Pa", "line_load": "N/m", "compliance": "m^2/N"}
+
+#: The kind (`UNIT_KINDS`) of each key of a history file that holds a dimensional quantity, and of
+#: each column of the tables it names; angles are in degrees (``*_deg``), other keys are unit-free.
+KEY_KINDS = {
+    **dict.fromkeys(("R", "b", "a", "datum", "delta", "x", "h0"), "length"),
+    **dict.fromkeys(("E", "E_star", "sigma", "sigma_amplitude", "sigma_mean"), "stress"),
+    **dict.fromkeys(("P", "Q", "Q_amplitude", "Q_mean", "P_amplitude", "P_mean"), "line_load"),
+    "compliance": "compliance",
+}
+
+#: Keys whose value is an angle in degrees; a value with units (``"1.5 rad"``) is converted to them.
+ANGLE_KEYS = ("phase_deg", "P_phase_deg")
 
 #: Keys of the [contact] table besides those of the profile.
 CONTACT_KEYS = ("profile", "E_star", "E", "nu", "f", "P", "specimen", "datum", "compliance")
@@ -148,10 +173,13 @@ class _Document:
             raise HistoryFileError(path, int(line[1]) if line else None, None, f"TOML syntax: {error}") from None
         self.lines = _key_lines(text)
         self.tables = [] if tables is None else tables
+        self.units = {}  # kind -> (the unit of the file's plain numbers of that kind, its factor to SI)
 
     def read(self):
         top = _Table(self, (), self.data)
-        top.reject_unknown(("contact", "loading"))
+        top.reject_unknown(("contact", "loading", "units"))
+        if "units" in self.data:
+            self.units = _units(top.table("units"))
         contact = _contact(top.table("contact"))
         if "loading" not in self.data:
             raise self.error((), "found no [[loading]] blocks, expected at least one")
@@ -194,9 +222,25 @@ class _Table:
             return default
         value = self.data[key]
         try:
-            return convert(value)
+            return convert(self.in_si(key, value))
         except _Expected as expected:
             raise self.error(key, f"found {_show(value)}, expected {expected}") from None
+
+    def in_si(self, key, value):
+        """`value` of `key` in SI: each number with units converted, each plain number scaled by the
+        file's ``[units]`` of its kind; unchanged for a key without units (`KEY_KINDS`)."""
+        if isinstance(value, list):
+            return [self.in_si(key, item) for item in value]
+        if key in ANGLE_KEYS and isinstance(value, str):
+            return _quantity(value, "deg", f'a number [deg], or an angle with units, e.g. "{_EXAMPLES["an angle"]}"')
+        kind = KEY_KINDS.get(key)
+        if kind is None:
+            return value
+        unit, factor = self.document.units.get(kind, (UNIT_KINDS[kind], None))
+        if isinstance(value, str):
+            expected = f'a number [{unit}], or a {_named(kind)} with units, e.g. "{_EXAMPLES[kind]}"'
+            return _quantity(value, UNIT_KINDS[kind], expected)
+        return value * factor if factor is not None and _is_number(value) else value
 
     def table(self, key):
         return _Table(self.document, self.path + (key,), self.get(key, _mapping))
@@ -483,7 +527,70 @@ def _read_columns(table, key, path, names, all_required):
                 values[index, column] = _number(float(cell))
             except (ValueError, _Expected):
                 raise HistoryFileError(path, line, name, f"found {cell!r}, expected a finite number") from None
-    return dict(zip(header, values.T, strict=True))
+    units = table.document.units  # the file's [units] hold for its tables' columns too
+    columns = dict(zip(header, values.T, strict=True))
+    return {
+        name: column * units[KEY_KINDS[name]][1] if KEY_KINDS[name] in units else column
+        for name, column in columns.items()
+    }
+
+
+def _units(table):
+    """Kind -> (unit, its factor to SI) of each kind (`UNIT_KINDS`) that the ``[units]`` table `table` gives."""
+    table.reject_unknown(tuple(UNIT_KINDS))
+    return {kind: (table.data[kind], table.get(kind, _unit_of(kind))) for kind in UNIT_KINDS if kind in table.data}
+
+
+#: A value with units of each kind, as the errors show one.
+_EXAMPLES = {
+    "length": "50 mm",
+    "stress": "200 MPa",
+    "line_load": "30 kN/m",
+    "compliance": "1e-9 m/(N/m)",
+    "an angle": "90 deg",
+}
+
+#: The start of a number with units: a number.
+_NUMBER = re.compile(r"\s*[-+]?(\d|\.\d)")
+
+
+def _unit_of(kind):
+    """Converter of a ``[units]`` entry: a unit of `kind` in quotes -> its factor to the SI unit."""
+
+    def factor(text):
+        expected = f'a unit of {_named(kind)} in quotes, e.g. "{_EXAMPLES[kind].split(" ", 1)[1]}"'
+        if not isinstance(text, str) or _NUMBER.match(text):
+            raise _Expected(expected)
+        return _quantity(f"1 {text}", UNIT_KINDS[kind], expected)
+
+    return factor
+
+
+def _quantity(text, unit, expected):
+    """The number with units `text` (e.g. ``"12 N/mm"``) in `unit`, as a float; `expected` says what
+    the key takes when `text` is not that (a number, units pint knows, of the dimension of `unit`)."""
+    try:
+        import pint
+    except ImportError:
+        raise _Expected(f"{expected} (a value with units needs pint: pip install pint)") from None
+    if not _NUMBER.match(text):
+        raise _Expected(expected)
+    try:
+        quantity = pint.get_application_registry().Quantity(text)
+    except Exception:  # pint's errors of an unknown unit or of a malformed expression
+        raise _Expected(f"{expected} (pint knows no such unit)") from None
+    try:
+        magnitude = quantity.to(unit).magnitude
+    except pint.DimensionalityError:
+        raise _Expected(f"{expected}; {quantity.units:~} does not convert to {unit}") from None
+    if not _is_number(magnitude):
+        raise _Expected(expected)
+    return float(magnitude)
+
+
+def _named(kind):
+    """A kind of `UNIT_KINDS` in words."""
+    return kind.replace("_", " ")
 
 
 def _key_lines(text):

@@ -17,6 +17,7 @@ default model is one more entry of `fretting.engine.choice.DEFAULTS`.
 from __future__ import annotations
 
 import abc
+import dataclasses
 import functools
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -195,6 +196,19 @@ class ModelSpec(abc.ABC):
     def is_default(self) -> bool:
         """True if `fretting.engine.choice.choose_model` can give this resolved spec (one read from a result)."""
         return False
+
+    def __repr__(self) -> str:
+        """The spec as its constructor reads, without the parameters left at their defaults, and an
+        array (the node angles of a resolved spec) by its size: printing a model stays one line.
+        ``Mesh(rtol=0.0001)`` evaluates to the spec it prints; a resolved spec does not."""
+        shown = []
+        for field in dataclasses.fields(self):  # type: ignore[arg-type]  # every spec is a dataclass
+            value = getattr(self, field.name)
+            if isinstance(value, np.ndarray):
+                shown.append(f"{field.name}=<{value.size} values>")
+            elif value != field.default:
+                shown.append(f"{field.name}={value!r}")
+        return f"{type(self).__name__}({', '.join(shown)})"
 
     def __eq__(self, other: object) -> bool:
         """The same kind of model with the same parameters and nodes."""

@@ -27,7 +27,7 @@ __all__ = ["DEFAULT_NODES", "CollocationModel", "Grid"]
 DEFAULT_NODES = 384
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
 class Grid(ModelSpec):
     """Method 4 on the fixed grid of `nodes` Gauss-Chebyshev collocation points.
 

@@ -81,7 +81,7 @@ STICK_NODES = 16
 CACHED_BRANCHES = 4096
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
 class Exact(ModelSpec):
     """The exact model of ``Q`` alone on a symmetric profile, on `nodes_theta` nodes (`theta` once resolved).
 

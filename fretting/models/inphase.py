@@ -100,7 +100,7 @@ def _on_path(Q, sigma, ratio, scale):
     return bool(np.all(np.abs(sigma - ratio * Q) <= PROPORTIONAL_RTOL * abs(ratio) * scale))
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
 class InPhase(ModelSpec):
     """The exact model of in-phase ``Q`` and ``sigma = ratio Q`` on a Hertz contact, on `nodes_theta` nodes.
 

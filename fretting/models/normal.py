@@ -108,7 +108,7 @@ DEFAULT_LOAD_PART = 1 / 400
 CACHED_CONTACTS = 8
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
 class Varying(ModelSpec):
     """Method 4 on `cells` equal cells fixed in ``x`` over the largest contact of a history of ``P``.
 

@@ -4,6 +4,9 @@ parses, no path of the machine that wrote them; and files of fretting 0.1.0 (uni
 ``Pa2``, ``J/m2``) read with today's spelling."""
 
 import datetime
+import json
+import shutil
+import warnings
 from pathlib import Path
 
 import cf_xarray  # noqa: F401 (the accessor ds.cf)
@@ -114,6 +117,28 @@ def test_no_path_of_the_machine_in_the_file(files, kind):
     assert texts and not [text for text in texts if folder in text]
     if kind != "stress":
         assert recorded == "sine.toml"
+
+
+@pytest.mark.parametrize("kind", ["result", "stress", "sweep"])
+def test_the_cf_checker_reports_no_error(files, kind, tmp_path):
+    """The IOOS compliance checker's CF-1.11 suite, run offline (its standard-name table ships with
+    it), finds no error ("high priority" result) in a file of each kind. It counts a name not ending
+    in ``.nc`` as an error, where CF says the extension "should" be ``.nc``: the file is checked under
+    that name (``fretting run -o result.nc`` writes the same bytes). Its two warnings on a result
+    file are not errors: ``Q`` and ``q`` (the shear force and the shear traction) differ in case
+    only, and ``x`` (``axis = "X"``, in m) is taken for a longitude."""
+    with warnings.catch_warnings():  # its deprecated IOOS suites warn when the checkers are loaded
+        warnings.simplefilter("ignore")
+        from compliance_checker.runner import CheckSuite, ComplianceChecker
+
+        CheckSuite.load_all_available_checkers()
+        path, report = shutil.copy(files[kind], tmp_path / f"{kind}.nc"), tmp_path / "report.json"
+        ComplianceChecker.run_checker(
+            str(path), ["cf:1.11"], 0, "normal", output_filename=str(report), output_format="json_new"
+        )
+    found = json.loads(report.read_text())[str(path)]["cf:1.11"]
+    errors = {check["name"]: check["msgs"] for check in found["high_priorities"] if check["msgs"]}
+    assert found["scored_points"] > 0 and found["high_count"] == 0, errors
 
 
 def test_a_recorded_path_is_relative_as_given_or_the_name_alone(tmp_path):

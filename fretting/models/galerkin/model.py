@@ -51,7 +51,7 @@ MAX_DEFAULT_WORK = 3e9
 CAPPED = "over the default's bound of"
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
 class Mesh(ModelSpec):
     """Method 4 by P1 Galerkin on a mesh in ``theta``: the mesh `theta` as given, or one adapted to
     the history so that the energy of each increment is right to `rtol` (resolved for a history by
