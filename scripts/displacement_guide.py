@@ -108,7 +108,7 @@ other model a history that reaches it stops with a one-line `GrossSlipError` tha
 ## A fretting-wear test that runs into gross slip and back
 
 The shipped example `{EXAMPLE}` (`fretting run {EXAMPLE}`; the history file
-`fretting/examples/{EXAMPLE}.toml`) drives the contact above by `delta`: three cycles of +-1 um, three
+`histories/{EXAMPLE}.toml`) drives the contact above by `delta`: three cycles of +-1 um, three
 of +-3 um and three of +-0.25 um. Its contact starts to slide whole at `delta_t` = {delta_t * 1e6:.4g} um
 (`fretting.studies.running.transition_displacement`), so the middle block slides at each end. It ran in
 {run_seconds:.1f} s ({len(history)} steps). Its loops:
