@@ -48,7 +48,14 @@ from fretting.engine.simulation import simulate
 from fretting.errors import GrossSlipError, MissingDependencyError
 from fretting.loading.examples import EXAMPLES
 from fretting.loading.history import History
-from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
+from fretting.loading.history_file import (
+    ANGLE_KEYS,
+    KEY_KINDS,
+    UNIT_KINDS,
+    HistoryFileError,
+    read_history_data,
+    read_history_source,
+)
 from fretting.physics.contact import Contact
 from fretting.results.io import ENGINE, ResultError, recorded_path, save, with_current_units
 from fretting.results.variables import REGIMES
@@ -132,22 +139,9 @@ VARIABLES = {
     "P": ("N/m", "normal load per unit length", "P of the case's contact"),
 }
 
-#: Units of the history-file keys, by name; other numeric keys are counts, flags or unit-free.
-UNITS = {
-    "R": "m",
-    "b": "m",
-    "a": "m",
-    "E": "Pa",
-    "E_star": "Pa",
-    "P": "N/m",
-    "Q": "N/m",
-    "Q_amplitude": "N/m",
-    "Q_mean": "N/m",
-    "sigma": "Pa",
-    "sigma_amplitude": "Pa",
-    "sigma_mean": "Pa",
-    "phase_deg": "degree",
-}
+#: SI units of the history-file keys, by name (`fretting.loading.history_file.KEY_KINDS`); angles in
+#: degrees; other numeric keys are counts, flags or unit-free.
+UNITS = {name: UNIT_KINDS[kind] for name, kind in KEY_KINDS.items()} | dict.fromkeys(ANGLE_KEYS, "degree")
 
 #: Loads drawn relative to what slides the contact (docs/theory/conventions.md): psi = Q / (f P), tau = sigma / (f p0).
 SCALES = {"Q": ("f P", lambda cases: cases.f * cases.P), "sigma": ("f p0", lambda cases: cases.f * cases.p0)}
