@@ -6,7 +6,9 @@ failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the t
 
 import argparse
 import json
+import signal
 import sys
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -67,11 +69,67 @@ PROGRESS_DELAY = 2.0
 
 
 def main(argv=None):
-    """Run the command line with the arguments `argv` (``sys.argv[1:]`` when None); return the exit code."""
+    """Run the command line with the arguments `argv` (``sys.argv[1:]`` when None); return the exit code.
+
+    Ctrl-C is `_Interrupts`': never lost, and said in one line. With `argv` None (the process's own
+    command line), an interrupt after the work is done is ignored: it would only kill the exiting
+    interpreter, with a traceback or none.
+    """
     args = _parser().parse_args(argv)
+    with _Interrupts() as interrupts:
+        code = _main(args, interrupts)
+    if argv is None and threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    return code
+
+
+class _Interrupts:
+    """SIGINT, while the block runs in the main thread: KeyboardInterrupt as Python's own handler raises
+    it, and remembered, so that one raised where Python cannot pass it on (a weakref callback or a
+    ``__del__``, which it reports as "Exception ignored" and drops: h5py and xarray run both) is
+    raised again at the next `check`, not lost, and is not reported there."""
+
+    def __init__(self):
+        self.lost = False
+
+    def __enter__(self):
+        self._main = threading.current_thread() is threading.main_thread()
+        if self._main:
+            self._handler = signal.signal(signal.SIGINT, self._interrupted)
+            self._hook, sys.unraisablehook = sys.unraisablehook, self._unraisable
+        return self
+
+    def __exit__(self, *exception):
+        if self._main:
+            signal.signal(signal.SIGINT, self._handler)
+            sys.unraisablehook = self._hook
+
+    def _interrupted(self, signum, frame):
+        self.lost = True  # until it is seen to pass (`passed`)
+        raise KeyboardInterrupt
+
+    def _unraisable(self, unraisable):
+        if not issubclass(unraisable.exc_type, KeyboardInterrupt):
+            self._hook(unraisable)
+
+    def passed(self):
+        """The interrupt raised was caught where it is handled: none is lost."""
+        self.lost = False
+
+    def check(self):
+        """Raise KeyboardInterrupt if an interrupt was dropped since the last `passed`."""
+        if self.lost:
+            raise KeyboardInterrupt
+
+
+def _main(args, interrupts):
+    """`main` of the parsed arguments `args`."""
+    args.interrupts = interrupts
     try:
         args.command(args)
+        interrupts.check()
     except KeyboardInterrupt as interrupt:
+        interrupts.passed()
         return _fail(args, interrupt, f"interrupted{f': {interrupt}' if interrupt.args else ''}", EXIT_INTERRUPTED)
     except GrossSlipError as error:
         return _fail(args, error, f"{args.file}: {error}", EXIT_GROSS_SLIP)
@@ -308,6 +366,7 @@ def _run(args):
     with tqdm(unit="step", delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
 
         def progress(done, total):
+            args.interrupts.check()  # after each chunk: an interrupt dropped in it stops the run here
             bar.total, bar.n = total, done
             bar.refresh()
 
