@@ -15,6 +15,7 @@ import numpy as np
 
 from fretting.errors import HistoryError
 from fretting.loading.loads import Loads
+from fretting.models.method4 import Method4Model
 from fretting.results.variables import CYCLE_PEAKS
 
 if TYPE_CHECKING:
@@ -224,7 +225,18 @@ class State:
         )
 
     def check(self, contact, model):
-        """Raise HistoryError unless this state can be continued on `contact` with `model` (a `Model`)."""
+        """Raise HistoryError unless this state can be continued on `contact` with `model` (a `Model`).
+
+        Besides its fields' shapes, finite values and non-negative energies, the state must be one
+        the contact can be in, as far as that is cheap to tell (one product of the model's stiffness
+        with the slip, `consistency`): under its own loads its traction obeys Coulomb's law,
+        ``|q| <= f p`` at every node; a model that derives the slip from what it remembers (the
+        exact models: their turning points) gives back its slip; and, under a constant ``P``, the
+        energy it records since the contact was formed is at least ``int f p |s| dx``, since every
+        node's slip ``s`` was reached by increments each of which dissipated ``f p |ds|`` (method 4's
+        models, whose ``dissipation`` is that integral on their nodes). A slip far beyond what the
+        recorded loads and energy can produce, such as a uniform slip of 1e10 m, fails one of them.
+        """
         N = model.x.size
         fields = {"slip": self.slip, "episode_start": self.episode_start, "tally.w": self.tally.w}
         fields |= {"tally.slip_min": self.tally.slip_min, "tally.slip_max": self.tally.slip_max}
@@ -259,6 +271,55 @@ class State:
         P = contact.P if self.P is None else self.P
         if abs(self.Q) >= contact.f * P:
             raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")
+        self.consistency(contact, model)
+
+    def consistency(self, contact, model):
+        """Raise HistoryError unless the slip agrees with the loads, the model's memory and the energy (`check`)."""
+        outcome = model.at_rest(self)
+        scale = float(np.max(np.abs(self.slip), initial=0.0))
+        off = np.abs(outcome.slip - self.slip) > SLIP_RTOL * scale
+        if off.any():
+            node = int(np.argmax(off))
+            raise HistoryError(
+                f"state.slip = {self.slip[node]!r} m at node {node}, where the model's memory gives "
+                f"{float(outcome.slip[node])!r} m: a slip the recorded turning points cannot produce"
+            )
+        excess = _excess(outcome, contact, model, contact.P if self.P is None else self.P)
+        if np.max(excess) > COULOMB_TOLERANCE:
+            node = int(np.argmax(excess))
+            raise HistoryError(
+                f"state.slip leaves a traction above f p by {float(excess[node]):.6g} f p0 at node {node} under "
+                f"the state's loads, expected at most f p (Coulomb): a slip the loads cannot produce"
+            )
+        if self.P is None and isinstance(model, Method4Model):
+            least = model.dissipation(self.slip)
+            if least > self.dissipated * (1 + ENERGY_RTOL):
+                raise HistoryError(
+                    f"state.slip needs at least {least!r} J/m dissipated (int f p |slip| dx), "
+                    f"state.dissipated = {self.dissipated!r}: a slip the recorded energy cannot produce"
+                )
+
+
+#: How far the slip that a model derives from its memory may differ from the state's, relative to the
+#: largest slip: rounding of the closed forms.
+SLIP_RTOL = 1e-9
+#: How far beyond ``f p`` a state's traction may be, relative to the largest ``f p``: the rounding of
+#: the slip-to-traction product at the edges.
+COULOMB_TOLERANCE = 1e-9
+#: How far ``int f p |s| dx`` may exceed the energy dissipated, relative: rounding of the sums.
+ENERGY_RTOL = 1e-9
+
+
+def _excess(outcome, contact, model, P):
+    """``(|q| - f p) / max(f p)`` at the nodes after `outcome` under the normal load `P` [N/m]: in the
+    model's own measure where it has one (method 4: its ``g`` against its ``limit``), else from its
+    traction. Relative to the largest limit, since at the edges, where ``f p`` vanishes, ``g`` is
+    the difference of large numbers."""
+    if isinstance(model, Method4Model):
+        g, limit = np.abs(outcome.g), model.limit
+    else:
+        g, limit = np.abs(model.traction(outcome)), contact.f * model.pressure_at(P)
+    return (g - limit) / np.max(limit)
 
 
 def _folded(op, held, rows, first, length):
