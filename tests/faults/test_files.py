@@ -15,31 +15,27 @@ import h5py
 import pytest
 import xarray as xr
 from conftest import HERTZ_TOML as CONTACT
+from test_cli import _interrupt_after, data_of, run
 
-import fretting as fr
-from fretting import cli
 from fretting.engine import runner
-from fretting.results.io import WRITTEN_ATTRIBUTES, ResultError, load
+from fretting.results.io import ResultError, load
 
-#: 100 cycles of Q and sigma out of phase, 4016 steps: about two seconds on 32 nodes, saved in several parts.
-LONG = CONTACT + (
-    '[[loading]]\nkind = "sine"\nQ_amplitude = 35e3\nsigma_amplitude = 1e8\nphase_deg = 90\n'
-    "cycles = 100\nsteps_per_cycle = 40\n"
-)
+#: Each test runs fretting two to four times, in this process or another: seconds each.
+pytestmark = pytest.mark.slow
+
+
+def sine(cycles):
+    """A history of `cycles` cycles of Q and sigma out of phase, 40 steps each (100 cycles: about two
+    seconds on 32 nodes), saved in several parts."""
+    return CONTACT + (
+        '[[loading]]\nkind = "sine"\nQ_amplitude = 35e3\nsigma_amplitude = 1e8\nphase_deg = 90\n'
+        f"cycles = {cycles}\nsteps_per_cycle = 40\n"
+    )
+
+
 #: A shorter history, whose result stands for the earlier result in the output's place.
 EARLIER = CONTACT + '[[loading]]\nkind = "linear"\nQ = [20e3]\nsteps_per_segment = 4\n'
 NODES = ("--nodes", "32")
-
-
-def run(*arguments):
-    return cli.main([str(argument) for argument in arguments])
-
-
-def data_of(result):
-    """`result` without what differs between two writes of it (time, versions) and which cycles were copied."""
-    copy = result.drop_vars("cycle_copied", errors="ignore")
-    copy.attrs = {name: value for name, value in result.attrs.items() if name not in WRITTEN_ATTRIBUTES}
-    return copy
 
 
 def digest(path):
@@ -47,11 +43,11 @@ def digest(path):
 
 
 @pytest.fixture
-def folder(tmp_path, monkeypatch):
-    """A working folder with the long history, its uninterrupted result ``whole.h5`` and an earlier
-    result ``out.h5`` in the place the faulty runs write."""
+def folder(request, tmp_path, monkeypatch):
+    """A working folder with the history ``long.toml`` (`sine` of 20 cycles, or of the parameter), its
+    uninterrupted result ``whole.h5`` and an earlier result ``out.h5`` in the place the faulty runs write."""
     monkeypatch.chdir(tmp_path)
-    (tmp_path / "long.toml").write_text(LONG)
+    (tmp_path / "long.toml").write_text(sine(getattr(request, "param", 20)))
     (tmp_path / "earlier.toml").write_text(EARLIER)
     assert run("run", "long.toml", "-o", "whole.h5", *NODES) == 0
     assert run("run", "earlier.toml", "-o", "out.h5", *NODES) == 0
@@ -87,7 +83,6 @@ def assert_resumes_to_the_whole_run(folder, resume):
     assert sorted(path.name for path in folder.iterdir() if path.name.startswith(".")) == []  # no temporaries
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("where", ["first-part", "joining"])
 def test_a_disk_that_fills_leaves_the_earlier_result_and_the_run_resumes(folder, where):
     """Files limited below the first part (nothing kept: a rerun), or between the largest part and the
@@ -133,7 +128,7 @@ def read_only(folder):
         subprocess.run(["umount", folder], check=True)
 
 
-@pytest.mark.slow
+@pytest.mark.parametrize("folder", [100], indirect=True)  # time to turn the folder read-only
 def test_a_folder_turned_read_only_in_the_middle_of_a_run_keeps_its_parts_and_resumes(folder):
     """The output's folder turns read-only once the first part is saved: the run stops at its next
     write, the earlier result and the parts saved kept, and resumes once the folder is writable."""
@@ -173,16 +168,16 @@ DAMAGES = {
 
 @pytest.mark.parametrize("damage", DAMAGES)
 def test_a_damaged_part_is_named_and_the_run_resumes_from_the_parts_before(folder, capsys, monkeypatch, damage):
-    monkeypatch.setattr(runner, "CHUNK_STEPS", 400)
-    monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)  # chunks of 400 steps, a part each
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 200)
+    monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)  # chunks of 200 steps, a part each
     earlier = digest(folder / "out.h5")
     stepper = runner.Stepper
-    monkeypatch.setattr(runner, "Stepper", interrupted_after(4))
+    monkeypatch.setattr(runner, "Stepper", _interrupt_after(3))
     assert run("run", "long.toml", "-o", "out.h5", *NODES, "--checkpoint-interval", "0") == 130
     monkeypatch.setattr(runner, "Stepper", stepper)
     checkpoint = folder / "out.h5.checkpoint"
     parts = runner._parts(checkpoint)
-    assert len(parts) == 4
+    assert len(parts) == 3
     DAMAGES[damage](parts[1])
     capsys.readouterr()
     assert run("run", "long.toml", "-o", "out.h5", *NODES, "--resume") == 2
@@ -192,20 +187,6 @@ def test_a_damaged_part_is_named_and_the_run_resumes_from_the_parts_before(folde
     for part in parts[1:]:
         part.unlink()
     assert_resumes_to_the_whole_run(folder, resume=True)
-
-
-def interrupted_after(chunks):
-    """A Stepper class whose runs raise KeyboardInterrupt once, after `chunks` of them (a chunk each)."""
-    made = []
-
-    class Interrupted(fr.Stepper):
-        def run(self, *arguments, **options):
-            made.append(1)
-            if len(made) == chunks + 1:
-                raise KeyboardInterrupt
-            return super().run(*arguments, **options)
-
-    return Interrupted
 
 
 @pytest.mark.parametrize("damage", DAMAGES)
@@ -221,3 +202,20 @@ def test_a_damaged_result_is_one_line_for_info_plot_and_load(folder, capsys, dam
         load(path)
     assert run("run", "long.toml", "-o", path, *NODES) == 0  # a rerun replaces it
     xr.testing.assert_identical(data_of(load(path)), data_of(load(folder / "whole.h5")))
+
+
+def test_joining_parts_on_a_disk_without_room_for_them_is_refused_before_hdf5_writes(folder, capsys, monkeypatch):
+    """The rows of the parts are appended to the result by HDF5, whose failure in the middle of a file
+    may take the process down: a disk with less room than the rows is said first, the parts kept."""
+    monkeypatch.setattr(runner, "CHUNK_STEPS", 200)
+    monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)  # chunks of 200 steps, a part each
+    earlier = digest(folder / "out.h5")
+    disk_usage = shutil.disk_usage
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: disk_usage(path)._replace(free=1000))
+    assert run("run", "long.toml", "-o", "out.h5", *NODES, "--checkpoint-interval", "0") == 2
+    assert_one_line(
+        capsys.readouterr().err, "out.h5: cannot write: its disk has 1000 bytes free", "continue with --resume"
+    )
+    assert digest(folder / "out.h5") == earlier and len(runner._parts(folder / "out.h5.checkpoint")) == 5
+    monkeypatch.setattr(shutil, "disk_usage", disk_usage)
+    assert_resumes_to_the_whole_run(folder, resume=True)

@@ -5,29 +5,17 @@ line remembers it and stops at the next chunk, in one line, with its progress ke
 import signal
 import weakref
 
+import pytest
 import xarray as xr
 from conftest import HERTZ_TOML as CONTACT
+from test_cli import SHEAR as CLI_SHEAR
+from test_cli import data_of, run
 
 import fretting as fr
-from fretting import cli
 from fretting.engine import runner
-from fretting.results.io import WRITTEN_ATTRIBUTES, load
+from fretting.results.io import load
 
-SHEAR = CONTACT + (
-    '[[loading]]\nkind = "linear"\nQ = [30e3]\nsteps_per_segment = 10\n\n'
-    '[[loading]]\nkind = "repeat"\ncount = 3\n'
-    'blocks = [{ kind = "linear", Q = [-30e3, 30e3], steps_per_segment = 12, cycle = true }]\n'
-)
-
-
-def run(*arguments):
-    return cli.main([str(argument) for argument in arguments])
-
-
-def data_of(result):
-    copy = result.drop_vars("cycle_copied", errors="ignore")
-    copy.attrs = {name: value for name, value in result.attrs.items() if name not in WRITTEN_ATTRIBUTES}
-    return copy
+SHEAR = CONTACT + CLI_SHEAR
 
 
 def dropped_interrupt():
@@ -43,6 +31,7 @@ def dropped_interrupt():
     assert reference() is None
 
 
+@pytest.mark.slow
 def test_an_interrupt_dropped_in_a_weakref_callback_stops_the_run_at_the_next_chunk(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "shear.toml").write_text(SHEAR)
