@@ -1,10 +1,13 @@
-"""The command line: ``fretting run | validate | info | plot | stress | examples`` (also ``python -m fretting``).
+"""The command line: ``fretting run | validate | info | plot | stress | examples | sweep | materials | threshold | map``
+(also ``python -m fretting``).
 
 Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
 failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
 """
 
 import argparse
+import contextlib
+import dataclasses
 import json
 import signal
 import sys
@@ -20,12 +23,17 @@ from fretting._validate import positive
 from fretting.analysis import nucleation
 from fretting.analysis.fatigue import (
     CRITERIA,
+    READINGS,
+    BracketError,
     Material,
     MaterialFileError,
     apply,
     hot_spot,
     line_method,
+    material_path,
+    materials,
     point_method,
+    threshold_of,
 )
 from fretting.analysis.stress import BULK_STATES, COMPONENTS, field
 from fretting.engine.recorder import (
@@ -38,13 +46,25 @@ from fretting.engine.recorder import (
 from fretting.engine.runner import CHECKPOINT_SECONDS, run_file
 from fretting.errors import FrettingError, GrossSlipError, HistoryError, MissingDependencyError
 from fretting.loading.examples import examples, resolve_history
-from fretting.loading.history_file import read_history_source
+from fretting.loading.history_file import HistoryFileError, read_history_source
 from fretting.models import Grid, Mesh
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.results.io import ResultError, load, save
-from fretting.studies.sweeps import add_arguments as add_sweep_arguments
-from fretting.studies.sweeps import run as run_sweep
+from fretting.studies.maps import FileScene, nucleation_boundary
+from fretting.studies.sweeps import (
+    REGIMES,
+    case_file,
+    figures_for,
+    is_sweep_file,
+    keys,
+    load_sweep,
+    read_sweep,
+    resolve_sweep,
+    run_one,
+    run_sweep,
+    value_text,
+)
 
 __all__ = ["main"]
 
@@ -64,7 +84,7 @@ STRESS_NX, STRESS_NZ, STRESS_DEPTH, STRESS_SPAN = 201, 101, 2.0, 2.0
 #: Criterion of `fretting stress --material` without --criterion: SWT needs only E and nu.
 DEFAULT_CRITERION = "swt"
 
-#: Seconds a run lasts before its progress bar appears: short runs show none.
+#: Seconds a run or a sweep lasts before its progress bar appears: short runs show none.
 PROGRESS_DELAY = 2.0
 
 
@@ -229,12 +249,12 @@ def _parser():
     validate.add_argument("file", metavar="HISTORY", help="history file (TOML), or the name of a shipped example")
     validate.set_defaults(command=_validate)
 
-    info = commands.add_parser("info", parents=[common], help="describe a result file")
-    info.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    info = commands.add_parser("info", parents=[common], help="describe a result or sweep file")
+    info.add_argument("file", metavar="RESULT", help="result file written by `fretting run`, or of `fretting sweep`")
     info.set_defaults(command=_info)
 
-    plot = commands.add_parser("plot", parents=[common, figures], help="draw a result as figure files")
-    plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`")
+    plot = commands.add_parser("plot", parents=[common, figures], help="draw a result or sweep as figure files")
+    plot.add_argument("file", metavar="RESULT", help="result file written by `fretting run`, or of `fretting sweep`")
     plot.add_argument("-o", "--output", metavar="DIR", help="directory of the figures (default: the result's)")
     plot.add_argument(
         "--body",
@@ -250,10 +270,37 @@ def _parser():
     listing = commands.add_parser("examples", parents=[common], help="list the shipped example histories")
     listing.set_defaults(command=_examples, file="examples")
 
-    sweep = commands.add_parser("sweep", parents=[common], help="run a sweep file on dask.distributed")
-    add_sweep_arguments(sweep)
-    sweep.set_defaults(command=run_sweep)
+    _sweep_parser(commands, common)
+    _fatigue_parsers(commands, common, figures)
     return parser
+
+
+def _sweep_parser(commands, common):
+    sweep = commands.add_parser(
+        "sweep", parents=[common], help="run a sweep file on dask.distributed, or one case of it (job arrays)"
+    )
+    sweep.add_argument("file", metavar="SWEEP", help="sweep file (TOML), or the name of a shipped sweep")
+    sweep.add_argument(
+        "-o", "--output", metavar="OUT", help="dataset (default: results/<sweep stem>.h5); cases go to OUT.cases/"
+    )
+    how = sweep.add_mutually_exclusive_group()
+    how.add_argument(
+        "--scheduler",
+        metavar="ADDR",
+        help="dask scheduler address, e.g. tcp://host:8786 (default: a local cluster, one worker per core)",
+    )
+    how.add_argument(
+        "--scheduler-file", metavar="FILE", help="file of a running dask scheduler (dask scheduler --scheduler-file)"
+    )
+    how.add_argument(
+        "--case",
+        type=int,
+        metavar="K",
+        help="run case K (from 0) alone, in this process, into OUT.cases/: a task of a job array "
+        "(--case $SLURM_ARRAY_TASK_ID); then a sweep without --case joins the cases",
+    )
+    how.add_argument("--list-cases", action="store_true", help="list the cases: number, values, file in OUT.cases/")
+    sweep.set_defaults(command=_sweep)
 
 
 def _stress_parser(commands, common, figures):
@@ -363,13 +410,7 @@ def _run(args):
     history = resolve_history(args.file)
     output = Path(args.output or f"{history.stem}.h5")
     record = None if args.record == "default" else args.record
-    with tqdm(unit="step", delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
-
-        def progress(done, total):
-            args.interrupts.check()  # after each chunk: an interrupt dropped in it stops the run here
-            bar.total, bar.n = total, done
-            bar.refresh()
-
+    with _progress("step", args.interrupts) as progress:
         run = run_file(
             history,
             output,
@@ -387,6 +428,21 @@ def _run(args):
     print(f"{output}: {result.attrs['steps'] - 1} steps, {_cycles(result)} cycles, {_dissipated(result)}")
 
 
+@contextlib.contextmanager
+def _progress(unit, interrupts):
+    """``progress(done, total)``, drawing a bar of `unit` on stderr when it is a terminal and the work
+    lasts `PROGRESS_DELAY` seconds; each call raises an interrupt dropped since the last one
+    (`_Interrupts.check`), so that the work stops there."""
+    with tqdm(unit=unit, delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
+
+        def progress(done, total):
+            interrupts.check()
+            bar.total, bar.n = total, done
+            bar.refresh()
+
+        yield progress
+
+
 def _validate(args):
     source = read_history_source(resolve_history(args.file))
     contact, history = source.contact, source.history
@@ -401,6 +457,8 @@ def _validate(args):
 
 
 def _info(args):
+    if is_sweep_file(args.file):
+        return _sweep_info(args)
     result = load(args.file)
     attrs = result.attrs
     versions = json.loads(attrs.get("versions", "{}"))
@@ -425,6 +483,8 @@ def _info(args):
 
 
 def _plot(args):
+    if is_sweep_file(args.file):
+        return _sweep_plot(args)
     import matplotlib  # here, not at the top: the other commands do without its start-up time
 
     matplotlib.use("Agg")
@@ -447,6 +507,75 @@ def _saved(figure, stem, args):
     path = stem.with_name(f"{stem.name}.{args.format}")
     figure.savefig(path, dpi=args.dpi, format=args.format)
     print(path)
+
+
+def _sweep(args):
+    file = resolve_sweep(args.file)
+    plan = read_sweep(file)
+    output = Path(args.output) if args.output else Path("results") / f"{file.stem}.h5"
+    cases = plan.cases()
+    if args.list_cases:
+        for k, values in enumerate(cases):
+            print(f"{k}\t{_values(values)}\t{case_file(output, plan.base, plan.case(values))}")
+        return
+    if args.case is not None:
+        if not 0 <= args.case < len(cases):
+            expected = f"expected a case from 0 to {len(cases) - 1} (--list-cases lists them)"
+            raise HistoryFileError(file, None, "--case", f"found {args.case}, {expected}")
+        path, summary, ran = run_one(plan, args.case, output)
+        regime = REGIMES[int(summary.regime)].replace("_", " ")
+        again = "" if ran else " (its file was there: not run again)"
+        print(f"{path}: case {args.case} of {len(cases)}, {_values(cases[args.case])}: {regime}{again}")
+        return
+    with _progress("case", args.interrupts) as progress:
+        swept = run_sweep(plan, args.scheduler, output, scheduler_file=args.scheduler_file, progress=progress)
+    dims = " x ".join(f"{key} ({len(values)})" for key, values in plan.grid.items())
+    print(f"{output}: {swept.regime.size} cases over {dims}: {_regimes(swept)}")
+
+
+def _regimes(cases):
+    """The cases of the sweep dataset `cases` in each regime, e.g. ``0 stuck, 2 partial slip, 1 gross slip``."""
+    counts = np.bincount(cases.regime.values.ravel(), minlength=len(REGIMES))
+    return ", ".join(f"{count} {name.replace('_', ' ')}" for count, name in zip(counts, REGIMES, strict=True))
+
+
+def _values(values):
+    """The values of a case, ``key = value`` joined by commas (lists as JSON)."""
+    return ", ".join(f"{key} = {json.dumps(value)}" for key, value in values.items())
+
+
+def _sweep_info(args):
+    cases = load_sweep(args.file)
+    attrs, names = cases.attrs, keys(cases)
+    print(args.file)
+    print(f"  {'history':<9} {attrs.get('history_file', '?')} (base sha256 {attrs.get('base_sha256', '?')})")
+    for n, (dim, key) in enumerate(names.items()):
+        units = cases[dim].attrs.get("units")
+        shown = ", ".join(value_text(value) for value in cases[dim].values) + (f" [{units}]" if units else "")
+        print(f"  {'grid' if n == 0 else '':<9} {key} ({cases.sizes[dim]}): {shown}")
+    print(f"  {'cases':<9} {cases.regime.size}: {_regimes(cases)}")
+    for n, (name, variable) in enumerate(cases.data_vars.items()):
+        values = variable.values[np.isfinite(variable.values)]
+        found = f"{values.min():.4g} to {values.max():.4g}" if values.size else "none"
+        missing = variable.size - values.size
+        what = f"{variable.attrs.get('long_name', name)} [{variable.attrs.get('units', '?')}]"
+        print(f"  {'recorded' if n == 0 else '':<9} {name}: {what}: {found}" + (f" ({missing} NaN)" if missing else ""))
+    print(f"  {'created':<9} {attrs.get('created', '?')}")
+
+
+def _sweep_plot(args):
+    import matplotlib  # as in _plot
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    cases = load_sweep(args.file)
+    directory = Path(args.output) if args.output else Path(args.file).parent
+    directory.mkdir(parents=True, exist_ok=True)
+    for name, draw in figures_for(cases).items():
+        figure = Figure(figsize=args.size, layout="constrained")
+        draw(cases, ax=figure.subplots())
+        _saved(figure, directory / f"{Path(args.file).stem}_{name}", args)
 
 
 def _stress(args):
@@ -568,3 +697,217 @@ def _dissipated(result):
     if _cycles(result):
         return f"{total}, {float(result.cycle_dissipation[-1]):.4g} J/m in the last cycle"
     return total
+
+
+def _fatigue_parsers(commands, common, figures):
+    """The subcommands of a test programme: ``materials``, ``threshold`` and ``map``."""
+    listing = commands.add_parser(
+        "materials", parents=[common], help="list the shipped material files and their sources"
+    )
+    listing.set_defaults(command=_materials, file="materials")
+
+    search = argparse.ArgumentParser(add_help=False)
+    search.add_argument(
+        "file", metavar="HISTORY", help="history file (TOML), or a shipped example's name: the test's shape"
+    )
+    search.add_argument(
+        "--bracket",
+        nargs=2,
+        type=float,
+        required=True,
+        metavar=("LOW", "HIGH"),
+        help="the values searched between, in the units of the varied key (e.g. N/m for Q_amplitude)",
+    )
+    search.add_argument("--criterion", choices=tuple(CRITERIA), required=True, help="fatigue criterion")
+    search.add_argument(
+        "--material", required=True, metavar="FILE", help="material file (TOML), or a name of `fretting materials`"
+    )
+    length = search.add_mutually_exclusive_group()
+    length.add_argument(
+        "--critical-distance", type=_positive, metavar="L", help="critical distance L [m] (overrides the file's)"
+    )
+    length.add_argument(
+        "--delta-K-th",
+        type=_positive,
+        metavar="DK",
+        help="threshold range of the stress intensity factor [Pa m^0.5]: L = (1/pi) (DK / (2 sigma_limit))^2 "
+        "(El Haddad)",
+    )
+    search.add_argument(
+        "--at",
+        choices=tuple(name.replace(" ", "-") for name in READINGS),
+        default="point",
+        help="where the criterion is read: point (L/2 below the hot spot, the default), line (mean over 2 L), hot-spot",
+    )
+    search.add_argument("--nu", type=float, help="Poisson's ratio for sigma_yy (default: the history's)")
+    search.add_argument(
+        "--bulk-state",
+        choices=tuple(state.replace(" ", "-") for state in BULK_STATES),
+        default="plane-strain",
+        help="state of the specimen's bulk stress (as fretting stress)",
+    )
+    search.add_argument(
+        "--nodes", type=_at_least(4, int), help="solve on a fixed grid of this many nodes (default: the default model)"
+    )
+
+    threshold = commands.add_parser(
+        "threshold",
+        parents=[common, search],
+        help="the value of a history key (Q or sigma amplitude, pad radius, P) at which a criterion reaches its limit "
+        "or a life",
+    )
+    threshold.add_argument(
+        "--vary",
+        required=True,
+        metavar="KEY",
+        help="dotted key of the history file searched over, e.g. loading[1].Q_amplitude, contact.R",
+    )
+    threshold.add_argument(
+        "--life",
+        type=_positive,
+        nargs="+",
+        metavar="N",
+        help="target lives [cycles] (default: the criterion's fatigue limit)",
+    )
+    threshold.set_defaults(command=_threshold)
+
+    fatigue_map = commands.add_parser(
+        "map",
+        parents=[common, search, figures],
+        help="the nucleation boundary: the threshold Q amplitude for each bulk stress amplitude",
+    )
+    fatigue_map.add_argument(
+        "--q-key",
+        default="loading[1].Q_amplitude",
+        metavar="KEY",
+        help="key of the Q amplitude [N/m] (default loading[1].Q_amplitude)",
+    )
+    fatigue_map.add_argument(
+        "--sigma-key",
+        default="loading[1].sigma_amplitude",
+        metavar="KEY",
+        help="key of the bulk stress amplitude [Pa] (default loading[1].sigma_amplitude)",
+    )
+    fatigue_map.add_argument(
+        "--sigma", type=float, nargs="+", required=True, metavar="S", help="bulk stress amplitudes [Pa] of the map"
+    )
+    fatigue_map.add_argument(
+        "--life", type=_positive, metavar="N", help="target life [cycles] (default: the fatigue limit)"
+    )
+    fatigue_map.add_argument(
+        "--dask", metavar="SCHEDULER", choices=("processes", "threads"), help="run the points as dask tasks"
+    )
+    fatigue_map.add_argument(
+        "-o", "--output", metavar="OUT", help="map file (default: <history stem>_map.h5 in the current folder)"
+    )
+    fatigue_map.add_argument("--figure", action="store_true", help="also draw the boundary as <OUT stem>.<format>")
+    fatigue_map.set_defaults(command=_map)
+
+
+def _materials(args):
+    for name, (path, description) in materials().items():
+        print(f"{name:<16} {description}")
+        print(f"{'':<16} {path}")
+
+
+def _search_inputs(args):
+    """The material (with --critical-distance or --delta-K-th), model and reading of a threshold or map command."""
+    path = material_path(args.material)
+    material = Material.from_file(path)
+    override = {"critical_distance": args.critical_distance} if args.critical_distance else {}
+    if args.delta_K_th:
+        override = {"critical_distance": None, "delta_K_th": args.delta_K_th}
+    material = dataclasses.replace(material, **override)
+    low, high = args.bracket
+    if not low < high:
+        raise HistoryError(f"{args.file}: --bracket: found {low:g} {high:g}, expected LOW < HIGH")
+    return path, material, None if args.nodes is None else Grid(args.nodes), args.at.replace("-", " ")
+
+
+def _searched(args, path, search):
+    """`search()` with its errors as one line: a constant the material lacks, or a bracket with no crossing."""
+    try:
+        return search()
+    except BracketError as error:
+        raise HistoryError(f"{args.file}: --{error}") from None
+    except FrettingError:
+        raise
+    except ValueError as error:
+        raise MaterialFileError(path, None, str(error).removeprefix("material: ")) from None
+
+
+def _threshold(args):
+    path, material, model, at = _search_inputs(args)
+    scene = FileScene(resolve_history(args.file), (args.vary,))
+    cache = {}
+    for life in args.life or [None]:
+        found = _searched(
+            args,
+            path,
+            lambda life=life: threshold_of(
+                scene,
+                tuple(args.bracket),
+                args.criterion,
+                material,
+                life=life,
+                at=at,
+                nu=args.nu,
+                bulk_state=args.bulk_state.replace("-", " "),
+                model=model,
+                cache=cache,
+                name=args.vary,
+            ),
+        )
+        target = "its fatigue limit" if life is None else f"a life of {life:.6g} cycles"
+        units = found.values.parameter.attrs["units"]
+        print(
+            f"{args.criterion} at {at} reaches {target} at {args.vary} = {found.amplitude:.6g} "
+            f"(parameter {float(found.values.parameter):.6g} {units}; {found.runs} values searched, "
+            f"{len(cache)} runs in all)"
+        )
+
+
+def _map(args):
+    path, material, model, at = _search_inputs(args)
+    history = resolve_history(args.file)
+    scene = FileScene(history, (args.q_key, args.sigma_key))
+    boundary = _searched(
+        args,
+        path,
+        lambda: nucleation_boundary(
+            scene,
+            args.sigma,
+            tuple(args.bracket),
+            args.criterion,
+            material,
+            life=args.life,
+            at=at,
+            nu=args.nu,
+            bulk_state=args.bulk_state.replace("-", " "),
+            model=model,
+            scheduler=args.dask,
+        ),
+    )
+    output = Path(args.output or f"{history.stem}_map.h5")
+    save(boundary, output)
+    print(f"{output}: {boundary.sizes['sigma_amplitude']} bulk stress amplitudes, {int(boundary.runs.sum())} runs")
+    for sigma, Q, side in zip(
+        boundary.sigma_amplitude.values, boundary.Q_threshold.values, boundary.side.values, strict=True
+    ):
+        where = {
+            0: f"Q_a = {Q:.6g} N/m",
+            1: "above the target over the bracket",
+            -1: "below the target over the bracket",
+        }
+        print(f"  sigma_a = {sigma:.6g} Pa: {where[int(side)]}")
+    if args.figure:
+        import matplotlib  # as in _plot: only when a figure is asked for
+
+        matplotlib.use("Agg")
+        from matplotlib.figure import Figure
+
+        from fretting import plots_maps
+
+        figure = Figure(figsize=args.size, layout="constrained")
+        plots_maps.nucleation_boundary(boundary, figure.subplots())
+        _saved(figure, output.with_name(output.stem), args)

@@ -4,7 +4,9 @@ Each function draws on `ax`, or on the axes of a new pyplot figure when `ax` is 
 returns the axes; none shows or saves a figure. `FIGURES` names the figures that take
 ``(result, ax=None)``; `figures_for` says which of them a result can draw. Positions are
 ``x / a`` from the contact centre, tractions and stresses ``/ (f p0)``, loads ``Q / (f P)`` and
-``sigma / (f p0)``; energies, energy densities and displacements keep their units.
+``sigma / (f p0)``; energies, energy densities and displacements keep their units. In the
+figures of one curve per cycle, cycles whose curves are the same to the eye (`SAME_CURVE`) are
+drawn once and named together in the legend (``cycle 2 (= 3, 4)``).
 """
 
 import numpy as np
@@ -50,6 +52,11 @@ STRESS_LEVELS = 24
 #: Cycles drawn by default in the figures that show one curve per cycle: enough to see a
 #: transient settle, few enough to tell apart.
 CURVES = 5
+
+#: Curves of one figure closer than this fraction of the drawn range, in both coordinates at
+#: every point, are one to the eye: drawn once, with one legend entry naming them all
+#: (`_distinct`), rather than a curve hidden under another whose entry still shows.
+SAME_CURVE = 1e-3
 
 
 def snapshot_steps(result):
@@ -409,7 +416,9 @@ def _loops(result, cycles, ax, displacement, scale, load):
     for number in chosen:
         if rows.get(int(number)) is None:
             raise ValueError(f"cycle {number} was not recorded whole; cycles recorded whole: {whole}")
-        ax.plot(values[rows[int(number)]], load[rows[int(number)]], linewidth=1, label=f"cycle {number}")
+    curves = [(values[rows[int(n)]], load[rows[int(n)]]) for n in chosen]
+    for (x, y), numbers in _distinct(curves, chosen):
+        ax.plot(x, y, linewidth=1, label=_cycles_label("cycle {}", numbers))
     ax.legend(fontsize="small")
     both = any(
         np.ptp(result.Q.values[rows[int(n)]]) > 0 and np.ptp(result.sigma.values[rows[int(n)]]) > 0 for n in chosen
@@ -423,11 +432,43 @@ def _per_cycle_curves(result, field, cycles, ax, scale, label="cycle {}"):
     chosen = _spread(known) if cycles is None else np.asarray(cycles)
     ax = _axes(ax)
     t = _position(result)
-    for number in chosen:
-        ax.plot(t, field.sel(cycle_number=number).values * scale, label=label.format(number))
+    curves = [(t, field.sel(cycle_number=number).values * scale) for number in chosen]
+    for (x, y), numbers in _distinct(curves, chosen):
+        ax.plot(x, y, label=_cycles_label(label, numbers))
     ax.set_xlim(-1, 1)
     ax.legend(fontsize="small")
     return ax
+
+
+def _distinct(curves, numbers):
+    """``((x, y), [numbers])`` of each distinct curve of `curves` (pairs of arrays), in order, with
+    the `numbers` of the curves it stands for: a curve within `SAME_CURVE` of the drawn range of one
+    before it, in both coordinates at every point, joins that one (it would be hidden under it)."""
+    finite = [np.concatenate([c[k][np.isfinite(c[k])] for c in curves]) for k in (0, 1)]
+    span = [np.ptp(v) if v.size else 0.0 for v in finite]
+    kept = []
+    for curve, number in zip(curves, numbers, strict=True):
+        for other, joined in kept:
+            if all(_within(curve[k], other[k], SAME_CURVE * span[k]) for k in (0, 1)):
+                joined.append(number)
+                break
+        else:
+            kept.append((curve, [number]))
+    return kept
+
+
+def _within(a, b, tolerance):
+    """True if the arrays `a` and `b` have one shape and differ by at most `tolerance` (NaN where both are)."""
+    if a.shape != b.shape:
+        return False
+    same_nan = np.isnan(a) == np.isnan(b)
+    return bool(same_nan.all() and np.all(np.abs(a - b)[~np.isnan(a)] <= tolerance))
+
+
+def _cycles_label(label, numbers):
+    """`label` (a format of one cycle number) of the first of `numbers`, naming the others drawn with it."""
+    first = label.format(numbers[0])
+    return first if len(numbers) == 1 else f"{first} (= {', '.join(map(str, numbers[1:]))})"
 
 
 def _axes(ax):

@@ -35,6 +35,19 @@ f = 0.7
 P = 1e5
 """
 
+#: Two cycles of Q and sigma in phase on that contact (f P = 70 kN/m): a short cyclic history file.
+SINE_TOML = (
+    HERTZ_TOML
+    + """
+[[loading]]
+kind = "sine"
+Q_amplitude = 30e3
+sigma_amplitude = 20e6
+cycles = 2
+steps_per_cycle = 16
+"""
+)
+
 
 @pytest.fixture
 def hertz():

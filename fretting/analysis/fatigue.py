@@ -8,7 +8,8 @@ history is taken as one cycle. `apply` maps a criterion over a stress field, a D
 ``(step, z, x)``; `point_method` and `line_method` read such a map at a critical distance. Each
 criterion has a life through a stated S-N relation (`life`). `threshold` runs a contact's history
 over its amplitude of ``Q`` to find where a criterion read at the critical distance reaches its
-fatigue limit or a life.
+fatigue limit or a life; `threshold_of` does so over any quantity of a scene (the amplitude of
+``sigma``, a pad radius, ...). `materials` lists the shipped material files.
 
 Planes. A plane is named by its unit normal ``n = (sin(theta) cos(phi), cos(theta), sin(theta)
 sin(phi))`` in ``(x, y, z)``: ``phi`` [rad] from ``+x`` toward ``+z`` (depth), in ``[-pi/2,
@@ -65,11 +66,14 @@ References
    multiaxial high-cycle fatigue criteria for metals, International Journal of Fatigue 19 (1997) 219-235.
 .. [14] E. Welzl, Smallest enclosing disks (balls and ellipsoids), in H. Maurer (ed), New Results and
    New Trends in Computer Science, Lecture Notes in Computer Science 555, Springer (1991) 359-370.
+.. [15] M. H. El Haddad, T. H. Topper and K. N. Smith, Prediction of non propagating cracks, Engineering
+   Fracture Mechanics 11 (1979) 573-584.
 """
 
 from __future__ import annotations
 
 import abc
+import errno
 import math
 import os
 import re
@@ -89,17 +93,21 @@ from fretting.analysis.nucleation import complete_cycles
 from fretting.analysis.stress import field as stress_field
 from fretting.engine.simulation import simulate
 from fretting.errors import FrettingError
+from fretting.loading.examples import EXAMPLES
 from fretting.physics.contact import plane_strain_modulus
 
 __all__ = [
     "CRITERIA",
     "PEAKS",
+    "READINGS",
     "SAMPLES",
     "XTOL",
+    "BracketError",
     "Criterion",
     "CriticalDistance",
     "Invariant",
     "Material",
+    "MATERIALS",
     "MaterialFileError",
     "Plane",
     "THRESHOLD_GRID",
@@ -117,12 +125,16 @@ __all__ = [
     "hot_spot",
     "life",
     "line_method",
+    "material_path",
+    "materials",
     "mwcm",
     "mwcm_life",
     "point_method",
+    "read_last_cycle",
     "swt",
     "swt_life",
     "threshold",
+    "threshold_of",
 ]
 
 #: Planes sampled over ``phi`` in ``[-pi/2, pi/2)`` (0.5 degree apart) before the refine.
@@ -190,7 +202,11 @@ class Material:
         of the MWCM's curves [11] (`mwcm_life`), commonly 2e6.
     critical_distance : float, optional
         ``L`` [m] > 0 of the theory of critical distances [8], commonly
-        ``(1/pi) (Delta K_th / Delta sigma_0)^2``.
+        ``(1/pi) (Delta K_th / Delta sigma_0)^2``; without it, `critical_length` gives that from
+        `delta_K_th` and `sigma_limit`.
+    delta_K_th : float, optional
+        Threshold range of the stress intensity factor of long cracks ``Delta K_th`` [Pa m^0.5] > 0, at the
+        stress ratio of `sigma_limit` (fully reversed): with `sigma_limit`, El Haddad's length [15, 8].
 
     Raises
     ------
@@ -215,12 +231,14 @@ class Material:
     c0: float | None = None
     N_A: float | None = None
     critical_distance: float | None = None
+    delta_K_th: float | None = None
 
     def __post_init__(self):
         plane_strain_modulus(self.E, self.nu)  # checks E and nu as a contact's
         for name in ("sigma_f", "eps_f", "sigma_limit", "tau_limit", "sigma_y", "tau_f", "gamma_f", "N_A"):
             self._check(name, positive)
-        self._check("critical_distance", positive)
+        for name in ("critical_distance", "delta_K_th"):
+            self._check(name, positive)
         for name in ("b", "c", "b0", "c0"):
             self._check(name, _negative)
         for name in ("findley_k", "fs_k"):
@@ -263,6 +281,25 @@ class Material:
             parsed = re.match(r"(\w+) must (?:be )?(.*), found", str(error))
             key, expected = parsed.groups() if parsed else (None, str(error))
             raise MaterialFileError(path, key, f"found {data.get(key)!r}, expected {expected}") from None
+
+    def critical_length(self, who="critical_length") -> float:
+        """``L`` [m] of the theory of critical distances: `critical_distance`, else El Haddad's length.
+
+        El Haddad, Topper & Smith [15] (in Taylor's form [8]): ``L = (1/pi) (Delta K_th / Delta sigma_0)^2``, the
+        crack length at which a long crack at its threshold ``Delta K_th = Delta sigma sqrt(pi a)`` carries the
+        plain fatigue limit; ``Delta sigma_0 = 2 f_-1``, the range of the fully reversed limit `sigma_limit`,
+        with `delta_K_th` at the same stress ratio.
+
+        Raises
+        ------
+        ValueError
+            ``material: <who> needs critical_distance, found None (or delta_K_th and sigma_limit)``.
+        """
+        if self.critical_distance is not None:
+            return self.critical_distance
+        if self.delta_K_th is None or self.sigma_limit is None:
+            raise ValueError(f"material: {who} needs critical_distance, found None (or delta_K_th and sigma_limit)")
+        return (self.delta_K_th / (2 * self.sigma_limit)) ** 2 / math.pi
 
     @property
     def G(self) -> float:
@@ -1241,30 +1278,53 @@ def apply(field, criterion, material, planes="in-plane") -> xr.Dataset:
 #: depths from 0 to the reach of the reading (``L/2``, ``2 L``), the last at it.
 THRESHOLD_GRID = {"nx": 151, "span": 1.5, "nz": 41}
 
-#: Width of the bracket, in ``f P``, at which `threshold`'s search stops.
+#: Width of the bracket at which `threshold`'s search stops, in ``f P``; that of `threshold_of`, relative to the larger
+#: end of its bracket.
 THRESHOLD_XTOL = 1e-6
 
 #: Depth [in ``a``] of the second row of the field that `threshold` reads at the hot spot (the map needs two).
 HOT_SPOT_DEPTH = 0.05
 
 
+class BracketError(ValueError):
+    """The criterion does not cross its target between the ends of a search's bracket.
+
+    Attributes
+    ----------
+    ends : (float, float)
+        The searched function at the low and the high end: the criterion less its limit, or ``atan(log(life /
+        N_f))``; both negative where the criterion stays below its target, both positive where above.
+    """
+
+    def __init__(self, message, ends):
+        self.ends = tuple(ends)
+        super().__init__(message)
+
+
 class Threshold(NamedTuple):
-    """The result of `threshold`.
+    """The result of `threshold` and `threshold_of`.
 
     Attributes
     ----------
     amplitude : float
-        The amplitude of ``Q`` [N/m] at which the criterion reaches its target.
+        The value of the searched quantity at which the criterion reaches its target: the amplitude of ``Q``
+        [N/m] (`threshold`), or that of the scene of `threshold_of` (an amplitude of ``sigma`` [Pa], a radius
+        [m], ...).
     values : xarray.Dataset
         The criterion's variables read there at the critical distance (``parameter``, ``amplitude``, ...: those of
         `apply`, read as the parameter), with `apply`'s attributes.
     runs : int
-        Runs of the history the search took.
+        Values of the searched quantity the search evaluated (each one run of the history, unless a `cache`
+        held it).
     """
 
     amplitude: float
     values: xr.Dataset
     runs: int
+
+
+#: The readings of `threshold` and `threshold_of`: ``at`` -> (reach in ``L``, method), None for the surface hot spot.
+READINGS = {"point": (0.5, point_method), "line": (2.0, line_method), "hot spot": (None, None)}
 
 
 def threshold(
@@ -1278,18 +1338,11 @@ def threshold(
     nu=None,
     bulk_state="plane strain",
     model=None,
+    cache=None,
 ) -> Threshold:
     """The amplitude of ``Q`` at which a criterion, read at the critical distance, reaches its fatigue limit or a life.
 
-    A bracketed search (Brent's method, `scipy.optimize.brentq`, to `THRESHOLD_XTOL` ``f P``) over runs: each
-    runs `history` at an amplitude (`fretting.simulate`), takes the specimen's stress field over the run's last
-    load cycle (`fretting.analysis.stress.field` on `THRESHOLD_GRID`), maps the criterion over it (`apply`) and
-    reads it at `at`: the surface hot spot (`hot_spot`), or the point or line method straight below it
-    (`point_method`, `line_method`, with `Material.critical_distance`). It finds the root of ``value - limit``,
-    the limit that of the criterion (`Criterion.limit`), or with `life` that of ``atan(log(life / N_f))``,
-    ``N_f`` the criterion's life of the values read (`life`; the MWCM's reads ``amplitude`` and
-    ``sigma_n_max`` there as the parameter), which grows with the amplitude and is finite where ``N_f`` is
-    infinite. The criterion must cross its target once between the bracket's ends.
+    `threshold_of` over the amplitude ``Q_a`` of ``Q``, the contact fixed, to `THRESHOLD_XTOL` ``f P``.
 
     Parameters
     ----------
@@ -1297,20 +1350,10 @@ def threshold(
     history : callable
         ``Q_a -> fretting.History``, the load history at the amplitude ``Q_a`` [N/m] of ``Q``, e.g. ``lambda Q_a:
         History.sinusoidal(Q_a, sigma_a, cycles=2)``; its last load cycle must be recorded whole.
-    criterion : str
-        A key of `CRITERIA`.
-    material : Material
-    life : float, optional
-        Cycles to failure > 0: the amplitude at which the criterion's life is this. By default the one at which
-        it reaches its fatigue limit (SWT and Fatemi-Socie have none: they need a life).
-    at : {"point", "line", "hot spot"}
-        Where the criterion is read.
+    criterion, material, life, at, nu, bulk_state, model, cache
+        As `threshold_of`.
     bracket : (float, float)
         The amplitudes searched between, in ``f P``.
-    nu, bulk_state
-        As `fretting.analysis.stress.field`.
-    model : fretting.models.ModelSpec, optional
-        As `fretting.simulate`.
 
     Returns
     -------
@@ -1319,59 +1362,209 @@ def threshold(
     Raises
     ------
     ValueError
-        On an unknown criterion or `at`, a criterion without a fatigue limit and no `life`, a constant the
-        material lacks, or a target the criterion does not cross between the bracket's ends (both values
-        named).
+        As `threshold_of`.
     """
-    if criterion not in CRITERIA:
-        raise ValueError(f"criterion: found {criterion!r}, expected one of: {', '.join(CRITERIA)}")
-    readings = {"point": (0.5, point_method), "line": (2.0, line_method), "hot spot": (None, None)}
-    if at not in readings:
-        raise ValueError(f"at: found {at!r}, expected 'point', 'line' or 'hot spot'")
+    fP = contact.f * contact.P
+    low, high = (fP * positive("bracket", end) for end in bracket)
+    return threshold_of(
+        lambda Q_a: (contact, history(Q_a)),
+        (low, high),
+        criterion,
+        material,
+        life=life,
+        at=at,
+        nu=nu,
+        bulk_state=bulk_state,
+        model=model,
+        cache=cache,
+        xtol=THRESHOLD_XTOL * fP,
+        name="Q_a",
+        units=" N/m",
+    )
+
+
+def threshold_of(
+    scene,
+    bracket,
+    criterion,
+    material,
+    life=None,
+    at="point",
+    nu=None,
+    bulk_state="plane strain",
+    model=None,
+    cache=None,
+    xtol=None,
+    name="x",
+    units="",
+) -> Threshold:
+    """The value of a quantity of a test at which a criterion, read at the critical distance, reaches a target.
+
+    The target is the criterion's fatigue limit, or a life.
+
+    A bracketed search (Brent's method, `scipy.optimize.brentq`) over runs: each runs the scene at a value `x`
+    (`fretting.simulate`), takes the specimen's stress field over the run's last load cycle
+    (`fretting.analysis.stress.field` on `THRESHOLD_GRID`), maps the criterion over it (`apply`) and reads it at
+    `at`: the surface hot spot (`hot_spot`), or the point or line method straight below it (`point_method`,
+    `line_method`, with `Material.critical_length`). It finds the root of ``value - limit``, the limit that of
+    the criterion (`Criterion.limit`), or with `life` that of ``atan(log(life / N_f))``, ``N_f`` the criterion's
+    life of the values read (`life`; the MWCM's reads ``amplitude`` and ``sigma_n_max`` there as the parameter),
+    which grows with the criterion and is finite where ``N_f`` is infinite. The criterion must cross its target
+    once between the bracket's ends.
+
+    Parameters
+    ----------
+    scene : callable
+        ``x -> (fretting.Contact, fretting.History)``: the test at the value `x` of the searched quantity, e.g. the
+        amplitude of ``sigma`` [Pa] (``lambda s: (contact, History.sinusoidal(Q_a, s, cycles=2))``) or a pad radius
+        [m]; the history's last load cycle must be recorded whole.
+    bracket : (float, float)
+        The values searched between, in the units of `x`; a run that slides (``|Q| >= f P``) raises
+        `fretting.GrossSlipError`, so keep the bracket within partial slip.
+    criterion : str
+        A key of `CRITERIA`.
+    material : Material
+    life : float, optional
+        Cycles to failure > 0: the value at which the criterion's life is this. By default the one at which it
+        reaches its fatigue limit (SWT and Fatemi-Socie have none: they need a life).
+    at : {"point", "line", "hot spot"}
+        Where the criterion is read (`READINGS`).
+    nu, bulk_state
+        As `fretting.analysis.stress.field`.
+    model : fretting.models.ModelSpec, optional
+        As `fretting.simulate`.
+    cache : dict, optional
+        Stress fields by value of `x` (and reading depth), filled by the search: give the same dict to searches of
+        the same scene (another criterion, life or bracket) and a value already run is not run again.
+    xtol : float, optional
+        Width of the bracket at which the search stops, in the units of `x`; by default `THRESHOLD_XTOL` times the
+        larger end of `bracket`.
+    name, units : str
+        The quantity's name and units (e.g. ``"sigma_a"``, ``" Pa"``) in error messages.
+
+    Returns
+    -------
+    Threshold
+
+    Raises
+    ------
+    ValueError
+        On an unknown criterion or `at`, a criterion without a fatigue limit and no `life`, or a constant the
+        material lacks.
+    BracketError
+        When the criterion does not cross its target between the bracket's ends (both values named).
+    """
+    _check_reading(criterion, at)
     declared = CRITERIA[criterion]
     if life is None and declared.limit is None:
         raise ValueError(f"criterion: {criterion} has no fatigue limit, give a life [cycles]")
     target = declared.limit(material) if life is None else positive("life", life)
-    L = None if at == "hot spot" else material._required("threshold", "critical_distance")[0]
-    fP = contact.f * contact.P
-    low, high = (fP * positive("bracket", end) for end in bracket)
+    L = None if at == "hot spot" else material.critical_length("threshold")
+    low, high = (finite("bracket", end) for end in bracket)
+    if not low < high:
+        raise ValueError(f"bracket: found ({low!r}, {high!r}), expected a low end below the high end")
+    xtol = THRESHOLD_XTOL * max(abs(low), abs(high)) if xtol is None else positive("xtol", xtol)
+    cache = {} if cache is None else cache
     read = {}
 
-    def excess(amplitude):
-        values = _read(contact, history(amplitude), criterion, material, readings[at], L, nu, bulk_state, model)
-        read[amplitude] = values
+    def excess(x):
+        if x not in read:
+            stresses = _last_cycle_field(scene, x, READINGS[at][0], L, nu, bulk_state, model, cache)
+            read[x] = _read(stresses, criterion, material, READINGS[at], L)
         if life is None:
-            return float(values.parameter) - target
-        return math.atan(math.log(target / float(declared.life(values, material))))
+            return float(read[x].parameter) - target
+        return math.atan(math.log(target / float(declared.life(read[x], material))))
 
     ends = [excess(low), excess(high)]
     if ends[0] * ends[1] > 0:
         quantity = "the criterion less its limit" if life is None else "atan(log(life / N_f))"
-        raise ValueError(
-            f"bracket: {quantity} is {ends[0]:.6g} at Q_a = {low:.6g} N/m and {ends[1]:.6g} at {high:.6g} N/m, "
-            f"expected a change of sign between them"
+        raise BracketError(
+            f"bracket: {quantity} is {ends[0]:.6g} at {name} = {low:.6g}{units} and {ends[1]:.6g} at "
+            f"{high:.6g}{units}, expected a change of sign between them",
+            ends,
         )
-    amplitude = brentq(excess, low, high, xtol=THRESHOLD_XTOL * fP)
-    if amplitude not in read:
-        excess(amplitude)
-    return Threshold(float(amplitude), read[amplitude], len(read))
+    found = brentq(excess, low, high, xtol=xtol)
+    excess(found)
+    return Threshold(float(found), read[found], len(read))
 
 
-def _read(contact, history, criterion, material, reading, L, nu, bulk_state, model):
-    """The criterion's variables over the last load cycle of a run of `history`, read at the hot spot (`L` None) or
-    by `reading`, ``(fraction, method)``: `point_method` or `line_method`, whose reach is ``fraction L``."""
-    fraction, method = reading
+def read_last_cycle(contact, history, criterion, material, at="point", nu=None, bulk_state="plane strain", model=None):
+    """The criterion's variables over the last load cycle of a run of `history`, read at `at` as `threshold_of` reads.
+
+    Arguments as `threshold_of`. Returns a Dataset of scalars (those of `apply`, with its attributes); `life` of
+    it is the life there.
+    """
+    _check_reading(criterion, at)
+    L = None if at == "hot spot" else material.critical_length("read_last_cycle")
+    fraction = READINGS[at][0]
+    stresses = _last_cycle_field(lambda _: (contact, history), 0.0, fraction, L, nu, bulk_state, model, {})
+    return _read(stresses, criterion, material, READINGS[at], L)
+
+
+def _check_reading(criterion, at):
+    if criterion not in CRITERIA:
+        raise ValueError(f"criterion: found {criterion!r}, expected one of: {', '.join(CRITERIA)}")
+    if at not in READINGS:
+        raise ValueError(f"at: found {at!r}, expected 'point', 'line' or 'hot spot'")
+
+
+def _last_cycle_field(scene, x, fraction, L, nu, bulk_state, model, cache):
+    """The specimen's stress field over the last load cycle of a run of ``scene(x)``, on `THRESHOLD_GRID` to the
+    depth ``fraction L`` (two rows to `HOT_SPOT_DEPTH` ``a`` with `L` None); from `cache` when it holds it."""
+    key = (x, None if L is None else fraction * L)
+    if key in cache:
+        return cache[key]
+    contact, history = scene(x)
     result = simulate(contact, history, model)
     rows = complete_cycles(result)[-1]
     if rows is None:
         raise ValueError("history: its last load cycle is not recorded whole, expected every step of it recorded")
     a, centre = result.attrs["a"], result.attrs["centre"]
-    x = centre + a * np.linspace(-THRESHOLD_GRID["span"], THRESHOLD_GRID["span"], THRESHOLD_GRID["nx"])
+    x_grid = centre + a * np.linspace(-THRESHOLD_GRID["span"], THRESHOLD_GRID["span"], THRESHOLD_GRID["nx"])
     z = np.array([0.0, HOT_SPOT_DEPTH * a]) if L is None else np.linspace(0.0, fraction * L, THRESHOLD_GRID["nz"])
-    stresses = stress_field(result, x, z, step=result.step.values[rows].tolist(), nu=nu, bulk_state=bulk_state)
+    cache[key] = stress_field(result, x_grid, z, step=result.step.values[rows].tolist(), nu=nu, bulk_state=bulk_state)
+    return cache[key]
+
+
+def _read(stresses, criterion, material, reading, L):
+    """The criterion's variables over the field `stresses`, read at the hot spot (`L` None) or by `reading`,
+    ``(fraction, method)``: `point_method` or `line_method`, whose reach is ``fraction L``."""
+    _, method = reading
     maps = apply(stresses, criterion, material)
     _, x_hot = hot_spot(maps.parameter)
     if L is None:
         return maps.sel(x=x_hot).isel(z=0, drop=True)
     values = {name: ((), method(maps[name], L, x_hot=x_hot).value, maps[name].attrs) for name in maps.data_vars}
     return xr.Dataset(values, coords={"x": x_hot}, attrs=maps.attrs)
+
+
+#: Where the shipped material files are: ``<name>.toml``, each constant with its source.
+MATERIALS = EXAMPLES / "materials"
+
+
+def materials() -> dict[str, tuple[Path, str]]:
+    """The shipped material files: name (the file's stem) -> (path, the first line of its opening comment)."""
+    found = {}
+    for path in sorted(MATERIALS.glob("*.toml")):
+        with path.open(encoding="utf-8") as lines:
+            found[path.stem] = (path, lines.readline().removeprefix("#").strip())
+    return found
+
+
+def material_path(name_or_path: str | os.PathLike) -> Path:
+    """The material file that `name_or_path` names: a file that exists, else a shipped material's name (`materials`).
+
+    Raises
+    ------
+    FileNotFoundError
+        When neither; its message lists the shipped names.
+    """
+    path = Path(name_or_path)
+    if path.exists():
+        return path
+    shipped = materials()
+    name = str(name_or_path).removesuffix(".toml")
+    if name not in shipped:
+        problem = f"no such file, nor a shipped material: expected a material file or one of: {', '.join(shipped)}"
+        raise FileNotFoundError(errno.ENOENT, problem, str(name_or_path))
+    return shipped[name][0]

@@ -43,10 +43,13 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
+from scipy import sparse
 
 from fretting.models.normal import CellSurfaceStress
+from fretting.physics.closed_forms import masing_increment, masing_origin
 from fretting.physics.contact import SPECIMEN
-from fretting.physics.surface import SurfaceStress, bulk_stress
+from fretting.physics.profiles import profile_class, recorded_profile
+from fretting.physics.surface import ClosedFormSurfaceStress, SurfaceStress, bulk_stress, ellipse_stress
 from fretting.results.variables import CYCLE_PEAKS
 
 __all__ = [
@@ -56,6 +59,7 @@ __all__ = [
     "complete_cycles",
     "cycles_to_nucleation",
     "dissipation_density",
+    "elliptical_traction",
     "fouvry",
     "loop_work",
     "peak_dissipation_density",
@@ -65,6 +69,11 @@ __all__ = [
     "specimen",
     "surface_stress",
 ]
+
+#: Largest difference, relative to ``f p0``, between the recorded traction and the exact models'
+#: elliptical reconstruction (`elliptical_traction`) for the reconstruction to be used: an exact
+#: model's traction meets it to rounding (~1e-15), a discretised model's by its own error, far above this.
+RECONSTRUCTION_RTOL = 1e-9
 
 #: Largest change of ``w(x)`` between the last two cycles, relative to the peak of the last one,
 #: for which the run counts as periodic and `cycles_to_nucleation` extrapolates beyond it. The
@@ -351,14 +360,15 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     per-cycle peaks with). Check: a sliding Hertz contact, ``q = f p``, gives ``-p - 2 f p0 x / a``
     in body 1, a tension ``2 f p0`` at the trailing edge ``x = -a`` (McEwen 1949 [3]_).
 
-    The principal value is integrated exactly for ``sqrt(1 - t^2) q`` interpolated linearly
-    between the nodes (`fretting.physics.surface.hilbert_matrix`); for a result of a varying ``P``,
-    for ``q`` constant on each cell, with the pressure of each step
-    (`fretting.models.normal.CellSurfaceStress`). Its error against
-    Cattaneo-Mindlin away from the stick/slip boundaries is held by
-    tests/analysis/test_nucleation.py::test_surface_stress_of_cattaneo_mindlin; at a boundary the stress has a
-    square-root profile with a vertical tangent that no fixed grid resolves, so the error is largest
-    there.
+    The traction of an exact model on a Hertz contact, a sum of elliptical loads
+    (`elliptical_traction`), is integrated in closed form, exact at every node, stick ends included
+    (`fretting.physics.surface.ellipse_stress`), as the engine's model integrates it.
+    Otherwise the principal value is integrated exactly for ``sqrt(1 - t^2) q`` interpolated
+    linearly between the nodes (`fretting.physics.surface.hilbert_matrix`); for a result of a
+    varying ``P``, for ``q`` constant on each cell, with the pressure of each step
+    (`fretting.models.normal.CellSurfaceStress`). Next to a stick/slip boundary the stress has a
+    square-root profile with a vertical tangent that no interpolation between the nodes resolves,
+    so the error of these is largest there (tests/analysis/test_nucleation.py).
 
     Parameters
     ----------
@@ -385,7 +395,13 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
         stress = CellSurfaceStress(result.sizes["x"])(result.q.values, result.p_step.values, bulk, body)
     else:
         t = (result.x.values - result.attrs["centre"]) / result.attrs["a"]
-        stress = SurfaceStress(t)(result.q.values, result.p.values, bulk, body)
+        ellipses = elliptical_traction(result)
+        if ellipses is None:
+            surface = SurfaceStress(t)
+        else:
+            widths, centres, loads = ellipses
+            surface = ClosedFormSurfaceStress(loads @ ellipse_stress(t, widths[:, None], centres[:, None]))
+        stress = surface(result.q.values, result.p.values, bulk, body)
     definition = (
         f"sigma_xx = -(2/pi) PV int t_x(xi)/(x - xi) dxi - p(x) + sigma_b, t_x = {'+q' if body == 1 else '-q'} "
         f"(body {body}), sigma_b its bulk stress (half-plane surface stress, Johnson 1985 section 2.3; "
@@ -630,3 +646,73 @@ def per_cycle(result: xr.Dataset, body: int | None = None, bulk: ArrayLike | Non
     peak_stress = _peak(stress, "sigma_xx_max", "Pa", "peak surface direct stress of the cycle", definition)
     parts = [fouvry(result), peak_dissipation_density(result), delta, ruiz_, peak_stress]
     return xr.merge(parts, combine_attrs="drop_conflicts").assign_attrs(body=body, role=role)
+
+
+def elliptical_traction(
+    result: xr.Dataset, rows: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """The traction at `rows` (default: all) of a result on a Hertz contact as an exact model's elliptical loads.
+
+    The exact models on Hertz (`fretting.models.exact`, `fretting.models.inphase`) give ``q`` as a sum
+    of loads ``peak sqrt(1 - ((t - e) / c)^2)``. The open turning points at each step follow from
+    Masing's rule along the load path, its vertices and the recorded steps (between two of them
+    ``Q`` is monotonic); each branch from ``Q_k`` with factor ``m`` (`masing_origin`) adds
+    ``sign(Q - Q_k) m f p0 [sqrt(1 - t^2) - (c/a) sqrt(1 - (t - e)^2 a^2 / c^2)]`` with ``c / a =
+    sqrt(1 - |Q - Q_k| / (m f P))`` (eq 8 of the seed for the corrective load ``P - |Q - Q_k| / (m f)``)
+    and ``e / a = -k |Q - Q_k| / (4 m f p0)`` for in-phase loads ``sigma = k Q`` (Nowell & Hills
+    1987; the result's ``sigma_per_Q``, else 0).
+
+    Returns
+    -------
+    tuple or None
+        Half-widths ``c / a`` and centres ``e / a`` (B,) [-] and peaks (steps, B) [Pa], a sparse array
+        (each step has a few of the loads of all its steps); None on
+        another profile or where they do not meet the recorded traction to `RECONSTRUCTION_RTOL`
+        ``f p0``: a traction no exact model gave (a discretised model's), or a run continued from a
+        state whose memory the result does not record.
+    """
+    attrs = result.attrs
+    profile = profile_class(recorded_profile(attrs)[0])
+    if profile is None or not profile.ELLIPTICAL:
+        return None
+    rows = np.arange(result.sizes["step"]) if rows is None else rows
+    path = dict(zip(result.vertex_step.values.tolist(), result.vertex_Q.values.tolist(), strict=True))
+    path |= dict(zip(result.step.values.tolist(), result.Q.values.tolist(), strict=True))
+    if path.get(0) != 0.0:
+        return None
+    memory, turning, before = {}, (), 0.0
+    for step in sorted(path):
+        turning, _ = masing_increment(turning, before, path[step])
+        memory[step], before = turning, path[step]
+    fp0, fP = attrs["f"] * attrs["p0"], attrs["f"] * attrs["P"]
+    shift = -float(attrs.get("sigma_per_Q", 0.0)) / (4 * fp0)  # e / a per unit |Q - Q_k| / m
+    steps = result.step.values[rows].tolist()
+    peaks = [_branch_peaks(memory[step], path[step], fP, shift) for step in steps]
+    ellipses = sorted({ellipse for peak in peaks for ellipse in peak} | {(1.0, 0.0)})
+    index = {ellipse: k for k, ellipse in enumerate(ellipses)}
+    entries = [(row, index[ellipse], fp0 * value) for row, peak in enumerate(peaks) for ellipse, value in peak.items()]
+    row, column, value = np.array(entries).T
+    loads = sparse.csr_array((value, (row.astype(int), column.astype(int))), shape=(len(steps), len(ellipses)))
+    widths, centres = np.array(ellipses).T
+    t = (result.x.values - attrs["centre"]) / attrs["a"]
+    shapes = np.sqrt(np.clip(1 - ((t - centres[:, None]) / widths[:, None]) ** 2, 0, None))
+    if np.abs(loads @ shapes - result.q.values[rows]).max(initial=0.0) > RECONSTRUCTION_RTOL * fp0:
+        return None
+    return widths, centres, loads
+
+
+def _branch_peaks(turning: tuple, Q: float, fP: float, shift: float) -> dict[tuple[float, float], float]:
+    """Peaks per unit ``f p0`` of the elliptical loads of the branches of the open `turning` points at `Q`
+    [N/m]: ``{(c / a, e / a): peak}``, ``e / a = shift |Q - Q_k| / m`` (`elliptical_traction`)."""
+    peaks = {}
+    loads = [*turning, Q]
+    for k, load in enumerate(loads):
+        origin, factor = masing_origin(turning[:k])
+        change = load - origin
+        c = float(np.sqrt(max(1 - abs(change) / (factor * fP), 0.0)))
+        signed = float(np.sign(change)) * factor
+        peaks[1.0, 0.0] = peaks.get((1.0, 0.0), 0.0) + signed
+        if c > 0:
+            centre = shift * abs(change) / factor
+            peaks[c, centre] = peaks.get((c, centre), 0.0) - signed * c
+    return peaks

@@ -28,10 +28,11 @@ representation gives:
 
 - elliptical (Hertz-shaped) distributions ``p0 sqrt(1 - (x - e)^2 / c^2)`` by McEwen's closed
   forms [2]_ (`mcewen`): the pressure of a profile that says it is Hertz's
-  (`fretting.physics.profiles.Profile.ELLIPTICAL`), and on it a traction that is the exact
-  model's, a sum of such distributions (Ciavarella-Jaeger and Masing's rule,
-  `fretting.models.exact`) rebuilt from the load path and held against the recorded traction,
-  so that its field is exact to rounding;
+  (`fretting.physics.profiles.Profile.ELLIPTICAL`), and on it a traction that is an exact
+  model's, a sum of such distributions (Ciavarella-Jaeger or Nowell-Hills with Masing's rule,
+  `fretting.models.exact`, `fretting.models.inphase`) rebuilt from the load path and held against
+  the recorded traction (`fretting.analysis.nucleation.elliptical_traction`), so that its field is
+  exact to rounding;
 - otherwise pressure and traction interpolated linearly between the nodes and zero at the
   contact edges (`polygon`): integrated twice by parts, a continuous piecewise-linear load
   ``g`` gives ``int g(s) K(x - s) ds = sum_k (g'_k+ - g'_k-) F(x - s_k)`` over its knots
@@ -59,8 +60,7 @@ import xarray as xr
 from scipy import special
 
 from fretting._validate import finite_array
-from fretting.analysis.nucleation import body_bulk, body_role
-from fretting.physics.closed_forms import masing_increment, masing_origin
+from fretting.analysis.nucleation import body_bulk, body_role, elliptical_traction
 from fretting.physics.contact import poisson_ratio
 from fretting.physics.profiles import profile_class, recorded_profile
 
@@ -87,11 +87,6 @@ BULK_STATES = {
     "plane stress": "nu (sigma_xx - sigma_b + sigma_zz): the contact's field in plane strain, the bulk stress "
     "sigma_b in plane stress (uniaxial)",
 }
-
-#: Largest difference, relative to ``f p0``, between the recorded traction and the exact model's
-#: elliptical reconstruction for the reconstruction to be used: the exact model's traction meets it
-#: to rounding (~1e-15), a discretised model's by its own error, far above this.
-RECONSTRUCTION_RTOL = 1e-9
 
 #: Nodes closer than this to an edge, in ``|t| = |x - centre| / a``, are taken as the edge itself (a Galerkin
 #: mesh has a node at each edge, ``cos(0)`` and ``cos(pi)`` up to rounding).
@@ -388,61 +383,13 @@ def _knots(result):
 def _traction(result, rows, elliptical):
     """Field of the shear traction on body 1 per unit basis load, ``(t, depth, influence) -> (3, points, B)``
     (as `_pressure`), the loads (steps, B) [Pa] and its kind; `elliptical`: under Hertz's pressure."""
-    ellipses = _elliptical_traction(result, rows) if elliptical else None
+    ellipses = elliptical_traction(result, rows) if elliptical else None
     if ellipses is not None:
-        widths, loads = ellipses
-        unit = lambda t, depth, influence: np.stack([mcewen(t, depth, c)[1] for c in widths], axis=-1)  # noqa: E731
+        widths, centres, loads = ellipses
+        loads = loads.toarray()
+        unit = lambda t, depth, influence: np.stack(  # noqa: E731
+            [mcewen(t, depth, c, e)[1] for c, e in zip(widths, centres, strict=True)], axis=-1
+        )
         return unit, loads, "elliptical"
     inside = _knots(result)[1]
     return (lambda t, depth, influence: influence[1]), result.q.values[rows][:, inside], "piecewise linear"
-
-
-def _elliptical_traction(result, rows):
-    """The traction at `rows` of a result on a Hertz contact as the exact model's elliptical loads:
-    half-widths ``c / a`` (B,) and peaks (steps, B) [Pa]; None where they do not meet the recorded
-    traction to `RECONSTRUCTION_RTOL`: a traction the exact model did not give (a discretised
-    model's), or a run continued from a state whose memory the result does not record.
-
-    The open turning points at each step follow from Masing's rule along the load path, its
-    vertices and the recorded steps (between two of them ``Q`` is monotonic); each branch from
-    ``Q_k`` with factor ``m`` (`masing_origin`) adds ``sign(Q - Q_k) m f p0 [sqrt(1 - t^2) -
-    (c/a) sqrt(1 - t^2 a^2 / c^2)]`` with ``c / a = sqrt(1 - |Q - Q_k| / (m f P))`` (eq 8 of the
-    seed for the corrective load ``P - |Q - Q_k| / (m f)``; `fretting.models.exact`).
-    """
-    attrs = result.attrs
-    path = dict(zip(result.vertex_step.values.tolist(), result.vertex_Q.values.tolist(), strict=True))
-    path |= dict(zip(result.step.values.tolist(), result.Q.values.tolist(), strict=True))
-    if path.get(0) != 0.0:
-        return None
-    memory, turning, before = {}, (), 0.0
-    for step in sorted(path):
-        turning, _ = masing_increment(turning, before, path[step])
-        memory[step], before = turning, path[step]
-    fp0, fP = attrs["f"] * attrs["p0"], attrs["f"] * attrs["P"]
-    peaks = [_branch_peaks(memory[step], path[step], fP) for step in result.step.values[rows].tolist()]
-    widths = np.unique([c for peak in peaks for c in peak] + [1.0])
-    loads = np.zeros((rows.size, widths.size))
-    for row, peak in enumerate(peaks):
-        for c, value in peak.items():
-            loads[row, np.searchsorted(widths, c)] += fp0 * value
-    t = (result.x.values - attrs["centre"]) / attrs["a"]
-    shapes = np.sqrt(np.clip(1 - (t[:, None] / widths) ** 2, 0, None))
-    if np.abs(loads @ shapes.T - result.q.values[rows]).max(initial=0.0) > RECONSTRUCTION_RTOL * fp0:
-        return None
-    return widths, loads
-
-
-def _branch_peaks(turning, Q, fP):
-    """Peaks per unit ``f p0`` of the elliptical loads of the branches of the open `turning`
-    points at `Q` [N/m]: ``{c / a: peak}``."""
-    peaks = {}
-    loads = [*turning, Q]
-    for k, load in enumerate(loads):
-        origin, factor = masing_origin(turning[:k])
-        change = load - origin
-        c = float(np.sqrt(max(1 - abs(change) / (factor * fP), 0.0)))
-        signed = float(np.sign(change)) * factor
-        peaks[1.0] = peaks.get(1.0, 0.0) + signed
-        if c > 0:
-            peaks[c] = peaks.get(c, 0.0) - signed * c
-    return peaks

@@ -14,11 +14,32 @@ BLAS_THREADS = 1
 
 
 @functools.cache
-def _threads():
-    """The controller of the BLAS libraries loaded (found once: a limit through it is cheap)."""
-    return ThreadpoolController()
+def _blas():
+    """The controllers of the BLAS libraries loaded (found once: a limit through them is cheap)."""
+    return tuple(ThreadpoolController().select(user_api="blas").lib_controllers)
 
 
-def one_blas_thread():
-    """Context in which the BLAS libraries loaded run `BLAS_THREADS` threads (the caller's count after)."""
-    return _threads().limit(limits=BLAS_THREADS, user_api="blas")
+class one_blas_thread:  # noqa: N801 - a context used as a function, as threadpoolctl's limits are
+    """Context in which the BLAS libraries loaded run `BLAS_THREADS` threads (the caller's count after).
+
+    Each library is asked for its count and set only where it differs, so that entering costs two
+    calls into each library rather than threadpoolctl's inventory of all of them: `Stepper.step`
+    enters it at every increment.
+    """
+
+    __slots__ = ("_changed",)
+
+    def __enter__(self):
+        self._changed = []
+        for library in _blas():
+            threads = library.get_num_threads()
+            if threads != BLAS_THREADS:
+                library.set_num_threads(BLAS_THREADS)
+                self._changed.append((library, threads))
+        return self
+
+    def __exit__(self, *exc):
+        for library, threads in self._changed:
+            if threads is not None:
+                library.set_num_threads(threads)
+        return False

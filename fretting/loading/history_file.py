@@ -122,22 +122,24 @@ def read_history_source(path):
     return HistorySource(path, text, hashlib.sha256(data).hexdigest(), contact, history)
 
 
-def read_history_data(path, text, data):
+def read_history_data(path, text, data, tables=None):
     """Contact and load history of `data`: the TOML `text` of the history file at `path`, parsed and possibly changed.
 
     Checked as `read_history` checks a file; errors name `path` and the line of the key in `text`,
-    and tables named by `data` are read next to `path`.
+    and tables named by `data` are read next to `path`. The path of each table file read is
+    appended to the list `tables`, when given (what a sweep's case depends on besides `data`).
     """
-    return _Document(path, text, data).read()
+    return _Document(path, text, data, tables).read()
 
 
 class _Document:
     """The parsed TOML of one file, with the line of every key written on a line of its own.
 
-    `data` is `text` already parsed (and possibly changed); when None, `text` is parsed here.
+    `data` is `text` already parsed (and possibly changed); when None, `text` is parsed here. The
+    path of each table file read is appended to `tables`.
     """
 
-    def __init__(self, path, text, data=None):
+    def __init__(self, path, text, data=None, tables=None):
         self.path = path
         try:
             self.data = tomllib.loads(text) if data is None else data
@@ -145,6 +147,7 @@ class _Document:
             line = re.search(r"at line (\d+)", str(error))
             raise HistoryFileError(path, int(line[1]) if line else None, None, f"TOML syntax: {error}") from None
         self.lines = _key_lines(text)
+        self.tables = [] if tables is None else tables
 
     def read(self):
         top = _Table(self, (), self.data)
@@ -203,7 +206,9 @@ class _Table:
 
     def file(self, key):
         """Path of the file named by `key`, relative to the history file's directory."""
-        return self.document.path.parent / self.get(key, _text)
+        path = self.document.path.parent / self.get(key, _text)
+        self.document.tables.append(path)
+        return path
 
 
 def _contact(table):
@@ -247,7 +252,7 @@ def _gap(table):
     if back.size:
         k = back[0]
         raise table.error("table", f"{path}: found x = {x[k + 1]:.6g} after {x[k]:.6g}, expected x increasing")
-    return Gap.from_table(x, h0, table.get("breakpoints", _numbers, default=()))
+    return Gap.from_table(x, h0, table.get("breakpoints", _numbers, default=None))
 
 
 #: profile name -> (its keys, reader of the profile from the [contact] table).

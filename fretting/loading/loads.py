@@ -7,7 +7,7 @@ new load input is a field here, a column of the history file and the model that 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -45,7 +45,7 @@ class Loads:
 
     def given(self):
         """Names of the inputs these loads set: ``Q`` and ``sigma`` always, the optional ones where not None."""
-        return frozenset(field.name for field in fields(self) if getattr(self, field.name) is not None)
+        return frozenset(name for name in INPUTS if getattr(self, name) is not None)
 
     def force(self):
         """These loads as a model is given them: without ``delta`` (the engine has found ``Q``)."""

@@ -48,12 +48,13 @@ from fretting.physics.closed_forms import (
     masing_origin,
 )
 from fretting.physics.profiles import Hertz
+from fretting.physics.surface import ClosedFormSurfaceStress, ellipse_stress
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
     from fretting.physics.contact import Contact
 
-__all__ = ["Exact", "ExactModel", "gap", "nodes_theta"]
+__all__ = ["Exact", "ExactModel", "ExactOutcome", "gap", "nodes_theta"]
 
 #: Gauss-Legendre points of each quadrature (the gap along ``c'``, the energy and ``delta_Q``
 #: along ``X``): on Hertz the slip meets the closed form to rounding
@@ -161,6 +162,14 @@ def nodes_theta(contact, history, N, offset=0.0):
     return theta
 
 
+@dataclass(frozen=True, eq=False)
+class ExactOutcome(Outcome):
+    """An `Outcome` of `ExactModel`: also the shear force ``Q`` [N/m] after the increment, which with
+    the open turning points (``memory``) names its branches (`ExactModel.surface_at`)."""
+
+    Q: float = np.nan
+
+
 class _Branch(NamedTuple):
     """The monotonic solution of one corrective load ``P_c``, per unit of the branch's factor.
 
@@ -216,6 +225,7 @@ class ExactModel(Model):
         self._fp = contact.f * self._p
         self._branches = {}  # P_c -> _Branch
         self._memories = {}  # turning points -> (slip, q, delta_Q) summed over their branches
+        self._stresses = {}  # turning points -> surface stress of their branches (`_memory_stress`)
         self._walks = {}  # (turning points, Q before, Q after) -> (turning points after, energy) of the steps prepared
 
     def traction(self, outcome):
@@ -247,11 +257,56 @@ class ExactModel(Model):
         Q = loads.Q
         if Q == state.Q:
             slip, q, delta_Q, _ = self._at(state.memory, Q)
-            return Outcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q)
+            return ExactOutcome(q, np.zeros(slip.size), slip, 0.0, state.memory, [(-1.0, 1.0)], delta_Q, Q=Q)
         turning, dissipation = self._walked(state.memory, state.Q, Q)
         slip, q, delta_Q, c = self._at(turning, Q)
         a = self.contact.a
-        return Outcome(q, slip - state.slip, slip, dissipation, turning, [(-c / a, c / a)], delta_Q)
+        return ExactOutcome(q, slip - state.slip, slip, dissipation, turning, [(-c / a, c / a)], delta_Q, Q=Q)
+
+    def surface_at(self, outcome):
+        """`Model.surface`; on Hertz, the surface stress of the traction's elliptical loads in closed form.
+
+        Each branch of factor ``F`` (signed as its change of load) adds ``F f (p - p_c)``, and on a
+        Hertz contact ``p_c`` of the corrective contact of half-width ``c``, centred at ``e``
+        (`_offset_of`), is ``p0 (c / a) sqrt(1 - ((x - e) / c)^2)``: the stress of each such load is
+        `fretting.physics.surface.ellipse_stress`, exact at every node, where the nodal Hilbert matrix
+        of `Model.surface` misses the square root at each stick end. The branches of the open turning
+        points are summed once per memory (`_memory_stress`), the last one at each step.
+        """
+        if not isinstance(self.contact.profile, Hertz):
+            return self.surface
+        turning = outcome.memory
+        last = self._branch_stress(turning, outcome.Q)
+        return ClosedFormSurfaceStress(self._memory_stress(turning) + last), self._p
+
+    def _branch_stress(self, turning, Q):
+        """Stress [Pa] at the nodes of the traction of the branch after the open `turning` points, at `Q` [N/m]."""
+        origin, factor = masing_origin(turning)
+        signed = _signed(origin, factor, Q)
+        if not signed:
+            return np.zeros(self.t.size)
+        P_c = self._corrective(origin, factor, Q)
+        c = self._branch(P_c).c / self.contact.a
+        unit = ellipse_stress(self.t, 1.0) - c * ellipse_stress(self.t, c, self._offset_of(P_c) / self.contact.a)
+        return signed * self.contact.f * self.contact.p0 * unit
+
+    def _memory_stress(self, turning):
+        """`_branch_stress` summed over the branches that end at the open `turning` points, from the longest
+        of their beginnings already summed (as `_memory`)."""
+        known = len(turning)
+        while known and turning[:known] not in self._stresses:
+            known -= 1
+        summed = self._stresses[turning[:known]] if known else np.zeros(self.t.size)
+        for k in range(known, len(turning)):
+            summed = summed + self._branch_stress(turning[:k], turning[k])
+            if len(self._stresses) >= CACHED_BRANCHES:
+                self._stresses.clear()
+            self._stresses[turning[: k + 1]] = summed
+        return summed
+
+    def _offset_of(self, P_c):
+        """Centre [m] of the corrective contact of the load `P_c` [N/m] from the contact's: none under ``Q`` alone."""
+        return 0.0
 
     def _walked(self, turning, before, Q):
         """(open turning points, energy dissipated [J/m]) of the change of the shear force from `before`
@@ -399,7 +454,8 @@ class ExactModel(Model):
         if len(self._branches) + len(needed) > CACHED_BRANCHES:
             self._branches.clear()
         new = [P_c for P_c in needed if P_c not in self._branches]
-        self._branches |= zip(new, self._hertz_branches(np.array(new, dtype=float)), strict=True)
+        if new:
+            self._branches |= zip(new, self._hertz_branches(np.array(new, dtype=float)), strict=True)
         return self._branches
 
     def _corrective(self, origin, factor, Q):

@@ -36,12 +36,12 @@ Per branch of the monotonic load ``Q`` with ``psi = |Q| / (f P)``:
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from fretting.models.base import ModelSpec, Outcome
+from fretting.models.base import ModelSpec
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.exact import _U, _WEIGHTS, ExactModel, _Branch, nodes_theta
 from fretting.physics.closed_forms import hertz_slip_shape
@@ -188,13 +188,6 @@ def _offset(contact, ratio, deficit):
     return -ratio * deficit * contact.a / (4 * contact.p0)
 
 
-@dataclass(frozen=True, eq=False)
-class InPhaseOutcome(Outcome):
-    """An `Outcome` of `InPhaseModel`: also the shear force ``Q`` [N/m] after the increment."""
-
-    Q: float = np.nan
-
-
 class InPhaseModel(ExactModel):
     """The exact model of a Hertz contact under ``sigma = ratio Q`` on the nodes of a resolved `InPhase` spec.
 
@@ -212,8 +205,7 @@ class InPhaseModel(ExactModel):
         Q, sigma = loads.Q, loads.sigma
         if not _on_path(Q, sigma, self.ratio, self.friction_force):
             raise ValueError(f"sigma = {sigma!r} Pa is not {self.ratio!r} 1/m times Q = {Q!r} N/m: not in phase")
-        outcome = super().increment(state, loads, guess)
-        return InPhaseOutcome(*(getattr(outcome, field.name) for field in fields(Outcome)), Q=Q)
+        return super().increment(state, loads, guess)
 
     def stick_zones(self, outcome, state):
         """The stick zone of the last branch, ``[e - c, e + c]`` in ``t``."""
@@ -234,6 +226,10 @@ class InPhaseModel(ExactModel):
         scale = np.pi * self.ratio * contact.a**2 / (16 * contact.E_star * contact.f * contact.P)
         return float(scale * np.sum(change * np.abs(change) / factor))
 
+    def _offset_of(self, P_c):
+        """Centre [m] of the corrective contact of the load `P_c` [N/m] (`_shift`)."""
+        return self._shift(self.contact.P - P_c)
+
     def _shift(self, deficit):
         """Offset [m] of the corrective contact of the load ``P - deficit`` (`_offset`)."""
         return _offset(self.contact, self.ratio, deficit)
@@ -243,7 +239,7 @@ class InPhaseModel(ExactModel):
         contact = self.contact
         a, f, R = contact.a, contact.f, contact.profile.R
         c = float(contact.profile.half_width(P_c, contact.E_star)[0])
-        e = self._shift(contact.P - P_c)
+        e = self._offset_of(P_c)
         X = self.x - contact.centre - e
         inside = np.abs(X) < c
         p_c = np.zeros(self.x.size)

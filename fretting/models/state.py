@@ -9,19 +9,60 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cache
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
 
 from fretting.errors import HistoryError
 from fretting.loading.loads import Loads
-from fretting.models.method4 import Method4Model
 from fretting.results.variables import CYCLE_PEAKS
 
-if TYPE_CHECKING:
-    from fretting.models.base import Model, ModelSpec, Outcome
+__all__ = ["Continued", "Nodes", "Solved", "State", "Tally"]
 
-__all__ = ["State", "Tally"]
+
+class Nodes(Protocol):
+    """What a `State` reads of the model it is formed on (a `fretting.models.base.Model`): the
+    nodes ``x`` [m] of its slip field and its resolved spec.
+
+    The state lies below the model contract, which holds states: it names what it needs of a model
+    rather than importing the contract."""
+
+    @property
+    def x(self) -> np.ndarray: ...
+
+    @property
+    def spec(self) -> Any: ...
+
+
+class Solved(Protocol):
+    """What `State.advance` reads of an increment solved (a `fretting.models.base.Outcome`): the
+    slip [m] after it and its increment, the energy it dissipated [J/m] and the model's memory."""
+
+    @property
+    def slip(self) -> np.ndarray: ...
+
+    @property
+    def ds(self) -> np.ndarray: ...
+
+    @property
+    def dissipation(self) -> float: ...
+
+    @property
+    def memory(self) -> tuple: ...
+
+
+
+class Continued(Nodes, Protocol):
+    """What `State.check` reads of the model a state is continued on (a `fretting.models.base.Model`):
+    the increment of no load change (`at_rest`), its traction [Pa] and the pressure [Pa] under a
+    normal load. A model of method 4 also has ``limit``, ``f p`` in its own measure beside the ``g``
+    of its outcomes, and ``dissipation(ds)``, ``int f p |ds| dx`` [J/m] on its nodes."""
+
+    def at_rest(self, state: State) -> Solved: ...
+
+    def traction(self, outcome: Solved) -> np.ndarray: ...
+
+    def pressure_at(self, P: float) -> np.ndarray: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,7 +176,7 @@ class State:
     tally : Tally
         Energy and slip range of the cycle in progress, so that a run continued from this
         state reports that cycle whole.
-    model : ModelSpec
+    model : fretting.models.base.ModelSpec
         The resolved model the state was computed with (its nodes are those of `slip`).
     dissipated : float
         Energy dissipated since the contact was formed [J/m], summed step by step.
@@ -148,7 +189,7 @@ class State:
     slip: np.ndarray
     episode_start: np.ndarray
     tally: Tally
-    model: ModelSpec
+    model: Any  # a resolved fretting.models.base.ModelSpec
     dissipated: float = 0.0
     memory: tuple = ()
 
@@ -168,14 +209,14 @@ class State:
         return self.loads.P
 
     @classmethod
-    def virgin(cls, model: Model) -> State:
+    def virgin(cls, model: Nodes) -> State:
         """The contact of `model` (a `fretting.models.base.Model`) just formed: no load and no slip."""
         slip = np.zeros(model.x.size)
         return cls(Loads(0.0, 0.0), slip, slip, Tally.begin(0, slip), model.spec)
 
     def advance(
         self,
-        outcome: Outcome,
+        outcome: Solved,
         loads: Loads,
         w: np.ndarray | None,
         stress: np.ndarray | None,
@@ -224,7 +265,7 @@ class State:
             and np.array_equal(self.episode_start, other.episode_start)
         )
 
-    def check(self, contact, model):
+    def check(self, contact, model: Continued) -> None:
         """Raise HistoryError unless this state can be continued on `contact` with `model` (a `Model`).
 
         Besides its fields' shapes, finite values and non-negative energies, the state must be one
@@ -273,7 +314,7 @@ class State:
             raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")
         self.consistency(contact, model)
 
-    def consistency(self, contact, model):
+    def consistency(self, contact, model: Continued) -> None:
         """Raise HistoryError unless the slip agrees with the loads, the model's memory and the energy (`check`)."""
         outcome = model.at_rest(self)
         scale = float(np.max(np.abs(self.slip), initial=0.0))
@@ -291,7 +332,7 @@ class State:
                 f"state.slip leaves a traction above f p by {float(excess[node]):.6g} f p0 at node {node} under "
                 f"the state's loads, expected at most f p (Coulomb): a slip the loads cannot produce"
             )
-        if self.P is None and isinstance(model, Method4Model):
+        if self.P is None and hasattr(model, "dissipation"):
             least = model.dissipation(self.slip)
             if least > self.dissipated * (1 + ENERGY_RTOL):
                 raise HistoryError(
@@ -315,7 +356,7 @@ def _excess(outcome, contact, model, P):
     model's own measure where it has one (method 4: its ``g`` against its ``limit``), else from its
     traction. Relative to the largest limit, since at the edges, where ``f p`` vanishes, ``g`` is
     the difference of large numbers."""
-    if isinstance(model, Method4Model):
+    if hasattr(model, "limit"):
         g, limit = np.abs(outcome.g), model.limit
     else:
         g, limit = np.abs(model.traction(outcome)), contact.f * model.pressure_at(P)

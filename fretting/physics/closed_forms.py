@@ -105,7 +105,7 @@ def hertz_slip_shape(x: ArrayLike, b: ArrayLike) -> np.ndarray:
     z_large = z[large]
     shape[large] = z_large * np.sqrt(1 + z_large**2) - np.arcsinh(z_large)
     small = (z > 0) & ~large
-    if np.any(small):
+    if small.any():
         w = 2 * np.arcsinh(z[small])
         w2 = w**2
         series = np.full(w.size, _SINH_SERIES[-1])
@@ -180,7 +180,7 @@ def _slip_series(psi: ArrayLike, first: int) -> np.ndarray:
     """
     psi = np.asarray(psi, dtype=float)
     terms = slice(first - 2, first - 2 + SERIES_TERMS)
-    series = np.sum(psi[..., None] ** _SERIES_N[terms] / _SERIES_DENOMINATORS[terms], axis=-1)
+    series = np.add.reduce(psi[..., None] ** _SERIES_N[terms] / _SERIES_DENOMINATORS[terms], axis=-1)
     below = np.where(psi < 1, psi, 0.0)  # the closed form's log is finite; at 1 the sum is 1
     two = np.where(psi < 1, below + (1 - below) * np.log1p(-below), 1.0)
     return np.where(psi < 0.25, series, two if first == 2 else two - psi**2 / 2)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import abc
 import ast
+import itertools
 import re
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import NoReturn
@@ -20,7 +21,16 @@ from scipy import fft, optimize, special
 
 from fretting._validate import positive
 
-__all__ = ["Profile", "Hertz", "RoundedFlat", "FlatPunch", "Gap", "profile_class", "recorded_profile"]
+__all__ = [
+    "Profile",
+    "Hertz",
+    "RoundedFlat",
+    "FlatPunch",
+    "Gap",
+    "profile_class",
+    "recorded_profile",
+    "table_breakpoints",
+]
 
 #: A gap ``h0(x)`` [m] or its slope [-] at positions ``x`` [m] (vectorised).
 GapFunction = Callable[[np.ndarray], np.ndarray]
@@ -308,8 +318,23 @@ class RoundedFlat(Profile):
 #: Chebyshev series stays well inside this (a bounded pressure is a sum of terms that fall off).
 NEGATIVE_PRESSURE = 1e-6
 
+#: Narrowest contact of a table, relative to the spacing of its rows there, that `Gap.check` accepts: on a
+#: contact of a share r of an interval the spline's slope loses a factor 1/r to the cancellation of its
+#: terms and the table's rounding (7 digits: 1e-4 relative in the contact's a at r = 2e-3).
+TABLE_RESOLUTION = 1e-2
+
 #: Points, in theta, where `Gap.check` looks for a negative pressure.
 CHECK_POINTS = 4096
+
+#: Gauss-Legendre points on each piece of the pressure's integral of a `Gap` with breakpoints in its contact
+#: (`Gap.pressure`), and the points evaluated at once (a chunk's integrands take ~25 MB per three pieces).
+PRESSURE_GAUSS = 16
+PRESSURE_CHUNK = 4096
+#: Octaves of the pieces cut toward a point next to a breakpoint, or at it (`Gap._pressure_integral`): down
+#: to ``pi 2^-60``, 3e-18 rad, below which the point is the breakpoint to rounding.
+PRESSURE_OCTAVES = 60
+_PSI = np.pi * (np.polynomial.legendre.leggauss(PRESSURE_GAUSS)[0] + 1) / 2
+_PSI_WEIGHTS = (np.pi / 2) * np.polynomial.legendre.leggauss(PRESSURE_GAUSS)[1] * np.sin(_PSI) / 2
 
 
 class Gap(Profile):
@@ -322,23 +347,27 @@ class Gap(Profile):
     slope : callable, optional
         ``h0'(x)`` [-]; by central differences when omitted.
     breakpoints : sequence of float, optional
-        Positions [m] where the curvature of ``h0`` jumps (the ends of a flat, say). The
-        pressure's derivative is log-singular there; the Galerkin mesh resolves the traction
-        about them (tests/models/test_galerkin.py::test_rounded_flat), which it cannot do for jumps it is
-        not told of.
+        Positions [m] where the slope of ``h0`` is not smooth: its curvature jumps (the ends of a
+        flat, say) or is unbounded (a cusp such as ``|x|^(3/2)``). The pressure's derivative is
+        singular there; the pressure of a contact that holds one is integrated about it (`pressure`),
+        and the Galerkin mesh resolves the traction about them
+        (tests/models/test_galerkin.py::test_rounded_flat). Neither is done for a point it is not told
+        of: at an undeclared cusp ``|x|^(3/2)`` the pressure is 1.3 % low. A table finds its own
+        (`from_table`).
 
     Notes
     -----
     With ``h0'(centre + a t) = sum_n b_n T_n(t)``, eq (1) bounded at both ends gives
     ``p = (E_star / 2) sum_{n>=1} b_n sin(n theta)`` with ``t = cos(theta)``, the consistency
     condition ``b_0 = 0`` (which fixes the centre) and ``P = pi a E_star b_1 / 4``, with `ORDER`
-    points. Where the curvature jumps the slope's expansion converges only algebraically: its
-    ``a`` and its pressure next to a jump are held against eqs (1)-(2) integrated adaptively, split
-    at the breakpoints, on the asymmetric flat of
-    tests/test_hard_cases.py::test_gap_normal_contact_against_adaptive_quadrature; a smooth gap
-    converges fast. The solution
-    is admissible only where this pressure is nowhere negative: a gap that is not convex where
-    the bodies touch (a hollow, a wear scar) is refused by `check` when the `Contact` is built.
+    points. Where the slope is not smooth its expansion converges only algebraically: ``a`` is held
+    against eqs (1)-(2) integrated adaptively, split at the breakpoints, on the asymmetric flat of
+    tests/test_hard_cases.py::test_gap_normal_contact_against_adaptive_quadrature, and the pressure
+    of a contact holding a breakpoint is its integral instead of the series (`pressure`), held
+    there and against the closed form of a cusp (tests/physics/test_profiles.py); a smooth gap
+    converges fast. The solution is admissible only where this pressure is nowhere negative: a
+    gap that is not convex where the bodies touch (a hollow, a wear scar) is refused by `check`
+    when the `Contact` is built.
     """
 
     #: Chebyshev points for the expansion of the slope.
@@ -347,10 +376,7 @@ class Gap(Profile):
     def __init__(self, h0: GapFunction, slope: GapFunction | None = None, breakpoints: Sequence[float] = ()) -> None:
         if not callable(h0) or (slope is not None and not callable(slope)):
             raise ValueError("Gap needs callables h0(x) and, optionally, slope(x)")
-        points = np.asarray(breakpoints, dtype=float)
-        if points.ndim != 1 or not np.all(np.isfinite(points)):
-            raise ValueError(f"breakpoints must be a list of positions [m], found {breakpoints!r}")
-        self.h0, self._slope, self.breakpoints = h0, slope, tuple(np.unique(points).tolist())
+        self.h0, self._slope, self.breakpoints = h0, slope, tuple(_positions(breakpoints).tolist())
         #: ``(x, h0)`` [m] of a profile made by `from_table`, else None.
         self.table = None
 
@@ -363,13 +389,22 @@ class Gap(Profile):
         return f"Gap.from_table(x={x}, h0={h0}, breakpoints={points})"
 
     @classmethod
-    def from_table(cls, x: ArrayLike, h0: ArrayLike, breakpoints: Sequence[float] = ()) -> Gap:
-        """Profile from a table of gaps ``h0`` [m] at increasing positions ``x`` [m] (cubic spline)."""
+    def from_table(cls, x: ArrayLike, h0: ArrayLike, breakpoints: Sequence[float] | None = None) -> Gap:
+        """Profile from a table of gaps ``h0`` [m] at increasing positions ``x`` [m], by cubic splines.
+
+        A cubic spline has a continuous curvature, so across a jump of the table's curvature (the end
+        of a flat, two radii meeting) it rings, and the pressure and traction next to the jump with it.
+        The table is therefore interpolated by one spline between each two `breakpoints` (`_Segments`),
+        each carried on to the breakpoints from its side. `breakpoints` None: those the table shows
+        (`table_breakpoints`); a sequence, those (empty: none, one spline over the whole table).
+        """
         from scipy.interpolate import CubicSpline
 
         x, h0 = np.asarray(x, float), np.asarray(h0, float)
-        spline = CubicSpline(x, h0)
-        profile = cls(spline, spline.derivative(), breakpoints)
+        points = table_breakpoints(x, h0) if breakpoints is None else _positions(breakpoints)
+        inside = points[(points > x[0]) & (points < x[-1])]
+        spline = CubicSpline(x, h0) if not inside.size else _Segments.fit(x, h0, inside)
+        profile = cls(spline, spline.derivative(), points)
         profile.table = (x, h0)
         return profile
 
@@ -394,7 +429,8 @@ class Gap(Profile):
         return cls.from_table(x, h0, breakpoints.tolist())
 
     def check(self, a: float, centre: float, P: float, E_star: float) -> None:  # noqa: B027 (a default: closed-form profiles pass)
-        """Raise ValueError naming where the contact fails: outside the table, or a negative pressure.
+        """Raise ValueError naming where the contact fails: outside the table, too narrow for its rows
+        (`TABLE_RESOLUTION`), or a negative pressure.
 
         The pressure is sampled at `CHECK_POINTS` Chebyshev angles; one below `NEGATIVE_PRESSURE`
         of the largest is negative. For a table, the message starts with the first knot in the
@@ -405,6 +441,16 @@ class Gap(Profile):
             x = self.table[0]
             table = f"[{x[0]:.6g}, {x[-1]:.6g}] m"
             self._refuse(x[0], x[-1], f"the contact [{low:.6g}, {high:.6g}] m leaves the table's x in {table}")
+        if self.table is not None:
+            x = self.table[0]
+            row = min(max(int(np.searchsorted(x, centre)), 1), x.size - 1)
+            spacing = x[row] - x[row - 1]
+            if 2 * a < TABLE_RESOLUTION * spacing:
+                raise ValueError(
+                    f"the contact [{low:.6g}, {high:.6g}] m is narrower than {TABLE_RESOLUTION:g} of the spacing "
+                    f"{spacing:.6g} m of the table's rows there, where the spline's slope is lost to rounding: "
+                    "tabulate the gap finer where the bodies touch"
+                )
         t = np.cos((np.arange(CHECK_POINTS) + 0.5) * np.pi / CHECK_POINTS)[::-1]
         p = self.pressure(t, a, centre, P, E_star)
         negative = np.flatnonzero(p < -NEGATIVE_PRESSURE * p.max())
@@ -443,15 +489,166 @@ class Gap(Profile):
 
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         load = lambda a: np.pi * a * E_star * self._coefficients(a, self._centre(a))[1] / 4  # noqa: E731
-        low, high = _bracket(lambda a: load(a) - P, 0.5, 2.0, lower=0.0)
-        a = optimize.brentq(lambda a: load(a) / P - 1, low, high, xtol=1e-300, rtol=_RTOL)
-        return a, self._centre(a)
+        try:
+            with np.errstate(over="ignore"):  # an overflowing load is above P: the bracket narrows
+                low, high = _bracket(lambda a: load(a) - P, 0.5, 2.0, lower=0.0)
+                a = optimize.brentq(lambda a: load(a) / P - 1, low, high, xtol=1e-300, rtol=_RTOL)
+            return a, self._centre(a)
+        except RuntimeError:  # brentq's: the load, or b_0 of the centre, is not monotonic to rounding
+            raise ValueError(
+                f"profile: no contact solution found for P = {P:g} N/m: the load does not converge in the half-width "
+                "(rounding of the slope on a contact far narrower than the gap's features, such as a table's rows)"
+            ) from None
 
     def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
+        """The pressure [Pa]: the sine series of the Notes, or where the contact holds a breakpoint, its integral.
+
+        Next to a breakpoint the series converges slowly (at a cusp ``|x|^(3/2)`` its 1024 terms leave the
+        pressure 1.3 % low), so there the pressure is the integral of eq (1) bounded at both ends,
+        ``p = (E_star / 2 pi) sin(theta) int_0^pi (h0'(centre + a cos u) - h0'(centre + a t)) / (cos u - t) du``
+        (the principal value taken out by the subtracted slope, since ``PV int_0^pi du / (cos u - t) = 0``),
+        by Gauss-Legendre on the pieces between ``theta`` and the breakpoints, graded toward each end
+        (`_pressure_integral`).
+        """
+        breaks = (np.asarray(self.breakpoints, dtype=float) - centre) / a
+        breaks = breaks[np.abs(breaks) < 1]
+        if breaks.size:
+            return self._pressure_integral(np.asarray(t, dtype=float), a, centre, E_star, np.arccos(breaks))
         coefficients = self._coefficients(a, centre)
         n = np.arange(1, coefficients.size)
         theta = np.arccos(np.clip(t, -1, 1))
         return E_star / 2 * np.sin(np.multiply.outer(theta, n)) @ coefficients[1:]
+
+    def _pressure_integral(self, t: np.ndarray, a: float, centre: float, E_star: float, kinks: np.ndarray):
+        """`pressure` [Pa] at `t` by its integral, split at ``theta = arccos(t)`` and the angles `kinks` [rad].
+
+        On each piece ``[lo, hi]``, ``u = lo + (hi - lo) sin(psi / 2)^2`` at `PRESSURE_GAUSS` Gauss-Legendre
+        points ``psi`` in ``(0, pi)``: the integrand's singularities at the ends (``|u - kink|^(-1/2)`` at a
+        cusp, a jump at a curvature jump) become smoother in ``psi``. A ``theta`` at a distance ``d`` from the
+        nearest kink makes the integrand vary on the scale ``d`` between the two, so the pieces are also cut
+        at ``d 2^j`` on either side of their midpoint, out to ``[0, pi]``: each piece then lies at least its
+        own length from both, and at a kink itself (``d`` taken as ``pi 2^-PRESSURE_OCTAVES``) the pieces
+        that halve toward it integrate its singularity (``|u - kink|^(n - 2)`` at a cusp ``|x|^n``).
+        """
+        flat = np.clip(t.ravel(), -1.0, 1.0)
+        theta = np.arccos(flat)
+        d = np.maximum(np.min(np.abs(theta[:, None] - kinks), axis=1), np.pi * 2.0**-PRESSURE_OCTAVES)
+        octaves = np.ceil(np.log2(np.pi / d)).astype(int)
+        p = np.empty(flat.size)
+        for count in np.unique(octaves).tolist():
+            group = np.flatnonzero(octaves == count)
+            for chunk in np.array_split(group, -(-group.size // PRESSURE_CHUNK)):
+                nearest = kinks[np.argmin(np.abs(theta[chunk, None] - kinks), axis=1)]
+                middle, offsets = (theta[chunk] + nearest) / 2, d[chunk, None] * 2.0 ** np.arange(count)
+                cuts = np.column_stack(
+                    [
+                        np.broadcast_to(np.concatenate([[0.0, np.pi], kinks]), (chunk.size, kinks.size + 2)),
+                        theta[chunk],
+                        middle[:, None] - offsets,
+                        middle[:, None] + offsets,
+                    ]
+                )
+                cuts = np.sort(np.clip(cuts, 0.0, np.pi), axis=1)
+                p[chunk] = self._pieces(flat[chunk], cuts, a, centre) * E_star / (2 * np.pi) * np.sin(theta[chunk])
+        return p.reshape(t.shape)
+
+    def _pieces(self, t: np.ndarray, cuts: np.ndarray, a: float, centre: float) -> np.ndarray:
+        """``int_0^pi (h0'(centre + a cos u) - h0'(centre + a t)) / (cos u - t) du`` [-] at each of `t` (n,), on
+        the pieces between its ascending `cuts` (n, K) [rad], graded toward both ends (`_pressure_integral`)."""
+        lo, width = cuts[:, :-1, None], np.diff(cuts, axis=1)[:, :, None]
+        u = lo + width * np.sin(_PSI / 2) ** 2
+        apart = np.cos(u) - t[:, None, None]  # zero only where u rounds to theta, at an end: a bounded point dropped
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = (self.slope(centre + a * np.cos(u)) - self.slope(centre + a * t)[:, None, None]) / apart
+        return np.sum(np.where((width > 0) & (apart != 0), ratio * width * _PSI_WEIGHTS, 0.0), axis=(1, 2))
+
+
+#: A jump of the table's curvature (`table_breakpoints`) is a change of its second divided differences across an
+#: interval larger than `JUMP_RATIO` times their changes over as many rows on either side, and than
+#: `JUMP_FLOOR` times their largest magnitude (above rounding).
+JUMP_RATIO = 10.0
+JUMP_FLOOR = 1e-3
+
+
+def _positions(breakpoints: Sequence[float]) -> np.ndarray:
+    """`breakpoints` [m] as an ascending array without repeats; ValueError unless a list of finite numbers."""
+    points = np.asarray(breakpoints, dtype=float)
+    if points.ndim != 1 or not np.all(np.isfinite(points)):
+        raise ValueError(f"breakpoints must be a list of positions [m], found {breakpoints!r}")
+    return np.unique(points)
+
+
+def table_breakpoints(x: np.ndarray, h0: np.ndarray) -> np.ndarray:
+    """Positions [m] where the curvature of the table ``h0(x)`` [m] jumps, found from its rows.
+
+    ``D_i``, twice the second divided difference of rows ``i - 1, i, i + 1``, is the curvature there for a
+    smooth gap, and changes little from row to row (by the third derivative times the spacing). Across a
+    jump between rows ``k`` and ``k + 1`` the curvature to its left, ``D_(k-1)``, and to its right,
+    ``D_(k+2)``, differ by the jump, far more (`JUMP_RATIO`) than over as many rows on either side. The
+    jump is then placed where the parabolas through rows ``k - 2 .. k`` and ``k + 1 .. k + 3`` meet with a
+    common slope, the vertex of their difference, which is ``(J / 2) (x - b)^2`` for a gap continuous
+    with its slope and of constant curvature on either side; a vertex outside ``[x_k, x_(k+1)]`` is no
+    jump there. Tables of fewer than 8 rows show none. Cusps (an unbounded curvature) are not looked for.
+    """
+    if x.size < 8:
+        return np.zeros(0)
+    D = 2 * np.diff(np.diff(h0) / np.diff(x)) / (x[2:] - x[:-2])  # D[i - 1] at row i
+    k = np.arange(3, x.size - 4)  # intervals [x_k, x_(k+1)] with 3 rows left and 4 right of them
+    change = np.abs(D[k + 1] - D[k - 2])
+    beside = np.maximum(np.abs(D[k - 2] - D[k - 3]), np.abs(D[k + 2] - D[k + 1])) * 3
+    found = []
+    for i in k[(change > JUMP_RATIO * beside) & (change > JUMP_FLOOR * np.abs(D).max())].tolist():
+        left = np.polyfit(x[i - 2 : i + 1], h0[i - 2 : i + 1], 2)
+        right = np.polyfit(x[i + 1 : i + 4], h0[i + 1 : i + 4], 2)
+        difference = right - left
+        if difference[0] != 0:
+            spacing = x[i + 1] - x[i]
+            vertex = -difference[1] / (2 * difference[0])  # a jump at a row: its rounding may leave it just outside
+            if x[i] - 1e-3 * spacing <= vertex <= x[i + 1] + 1e-3 * spacing:
+                vertex = min(max(vertex, x[i]), x[i + 1])
+                if not any(abs(vertex - b) <= spacing for b in found):
+                    found.append(float(vertex))
+    return np.array(found)
+
+
+class _Segments:
+    """Cubic splines of a table between its breakpoints, called as a `scipy.interpolate.CubicSpline` is.
+
+    Each spline is fitted to the rows from one breakpoint to the next (a row at a breakpoint ends both
+    of its pieces) and carried on to them from its side (`Gap.from_table`).
+    """
+
+    def __init__(self, splines, bounds):
+        self.splines, self.bounds = splines, bounds
+
+    @classmethod
+    def fit(cls, x: np.ndarray, h0: np.ndarray, bounds: np.ndarray) -> _Segments:
+        """The splines of the table `x`, `h0` [m] between the ascending `bounds` [m] inside it."""
+        from scipy.interpolate import CubicSpline
+
+        edges = np.concatenate([[x[0]], bounds, [x[-1]]])
+        splines = []
+        for low, high in itertools.pairwise(edges.tolist()):
+            rows = (x >= low) & (x <= high)
+            if np.count_nonzero(rows) < 2:
+                raise ValueError(
+                    f"breakpoints: fewer than 2 rows of the table lie in [{low:.6g}, {high:.6g}] m, between two of "
+                    f"the breakpoints {bounds.tolist()}, expected a spline's worth on each piece"
+                )
+            splines.append(CubicSpline(x[rows], h0[rows]))
+        return cls(splines, bounds)
+
+    def __call__(self, x: ArrayLike, nu: int = 0) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        piece = np.searchsorted(self.bounds, x)
+        values = np.empty(x.shape)
+        for k, spline in enumerate(self.splines):
+            on = piece == k
+            values[on] = spline(x[on], nu)
+        return values
+
+    def derivative(self) -> _Segments:
+        return _Segments([spline.derivative() for spline in self.splines], self.bounds)
 
 
 #: Taylor coefficients of ``x - sin x = sum_k (-1)^k x^(2k+3) / (2k+3)!``, k = 0 .. 7.

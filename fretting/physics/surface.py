@@ -20,7 +20,7 @@ import numpy as np
 
 from fretting.physics.contact import SPECIMEN
 
-__all__ = ["SurfaceStress", "bulk_stress", "hilbert_matrix"]
+__all__ = ["ClosedFormSurfaceStress", "SurfaceStress", "bulk_stress", "ellipse_stress", "hilbert_matrix"]
 
 
 def bulk_stress(sigma, body, bulk=None, specimen=SPECIMEN):
@@ -72,7 +72,51 @@ class SurfaceStress:
         body : {1, 2}
         """
         sign = 1.0 if body == 1 else -1.0
-        return sign * ((q * self._root) @ self._kernel) - p + bulk
+        return sign * self.of_traction(q) - p + bulk
+
+    def of_traction(self, q):
+        """``-(2/pi) PV int q(xi) / (x - xi) dxi`` [Pa] at the nodes, of `q` [Pa] there (shape (N,) or (steps, N))."""
+        return (q * self._root) @ self._kernel
+
+
+class ClosedFormSurfaceStress(SurfaceStress):
+    """`SurfaceStress` of a traction whose part ``-(2/pi) PV int q(xi) / (x - xi) dxi`` is known in closed form.
+
+    The exact models' traction on a Hertz contact is a sum of elliptical loads (`fretting.models.exact`,
+    `fretting.models.inphase`), each of whose stress is `ellipse_stress`: summed by the model at each
+    step, or by `fretting.analysis.nucleation.surface_stress` from the loads it rebuilds, it is exact at
+    every node, the square-root profile at each stick end included, which no interpolation of ``q``
+    between the nodes gives.
+
+    Parameters
+    ----------
+    stress : ndarray, shape (N,) or (steps, N)
+        That part of the stress of body 1 [Pa] at the nodes.
+    """
+
+    def __init__(self, stress):
+        self._stress = stress
+
+    def of_traction(self, q):
+        """The stress known in closed form [Pa]; `q`, the same traction at the nodes, is not read."""
+        return self._stress
+
+
+def ellipse_stress(t, half_width, centre=0.0):
+    """``-(2/pi) PV int sqrt(1 - ((s - e) / c)^2) / (t - s) ds`` [-] at `t`: the surface ``sigma_xx`` per unit peak.
+
+    The elliptical shear load of half-width ``c`` centred at ``e`` (all lengths in one unit; arrays
+    broadcast) gives ``-2 X / c`` inside (``X = t - e``, ``|X| < c``) and ``-2 (X - sign(X) sqrt(X^2 -
+    c^2)) / c`` outside, written ``-2 sign(X) c / (|X| + sqrt(X^2 - c^2))`` without cancellation
+    (McEwen 1949 [2]_ at the surface; Johnson 1985 [1]_, eq 7.8 at ``z = 0``). The stress has a
+    vertical tangent outside each end of the load, where the traction's slope is unbounded.
+    """
+    X = np.asarray(t, dtype=float) - centre
+    c = np.asarray(half_width, dtype=float)
+    outside = np.sqrt(np.clip((np.abs(X) - c) * (np.abs(X) + c), 0.0, None))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        beyond = np.sign(X) * c / (np.abs(X) + outside)
+    return -2 * np.where(np.abs(X) < c, X / c, beyond)
 
 
 def hilbert_matrix(t):

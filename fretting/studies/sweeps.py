@@ -8,9 +8,12 @@ is read through the checks of `fretting.read_history` and run by `fretting.engin
 defaults, on the workers of a dask.distributed cluster: a `distributed.LocalCluster` of one
 single-threaded worker process per core, or the scheduler at a given address.
 
-With an output file, each finished case is written to its own file in ``OUT.cases/`` (named by a
-digest of the base history and the case's values, which it also records), so that a sweep run
-again, interrupted or extended, only runs the cases it has no file for.
+Each case is read here, on the machine that submits it: the workers get its contact and load
+history, and read no file. With an output file, each finished case is written to its own file in
+``OUT.cases/`` (named by a digest of the base history, the case's values, the release of fretting
+and the contents of the tables the case reads, which the file also records), so that a sweep run
+again, interrupted or extended, only runs the cases it has no file for; a case also runs alone
+(`run_one`), as a task of a job array.
 
 A sweep file (TOML) names its base history, ``history = "FILE"`` (relative to the sweep file),
 or holds it (``[contact]`` and ``[[loading]]`` tables), and lists the values in a ``[grid]``
@@ -22,6 +25,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import errno
+import functools
 import hashlib
 import itertools
 import json
@@ -29,6 +33,7 @@ import logging
 import math
 import os
 import re
+import time
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -41,24 +46,42 @@ from fretting._version import __version__
 from fretting.analysis import nucleation
 from fretting.engine.simulation import simulate
 from fretting.errors import GrossSlipError, MissingDependencyError
+from fretting.loading.examples import EXAMPLES
+from fretting.loading.history import History
 from fretting.loading.history_file import HistoryFileError, read_history_data, read_history_source
-from fretting.results.io import ENGINE, recorded_path, save, with_current_units
+from fretting.physics.contact import Contact
+from fretting.results.io import ENGINE, ResultError, recorded_path, save, with_current_units
 
 __all__ = [
+    "KEY",
     "REGIMES",
+    "SWEEPS",
     "VARIABLES",
     "Base",
+    "Case",
     "Sweep",
-    "add_arguments",
+    "case_file",
+    "curves",
+    "dimension",
+    "figures_for",
     "fretting_map",
+    "is_sweep_file",
+    "keys",
+    "load_sweep",
+    "put",
     "read_sweep",
-    "run",
+    "resolve_sweep",
     "run_case",
+    "run_one",
     "run_sweep",
     "save_map",
     "summarize",
     "sweep",
+    "value_text",
 ]
+
+#: The folder of the sweep files shipped with the package, which run by name (`resolve_sweep`).
+SWEEPS = EXAMPLES / "sweeps"
 
 #: Contact regimes, by their code in the variable ``regime``.
 REGIMES = ("stuck", "partial_slip", "gross_slip")
@@ -134,8 +157,17 @@ REGIME_COLOURS = ("#eeeeee", "#cfe2f3", "#f4c7c3")
 #: Resolution of the map that `save_map` writes, as `fretting plot`'s figures.
 MAP_DPI = 100
 
+#: Seconds a sweep waits for the file of its scheduler to appear (`sweep`'s `scheduler_file`).
+SCHEDULER_FILE_SECONDS = 60.0
+
+#: Variables of a sweep that `fretting plot` draws against the swept values (`curves`).
+CURVES = ("energy_per_cycle", "w_max", "slip_amplitude_max", "total_dissipation")
+
+#: Most curves of one figure that `curves` gives a legend: more would hide the figure.
+CURVE_LEGEND = 10
+
 #: A grid key: names with block numbers from 1, joined by dots.
-_KEY = re.compile(r"[A-Za-z_]\w*(\[[1-9]\d*\])*(\.[A-Za-z_]\w*(\[[1-9]\d*\])*)*")
+KEY = re.compile(r"[A-Za-z_]\w*(\[[1-9]\d*\])*(\.[A-Za-z_]\w*(\[[1-9]\d*\])*)*")
 _PART = re.compile(r"\[(\d+)\]|(\w+)")
 
 
@@ -184,6 +216,45 @@ class Sweep:
         """``{key: value}`` of every case, the last key varying fastest."""
         return [dict(zip(self.grid, values, strict=True)) for values in itertools.product(*self.grid.values())]
 
+    def case(self, values):
+        """The `Case` of the values `values` (``{key: value}``), read from the base history and its tables.
+
+        Raises HistoryFileError as `read_sweep` does, when the values fail together.
+        """
+        tables = []
+        contact, history = _scene(self.base, values, self.origin, tables)
+        digests = dict.fromkeys(hashlib.sha256(Path(table).read_bytes()).hexdigest() for table in tables)
+        return Case(values, contact, history, tuple(digests))
+
+
+@dataclass(frozen=True, eq=False)
+class Case:
+    """One case of a sweep, read on the machine that submits it: what a worker runs reads no file.
+
+    Attributes
+    ----------
+    values : dict
+        Key -> its value in this case.
+    contact : fretting.Contact
+    history : fretting.History
+        The base history with these values, as `fretting.read_history` reads it.
+    tables : tuple of str
+        Hex SHA-256 digests of the table files (CSV) the case was read from, in the order read.
+    """
+
+    values: dict
+    contact: Contact
+    history: History
+    tables: tuple
+
+    def identity(self, base):
+        """What the case's file records to say what it was run from, on the base history `base`: the
+        base, the case's values, the release of fretting that ran it and its tables' digests (a case
+        run by another release, or from another table, is run again)."""
+        identity = {"base_sha256": base.sha256, "case": json.dumps(self.values, sort_keys=True)}
+        identity["fretting_version"] = __version__
+        return identity | ({"tables_sha256": " ".join(self.tables)} if self.tables else {})
+
 
 def sweep(
     path: str | os.PathLike,
@@ -191,6 +262,7 @@ def sweep(
     scheduler: str | None = None,
     *,
     output: str | os.PathLike | None = None,
+    scheduler_file: str | os.PathLike | None = None,
 ) -> xr.Dataset:
     """Run a history file for every combination of values of some of its keys.
 
@@ -201,24 +273,30 @@ def sweep(
     grid : mapping
         Dotted key of the file (``"contact.f"``, ``"loading[1].Q_amplitude"``: blocks counted from
         1) -> list of its values; one dimension per key, in this order. A key may be one the file
-        leaves at its default, in a table the file has.
+        leaves at its default, in a table the file has. A value may be a list (NumPy arrays are
+        lists), for a key that takes one: the vertices of a ``linear`` block.
     scheduler : str, optional
-        Address of a dask.distributed scheduler, e.g. ``"tcp://host:8786"``; its workers must import
-        `fretting` and read the tables the history names. Default: a `distributed.LocalCluster` of
-        ``min(cores, cases)`` single-threaded worker processes, closed on return.
+        Address of a dask.distributed scheduler, e.g. ``"tcp://host:8786"`` (of a
+        `dask_jobqueue.SLURMCluster`: its ``scheduler_address``); its workers must import `fretting`.
+        Default: a `distributed.LocalCluster` of ``min(cores, cases)`` single-threaded worker
+        processes, closed on return.
     output : str or os.PathLike, optional
         Dataset file to write (`fretting.save`); each case goes to its own file in the folder
         ``output`` with the suffix ``.cases``, and a case that has one there is not run again.
+    scheduler_file : str or os.PathLike, optional
+        The file of the scheduler to use instead of `scheduler`, as ``dask scheduler
+        --scheduler-file FILE`` writes it.
 
     Returns
     -------
     xarray.Dataset
-        The variables of `VARIABLES`, dims the keys of `grid` (coordinates their values).
+        The variables of `VARIABLES`, one dimension per key of `grid` (`dimension` names it) whose
+        coordinate holds its values.
 
     Raises
     ------
     OSError
-        When the file cannot be read, or the scheduler does not answer.
+        When the file or a table it names cannot be read, or the scheduler does not answer.
     HistoryFileError
         When the file is malformed, a key is not in it, or a value is not one the key takes.
     MissingDependencyError
@@ -226,7 +304,29 @@ def sweep(
     """
     source = read_history_source(path)
     base = Base(source.path, source.text, tomllib.loads(source.text))
-    return run_sweep(Sweep(base, _checked_grid(base, grid, source.path), source.path), scheduler, output)
+    plan = Sweep(base, _checked_grid(base, grid, source.path), source.path)
+    return run_sweep(plan, scheduler, output, scheduler_file=scheduler_file)
+
+
+def resolve_sweep(file):
+    """The sweep file that `file` names: a path, or the name of a shipped sweep (`SWEEPS`), as a `pathlib.Path`.
+
+    A file that exists wins over a shipped sweep of the same name.
+
+    Raises
+    ------
+    FileNotFoundError
+        When neither exists; its message lists the shipped sweeps.
+    """
+    path = Path(file)
+    if path.exists():
+        return path
+    shipped = SWEEPS / f"{str(file).removesuffix('.toml')}.toml"
+    if "/" in str(file) or "\\" in str(file) or not shipped.is_file():
+        names = ", ".join(path.stem for path in sorted(SWEEPS.glob("*.toml")))
+        problem = f"{os.strerror(errno.ENOENT)}, nor a shipped sweep: expected a sweep file or one of: {names}"
+        raise FileNotFoundError(errno.ENOENT, problem, str(file))
+    return shipped
 
 
 def read_sweep(path):
@@ -290,27 +390,42 @@ def _flat(table, prefix=""):
 def _checked_grid(base, grid, origin):
     """`grid` as ``{key: list of values}``, each value checked in the base history alone.
 
-    Values that only fail together (say a load and a radius) are found when their case runs.
+    Values that only fail together (say a load and a radius) are found when their case is read.
     """
     if not isinstance(grid, Mapping) or not grid:
         raise HistoryFileError(origin, None, "grid", f"found {_show(grid)}, expected keys and lists of their values")
     checked = {}
     for key, values in grid.items():
         label = f"grid.{key}"
-        if not isinstance(key, str) or not _KEY.fullmatch(key):
+        if not isinstance(key, str) or not KEY.fullmatch(key):
             problem = 'found a malformed key, expected one like "loading[1].Q_amplitude"'
             raise HistoryFileError(origin, None, label, problem)
         if not isinstance(values, (list, tuple, np.ndarray)) or not len(values):
             raise HistoryFileError(origin, None, label, f"found {_show(values)}, expected a list of values")
-        values = [value.item() if isinstance(value, np.generic) else value for value in values]
-        for value in values:
-            if not isinstance(value, (bool, int, float, str)):
-                raise HistoryFileError(origin, None, label, f"found {_show(value)}, expected numbers, booleans or text")
-            if values.count(value) > 1:
+        plain = [_plain(value) for value in values]
+        for given, value in zip(values, plain, strict=True):
+            if value is _NOT_PLAIN:
+                problem = "expected numbers, booleans, text or lists of them"
+                raise HistoryFileError(origin, None, label, f"found {_show(given)}, {problem}")
+            if plain.count(value) > 1:
                 raise HistoryFileError(origin, None, label, f"found {_show(value)} twice, expected distinct values")
             _scene(base, {key: value}, origin)
-        checked[key] = values
+        checked[key] = plain
     return checked
+
+
+#: What `_plain` returns for a value that is not a number, boolean, text or a list of them.
+_NOT_PLAIN = object()
+
+
+def _plain(value):
+    """`value` as TOML holds it: NumPy scalars as Python numbers, arrays and tuples as lists; `_NOT_PLAIN` for
+    anything but numbers, booleans, text and lists of them."""
+    if isinstance(value, (list, tuple, np.ndarray)):
+        items = [_plain(item) for item in value]
+        return _NOT_PLAIN if any(item is _NOT_PLAIN for item in items) else items
+    value = value.item() if isinstance(value, np.generic) else value
+    return value if isinstance(value, (bool, int, float, str)) else _NOT_PLAIN
 
 
 def _show(value):
@@ -319,19 +434,20 @@ def _show(value):
     return text if len(text) <= 40 else f"{text[:37]}..."
 
 
-def _scene(base, case, origin):
-    """Contact and history of the base history with the values of `case` in place of its own.
+def _scene(base, case, origin, tables=None):
+    """Contact and history of the base history with the values of `case` in place of its own; the
+    path of each table file read is appended to the list `tables`, when given.
 
     Raises HistoryFileError naming `origin` and the key when a value of `case` is at fault, and
     the base history and the case when the values fail together.
     """
     data = copy.deepcopy(base.data)
     for key, value in case.items():
-        if not _put(data, key, value):
+        if not put(data, key, value):
             problem = f"found no such table in {base.path}, expected a key of one of its tables (blocks from 1)"
             raise HistoryFileError(origin, None, f"grid.{key}", problem)
     try:
-        return read_history_data(base.path, base.text, data)
+        return read_history_data(base.path, base.text, data, tables)
     except HistoryFileError as error:
         if error.key in case:
             raise HistoryFileError(origin, None, f"grid.{error.key}", error.problem) from None
@@ -339,8 +455,9 @@ def _scene(base, case, origin):
         raise HistoryFileError(error.path, error.line, error.key, f"{error.problem} (in the case {values})") from None
 
 
-def _put(data, key, value):
-    """Set `key` to `value` in the TOML mapping `data`; False when the table that holds the key is missing."""
+def put(data, key, value):
+    """Set the dotted `key` (`KEY`) to `value` in the TOML mapping `data` of a history file; False when the
+    table that holds the key is missing."""
     parts = [int(number) - 1 if number else name for number, name in _PART.findall(key)]
     table = data
     for part in parts[:-1]:
@@ -357,23 +474,14 @@ def _put(data, key, value):
     return True
 
 
-def run_case(base, case, origin):
-    """The variables of `VARIABLES` of the base history with the values of `case`: what the workers run.
-
-    Parameters
-    ----------
-    base : Base
-    case : dict
-        Key -> value.
-    origin : pathlib.Path
-        The file of the grid, named in errors about a value.
+def run_case(contact, history):
+    """The variables of `VARIABLES` of a case, the contact `contact` under the history `history`: what the workers run.
 
     Returns
     -------
     xarray.Dataset
         Scalars; a gross-slip case has regime 2, the step that slid and NaN energies.
     """
-    contact, history = _scene(base, case, origin)
     try:
         return summarize(simulate(contact, history))
     except GrossSlipError as error:
@@ -409,46 +517,76 @@ def _attrs(name):
     return attrs
 
 
-def run_sweep(plan, scheduler=None, output=None):
-    """Run every case of the `Sweep` `plan` that has no file yet; the dataset of all (see `sweep`)."""
-    cases = plan.cases()
-    files = [None] * len(cases) if output is None else [_case_file(output, plan.base, case) for case in cases]
+def run_sweep(plan, scheduler=None, output=None, *, scheduler_file=None, progress=None):
+    """Run every case of the `Sweep` `plan` that has no file yet; the dataset of all (see `sweep`).
+
+    `progress`, when given, is called as ``progress(done, total)`` with the cases done, those that
+    have a file first, and after each case that finishes.
+    """
+    cases = [plan.case(values) for values in plan.cases()]
+    files = [None] * len(cases) if output is None else [case_file(output, plan.base, case) for case in cases]
     summaries = [_finished(file, plan.base, case) for file, case in zip(files, cases, strict=True)]
     todo = [k for k, summary in enumerate(summaries) if summary is None]
+    progress = progress or (lambda done, total: None)
+    progress(len(cases) - len(todo), len(cases))
     if todo:
         distributed = _distributed()
-        with _client(distributed, scheduler, len(todo)) as client:
-            futures = {client.submit(run_case, plan.base, cases[k], plan.origin, pure=False): k for k in todo}
-            for future in distributed.as_completed(futures):
+        with _client(distributed, scheduler, scheduler_file, len(todo)) as client:
+            futures = {client.submit(run_case, cases[k].contact, cases[k].history, pure=False): k for k in todo}
+            for done, future in enumerate(distributed.as_completed(futures), start=len(cases) - len(todo) + 1):
                 k = futures[future]
                 summaries[k] = future.result()
-                if files[k] is not None:
-                    title = f"fretting sweep case: {json.dumps(cases[k])}"
-                    save(summaries[k].assign_attrs(_identity(plan.base, cases[k]), title=title), files[k])
+                _keep(summaries[k], files[k], plan.base, cases[k])
+                progress(done, len(cases))
     dataset = _combine(plan, summaries)
     if output is not None:
         save(dataset, output)
     return dataset
 
 
-def _identity(base, case):
-    """Attributes of a case file that say what it was run from: the base history, the case's values
-    and the release of fretting that ran it (a case run by another release is run again)."""
-    return {"base_sha256": base.sha256, "case": json.dumps(case, sort_keys=True), "fretting_version": __version__}
+def run_one(plan, k, output):
+    """Run the case number `k` (from 0, in the order of `Sweep.cases`) of `plan` alone, in this process, into
+    the folder of case files of the sweep dataset `output`, unless its file is there already.
+
+    Returns
+    -------
+    file : pathlib.Path
+        The case's file.
+    summary : xarray.Dataset
+        Its variables.
+    ran : bool
+        False when the file was there already.
+    """
+    case = plan.case(plan.cases()[k])
+    file = case_file(output, plan.base, case)
+    summary = _finished(file, plan.base, case)
+    if summary is not None:
+        return file, summary, False
+    summary = run_case(case.contact, case.history)
+    _keep(summary, file, plan.base, case)
+    return file, summary, True
 
 
-def _case_file(output, base, case):
-    """``OUT.cases/<digest>.h5``: the file of `case`, named by a digest of the base history and its values."""
-    digest = hashlib.sha256(json.dumps(_identity(base, case), sort_keys=True).encode()).hexdigest()
+def _keep(summary, file, base, case):
+    """Write the variables `summary` of the `Case` `case` to its `file` (None: none kept)."""
+    if file is not None:
+        title = f"fretting sweep case: {json.dumps(case.values)}"
+        save(summary.assign_attrs(case.identity(base), title=title), file)
+
+
+def case_file(output, base, case):
+    """``OUT.cases/<digest>.h5``: the file of the `Case` `case` of a sweep of `base` written to `output`,
+    named by a digest of what it is run from (`Case.identity`)."""
+    digest = hashlib.sha256(json.dumps(case.identity(base), sort_keys=True).encode()).hexdigest()
     return Path(output).with_suffix(".cases") / f"{digest[:24]}.h5"
 
 
 def _finished(file, base, case):
-    """The case variables in `file` if it holds this case of this base history, else None."""
+    """The case variables in `file` if it holds the `Case` `case` of this base history, else None."""
     if file is None or not file.is_file():
         return None
     summary = with_current_units(xr.load_dataset(file, engine=ENGINE))  # a case file of fretting 0.1.0 too
-    identity = _identity(base, case)
+    identity = case.identity(base)
     return summary if all(summary.attrs.get(name) == value for name, value in identity.items()) else None
 
 
@@ -470,16 +608,24 @@ def _distributed():
 
 
 @contextlib.contextmanager
-def _client(distributed, scheduler, cases):
-    """A client of the module `distributed` to the scheduler at `scheduler`, or to a local cluster for `cases` cases."""
-    from dask.system import CPU_COUNT  # the cores this process may use; dask comes with distributed
+def _client(distributed, scheduler, scheduler_file, cases):
+    """A client of the module `distributed` to the scheduler at `scheduler`, or of `scheduler_file`, or to
+    a local cluster for `cases` cases."""
+    import dask.config  # dask comes with distributed
+    from dask.system import CPU_COUNT  # the cores this process may use
 
     Client, LocalCluster = distributed.Client, distributed.LocalCluster
-    if scheduler is not None:
+    if scheduler_file is not None:
+        _wait_for(Path(scheduler_file))
+    if scheduler is not None or scheduler_file is not None:
+        default = dask.config.get("scheduler", None)
         try:
-            client = Client(scheduler)
+            client = Client(scheduler, scheduler_file=None if scheduler_file is None else os.fspath(scheduler_file))
         except ValueError as error:  # a malformed address; one that does not answer raises OSError
-            raise OSError(errno.EINVAL, f"scheduler {scheduler}: {error}") from None
+            # the client that failed has made itself dask's default scheduler, for every later
+            # computation of this process (an xarray write included): put back the one before
+            dask.config.set(scheduler=default)
+            raise OSError(errno.EINVAL, f"scheduler {scheduler or scheduler_file}: {error}") from None
         with client:
             yield client
         return
@@ -498,15 +644,29 @@ def _client(distributed, scheduler, cases):
         yield client
 
 
+def _wait_for(scheduler_file):
+    """Return once the file `scheduler_file` is there: a scheduler started beside the sweep, in the same batch
+    job, writes it within seconds. Raises FileNotFoundError after `SCHEDULER_FILE_SECONDS` (dask would wait on)."""
+    deadline = time.monotonic() + SCHEDULER_FILE_SECONDS
+    while not scheduler_file.is_file():
+        if time.monotonic() > deadline:
+            problem = f"no scheduler wrote it in {SCHEDULER_FILE_SECONDS:g} s (dask scheduler --scheduler-file FILE)"
+            raise FileNotFoundError(errno.ENOENT, problem, str(scheduler_file))
+        time.sleep(0.1)
+
+
 def _combine(plan, summaries):
     """One dataset of the case datasets `summaries` (in the order of `Sweep.cases`), one dim per key."""
-    dims, shape = tuple(plan.grid), tuple(len(values) for values in plan.grid.values())
+    dims, shape = tuple(dimension(key) for key in plan.grid), tuple(len(values) for values in plan.grid.values())
     first = summaries[0]
     data = {
         name: (dims, np.array([summary[name].values for summary in summaries]).reshape(shape), first[name].attrs)
         for name in VARIABLES
     }
-    coords = {key: (key, np.array(values), _key_attrs(key, values)) for key, values in plan.grid.items()}
+    coords = {
+        dim: (dim, _coordinate(values), _key_attrs(key, values))
+        for dim, (key, values) in zip(dims, plan.grid.items(), strict=True)
+    }
     attrs = {
         "title": f"fretting sweep of {plan.base.path.name} over {' x '.join(plan.grid)}",
         "history_file": recorded_path(plan.base.path),
@@ -517,14 +677,84 @@ def _combine(plan, summaries):
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
+def dimension(key):
+    """The name of the dimension of the grid key `key` in a sweep dataset, valid in CF (letters, digits and
+    underscores, from a letter): its runs of other characters as one underscore.
+
+    Examples
+    --------
+    >>> dimension("loading[1].Q_amplitude"), dimension("contact.f")
+    ('loading_1_Q_amplitude', 'contact_f')
+    """
+    return re.sub(r"\W+", "_", key).strip("_")
+
+
+def _coordinate(values):
+    """The values of a key as a coordinate: lists (a vertex list is one value) as their JSON text."""
+    if any(isinstance(value, list) for value in values):
+        return np.array([json.dumps(value) for value in values])
+    return np.array(values)
+
+
 def _key_attrs(key, values):
-    """``long_name`` and, for numbers, ``units`` of the coordinate of `key`."""
+    """``long_name`` and ``key`` (the grid key, dotted) and, for numbers, ``units`` of the coordinate of `key`."""
     name = key.rsplit(".", 1)[-1]
+    attrs = {"long_name": key, "key": key}
+    if any(isinstance(value, list) for value in values):
+        return attrs | {"comment": "each value is a list, written as JSON"}
     numeric = all(isinstance(value, (int, float)) and not isinstance(value, bool) for value in values)
-    return {"long_name": key} | ({"units": UNITS.get(name, "1")} if numeric else {})
+    return attrs | ({"units": UNITS.get(name, "1")} if numeric else {})
 
 
-# -- Fretting maps ------------------------------------------------------------------------------
+def load_sweep(path):
+    """The dataset of a sweep file written by `sweep` or ``fretting sweep``, read into memory; a file of
+    an earlier release, whose dimensions are the dotted keys, too.
+
+    Raises
+    ------
+    FileNotFoundError
+        When there is no file at `path`.
+    ResultError
+        When it is not a sweep of fretting.
+    """
+    if not Path(path).is_file():
+        raise FileNotFoundError(errno.ENOENT, os.strerror(errno.ENOENT), str(path))
+    if not is_sweep_file(path):
+        raise ResultError(f"{path}: found no variable regime or attribute grid, expected a sweep of fretting")
+    return with_current_units(xr.load_dataset(path, engine=ENGINE))
+
+
+def is_sweep_file(path):
+    """Whether `path` is a sweep dataset's file: a netCDF file with a variable ``regime`` and an attribute ``grid``."""
+    try:
+        with xr.open_dataset(path, engine=ENGINE) as dataset:
+            return "regime" in dataset.variables and "grid" in dataset.attrs
+    except (OSError, ValueError):
+        return False
+
+
+def keys(cases):
+    """The grid key of each dimension of the sweep dataset `cases`: ``{dimension: dotted key}``."""
+    return {dim: cases[dim].attrs.get("key", dim) for dim in cases.regime.dims}
+
+
+# -- Figures -----------------------------------------------------------------------------------
+
+
+def figures_for(cases):
+    """The figures of the sweep dataset `cases`: ``{name: draw}``, each drawn by ``draw(cases, ax)``.
+
+    The `fretting_map` of a sweep over two keys of numbers, as ``map``; then the `curves` of each
+    variable of `CURVES` that some case has a value of, named as the variable.
+    """
+    dims = cases.regime.dims
+    figures = {}
+    if len(dims) == 2 and all(cases[dim].dtype.kind in "iuf" for dim in dims):
+        figures["map"] = fretting_map
+    for name in CURVES:
+        if np.isfinite(cases[name].values).any():
+            figures[name] = functools.partial(curves, name=name)
+    return figures
 
 
 def fretting_map(cases, ax):
@@ -545,17 +775,17 @@ def fretting_map(cases, ax):
     """
     if len(cases.dims) != 2:
         raise ValueError(f"a fretting map needs a sweep over two keys, found {len(cases.dims)}: {list(cases.dims)}")
-    x_key, y_key = cases.regime.dims
-    (x, x_label), (y, y_label) = (_axis(cases, key) for key in (x_key, y_key))
-    x, y = (values.transpose(y_key, x_key).values for values in xr.broadcast(x, y))
-    regime = cases.regime.transpose(y_key, x_key).values
+    x_dim, y_dim = cases.regime.dims
+    (x, x_label), (y, y_label) = (_axis(cases, dim) for dim in (x_dim, y_dim))
+    x, y = (values.transpose(y_dim, x_dim).values for values in xr.broadcast(x, y))
+    regime = cases.regime.transpose(y_dim, x_dim).values
     from matplotlib.colors import BoundaryNorm, ListedColormap  # here: `import fretting` does without matplotlib
     from matplotlib.patches import Patch
     from matplotlib.ticker import LogLocator
 
     colours = ListedColormap(REGIME_COLOURS)
     ax.pcolormesh(x, y, regime, cmap=colours, norm=BoundaryNorm(np.arange(len(REGIMES) + 1) - 0.5, len(REGIMES)))
-    energy = cases.energy_per_cycle.transpose(y_key, x_key).values
+    energy = cases.energy_per_cycle.transpose(y_dim, x_dim).values
     positive = energy[energy > 0]
     if positive.size and positive.min() < positive.max():
         levels = LogLocator(subs=(1, 3)).tick_values(positive.min(), positive.max())
@@ -567,16 +797,55 @@ def fretting_map(cases, ax):
     return ax
 
 
-def _axis(cases, key):
-    """Values of the coordinate `key` to draw (relative to what slides the contact, for loads) and its label."""
+def curves(cases, name, ax):
+    """Draw the variable `name` of the sweep dataset `cases` against the values of one key, a curve for each
+    combination of the values of the others; cases without a value (gross slip, no cycles) leave gaps.
+
+    Along x: the first key of numbers with more than one value (loads relative to what slides the
+    contact, as in `fretting_map`), else the first key, its values as labels.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    dims = cases.regime.dims
+    numeric = [dim for dim in dims if cases[dim].dtype.kind in "iuf" and cases.sizes[dim] > 1]
+    x_dim = (numeric or list(dims))[0]
+    others = [dim for dim in dims if dim != x_dim]
+    if x_dim in numeric:
+        x, x_label = _axis(cases, x_dim)
+    else:
+        x, x_label = xr.DataArray(np.arange(cases.sizes[x_dim]), dims=x_dim), keys(cases)[x_dim]
+        ax.set_xticks(x.values, [value_text(value) for value in cases[x_dim].values], rotation=30, ha="right")
+    names = keys(cases)
+    for index in itertools.product(*(range(cases.sizes[dim]) for dim in others)):
+        where = dict(zip(others, index, strict=True))
+        label = ", ".join(f"{names[dim]} = {value_text(cases[dim].values[k])}" for dim, k in where.items())
+        xs = x.isel({dim: k for dim, k in where.items() if dim in x.dims}).transpose(x_dim).values
+        ax.plot(xs, cases[name].isel(where).transpose(x_dim).values, marker="o", label=label or None)
+    if others and len(ax.lines) <= CURVE_LEGEND:
+        ax.legend(fontsize=7)
+    attrs = cases[name].attrs
+    ax.set(xlabel=x_label, ylabel=f"{name} [{attrs.get('units', '?')}]", title=attrs.get("long_name", name))
+    return ax
+
+
+def value_text(value):
+    """A value of a key as a legend, a tick or `fretting info` shows it: floats to 4 digits."""
+    return f"{value:.4g}" if isinstance(value, (float, np.floating)) else str(value)
+
+
+def _axis(cases, dim):
+    """Values of the coordinate `dim` to draw (relative to what slides the contact, for loads) and its label."""
+    key = keys(cases)[dim]
     load = key.rsplit(".", 1)[-1].split("_")[0]
-    units = cases[key].attrs.get("units")
+    units = cases[dim].attrs.get("units")
     if load not in SCALES:
-        return cases[key], f"{key} [{units}]" if units else key
+        return cases[dim], f"{key} [{units}]" if units else key
     scale_name, scale = SCALES[load]
     values = scale(cases)
     same = f" = {float(values.min()):.3g} {units}" if values.min() == values.max() else ""
-    return cases[key] / values, f"{key} / ({scale_name}{same})"
+    return cases[dim] / values, f"{key} / ({scale_name}{same})"
 
 
 def save_map(cases, path):
@@ -587,30 +856,3 @@ def save_map(cases, path):
     fretting_map(cases, figure.subplots())
     figure.savefig(path, dpi=MAP_DPI)
     return path
-
-
-# -- Command line -------------------------------------------------------------------------------
-
-
-def add_arguments(parser):
-    """Options of ``fretting sweep``."""
-    parser.add_argument("file", metavar="SWEEP", help="sweep file (TOML)")
-    parser.add_argument(
-        "-o", "--output", metavar="OUT", help="dataset (default: results/<sweep stem>.h5); cases go to OUT.cases/"
-    )
-    parser.add_argument(
-        "--scheduler",
-        metavar="ADDR",
-        help="dask scheduler address, e.g. tcp://host:8786 (default: a local cluster, one worker per core)",
-    )
-    return parser
-
-
-def run(args):
-    """Run the sweep file of `args`, write its dataset and print one line about it."""
-    output = Path(args.output) if args.output else Path("results") / f"{Path(args.file).stem}.h5"
-    cases = run_sweep(read_sweep(args.file), args.scheduler, output)
-    counts = np.bincount(cases.regime.values.ravel(), minlength=len(REGIMES))
-    regimes = ", ".join(f"{count} {name.replace('_', ' ')}" for count, name in zip(counts, REGIMES, strict=True))
-    keys = " x ".join(f"{key} ({size})" for key, size in cases.sizes.items())
-    print(f"{output}: {cases.regime.size} cases over {keys}: {regimes}")

@@ -12,7 +12,7 @@ import numpy as np
 import pint
 import pytest
 import xarray as xr
-from conftest import HERTZ_TOML
+from conftest import SINE_TOML as SINE
 
 import fretting as fr
 from fretting import cli
@@ -23,19 +23,6 @@ from fretting.results.variables import VARIABLES
 from fretting.studies import sweeps
 
 UNITS = pint.UnitRegistry()
-
-#: A short cyclic history of the Hertzian contact of conftest (f P = 70 kN/m).
-SINE = (
-    HERTZ_TOML
-    + """
-[[loading]]
-kind = "sine"
-Q_amplitude = 30e3
-sigma_amplitude = 20e6
-cycles = 2
-steps_per_cycle = 16
-"""
-)
 
 
 @pytest.fixture(scope="module")

@@ -5,6 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import dask.config
 import numpy as np
 import pytest
 import xarray as xr
@@ -16,7 +17,7 @@ from fretting import cli
 from fretting.loading.examples import EXAMPLES
 from fretting.loading.history_file import HistoryFileError
 from fretting.studies import sweeps
-from fretting.studies.sweeps import REGIMES, VARIABLES, read_sweep, save_map, summarize
+from fretting.studies.sweeps import REGIMES, VARIABLES, dimension, read_sweep, save_map, summarize
 
 #: A short cyclic history: f P = 70 kN/m, so Q = 75 kN/m slides and Q = sigma = 0 sticks.
 BASE = (
@@ -32,6 +33,7 @@ ramp_steps = 4
 """
 )
 Q_KEY, SIGMA_KEY = "loading[1].Q_amplitude", "loading[1].sigma_amplitude"
+Q_DIM, SIGMA_DIM = "loading_1_Q_amplitude", "loading_1_sigma_amplitude"  # the dimensions, named as CF allows
 GRID = {Q_KEY: [0.0, 30e3, 75e3], SIGMA_KEY: [0.0, 60e6]}
 
 
@@ -70,21 +72,21 @@ def direct(folder, Q, sigma):
 @pytest.mark.slow
 def test_every_case_is_a_direct_simulate_of_its_scene(swept, tmp_path):
     base, output, cases = swept
-    assert list(cases.dims) == [Q_KEY, SIGMA_KEY]
+    assert list(cases.dims) == [Q_DIM, SIGMA_DIM] == [dimension(key) for key in GRID]
     for key, values in GRID.items():
-        np.testing.assert_array_equal(cases[key].values, values)
-    assert cases[Q_KEY].attrs == {"long_name": Q_KEY, "units": "N/m"}
+        np.testing.assert_array_equal(cases[dimension(key)].values, values)
+    assert cases[Q_DIM].attrs == {"long_name": Q_KEY, "key": Q_KEY, "units": "N/m"}
     np.testing.assert_array_equal(cases.regime.values, [[0, 1], [1, 1], [2, 2]])  # stuck, partial, gross slip
     for Q in GRID[Q_KEY]:
         for sigma in GRID[SIGMA_KEY]:
-            case, expected = cases.sel({Q_KEY: Q, SIGMA_KEY: sigma}), direct(tmp_path, Q, sigma)
+            case, expected = cases.sel({Q_DIM: Q, SIGMA_DIM: sigma}), direct(tmp_path, Q, sigma)
             if isinstance(expected, fr.GrossSlipError):
                 assert int(case.gross_slip_step) == expected.step > 0
                 assert all(np.isnan(case[name]) for name in ("total_dissipation", "energy_per_cycle", "w_max"))
                 continue
             for name in VARIABLES:
                 np.testing.assert_array_equal(case[name].values, expected[name].values, err_msg=name)
-    stuck = cases.isel({Q_KEY: 0, SIGMA_KEY: 0})
+    stuck = cases.isel({Q_DIM: 0, SIGMA_DIM: 0})
     assert float(stuck.total_dissipation) == float(stuck.slip_amplitude_max) == 0.0
     assert cases.regime.attrs["flag_meanings"] == " ".join(REGIMES)
     xr.testing.assert_identical(xr.load_dataset(output, engine="h5netcdf").drop_attrs(), cases.drop_attrs())
@@ -129,7 +131,8 @@ def test_a_case_run_by_another_release_is_run_again(swept, cluster, monkeypatch)
         ({"loading[2].Q_amplitude": [1.0]}, "grid.loading[2].Q_amplitude: found no such table in"),
         ({"contact.f": [-0.7]}, "grid.contact.f: found -0.7, expected a number > 0"),
         ({"contact.f": ["high"]}, 'grid.contact.f: found "high", expected a number > 0'),
-        ({"contact.f": [[0.5]]}, "grid.contact.f: found [0.5], expected numbers, booleans or text"),
+        ({"contact.f": [[0.5]]}, "grid.contact.f: found [0.5], expected a number > 0"),
+        ({"contact.f": [{"a": 0.5}]}, 'grid.contact.f: found {"a": 0.5}, expected numbers, booleans, text or lists'),
         ({"contact.f": []}, "grid.contact.f: found [], expected a list of values"),
         ({"contact.f": [0.5, 0.5]}, "grid.contact.f: found 0.5 twice, expected distinct values"),
         ({"contact.f": np.array([0.6, 0.6])}, "grid.contact.f: found 0.6 twice, expected distinct values"),
@@ -161,7 +164,7 @@ def test_command_line_on_a_local_cluster(tmp_path, capsys):
         f"{output}: 2 cases over {Q_KEY} (2) x contact.f (1): 0 stuck, 1 partial slip, 1 gross slip\n"
     )
     cases = xr.load_dataset(output, engine="h5netcdf")
-    assert list(cases.dims) == [Q_KEY, "contact.f"] and cases.attrs["history_file"] == "base.toml"
+    assert list(cases.dims) == [Q_DIM, "contact_f"] and cases.attrs["history_file"] == "base.toml"
     assert len(list(output.with_suffix(".cases").iterdir())) == 2
 
 
@@ -191,10 +194,14 @@ def test_bad_sweep_files_exit_2_with_one_line(tmp_path, capsys, text, message):
 def test_malformed_scheduler_address_exits_2(tmp_path, capsys):
     write(tmp_path / "base.toml", BASE.format(Q=20e3, sigma=0.0))
     sweep_file = write(tmp_path / "map.toml", 'history = "base.toml"\n[grid]\n"contact.f" = [0.5]\n')
+    default = dask.config.get("scheduler", None)
     assert cli.main(["sweep", str(sweep_file), "--scheduler", "nonsense"]) == 2
     assert capsys.readouterr().err == (
         f"fretting: error: {sweep_file}: scheduler nonsense: missing port number in address 'nonsense'\n"
     )
+    # the client that failed leaves dask's default scheduler as it was: a later write of this
+    # process does not go to the scheduler that never answered
+    assert dask.config.get("scheduler", None) == default
 
 
 @pytest.mark.slow

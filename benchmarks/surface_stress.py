@@ -1,0 +1,70 @@
+"""Error at every node and cost of `fretting.analysis.nucleation.surface_stress` on the exact models.
+
+A Hertz contact (R = 50 mm, E = 210 GPa, nu = 0.3, f = 0.6, P = 100 N/mm) under the default model:
+the largest error at any node, relative to p0, against Cattaneo-Mindlin at Q = 0.5 f P and
+Nowell-Hills at Q = 0.5 f P with sigma = 0.2 f p0 in phase (McEwen's surface stress of their
+elliptical loads), and the wall-clock time (best of `--repeats`) of `fretting.simulate`, whose
+engine tallies the per-cycle peaks of the surface stress, and of `surface_stress` on three
+histories: 20 sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within
+0.8 f P, and 200 cycles of in-phase Q and sigma. Run it on two checkouts to compare them:
+
+    python benchmarks/surface_stress.py [--repeats 3]
+"""
+
+import argparse
+import timeit
+
+import numpy as np
+
+import fretting as fr
+from fretting.analysis import nucleation
+from fretting.physics import closed_forms as cf
+
+CONTACT = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.6, 1e5)
+
+
+def ellipse_transform(x, centre, half_width):
+    """``-(2/pi) PV int sqrt(1 - ((s - centre)/half_width)^2) / (x - s) ds`` [-] (McEwen at the surface)."""
+    d = x - centre
+    return -2 * (d - np.sign(d) * np.sqrt(np.clip(d**2 - half_width**2, 0, None))) / half_width
+
+
+def closed_form_error(tau):
+    """Largest error [p0] of body 1's surface stress at Q = 0.5 f P with sigma = tau f p0 in phase."""
+    fP, fp0, a = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0, CONTACT.a
+    Q, sigma = 0.5 * fP, tau * fp0
+    result = fr.simulate(CONTACT, fr.History.piecewise_linear([0.0, Q], [0.0, sigma], 4))
+    x = result.x.values
+    b, e = cf.stick_half_width(CONTACT, Q), cf.nowell_hills_offset(CONTACT, sigma)
+    expected = -CONTACT.pressure(x) + fp0 * (ellipse_transform(x, 0.0, a) - b / a * ellipse_transform(x, e, b))
+    error = np.abs(nucleation.surface_stress(result, body=1).values[-1] - expected)
+    return result.attrs["model"], x.size, error.max() / CONTACT.p0, (x[error.argmax()] - e) / b
+
+
+def histories():
+    fP, fp0 = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0
+    walk = np.concatenate([[0.0], np.random.default_rng(1).uniform(-0.8, 0.8, 400) * fP])
+    return {
+        "sine, 20 x 64 steps": fr.History.sinusoidal(0.5 * fP, cycles=20, steps_per_cycle=64),
+        "random walk, 400 x 8 steps": fr.History.piecewise_linear(walk, None, 8),
+        "in phase, 200 x 64 steps": fr.History.sinusoidal(0.5 * fP, 0.3 * fp0, cycles=200, steps_per_cycle=64),
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    repeats = parser.parse_args().repeats
+    for tau in (0.0, 0.2):
+        model, nodes, error, where = closed_form_error(tau)
+        print(f"{model:8s} {nodes} nodes, sigma = {tau} f p0: largest error {error:.2e} p0, (x - e) / b = {where:.4f}")
+    for name, history in histories().items():
+        result = fr.simulate(CONTACT, history)
+        run = min(timeit.repeat(lambda history=history: fr.simulate(CONTACT, history), number=1, repeat=repeats))
+        stress = min(timeit.repeat(lambda result=result: nucleation.surface_stress(result), number=1, repeat=repeats))
+        size = f"{result.sizes['step']} steps x {result.sizes['x']} nodes"
+        print(f"{name} ({result.attrs['model']}, {size}): simulate {run:.3f} s, surface_stress {stress:.3f} s")
+
+
+if __name__ == "__main__":
+    main()
