@@ -9,7 +9,9 @@ import argparse
 import contextlib
 import dataclasses
 import json
+import signal
 import sys
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -88,11 +90,67 @@ PROGRESS_DELAY = 2.0
 
 
 def main(argv=None):
-    """Run the command line with the arguments `argv` (``sys.argv[1:]`` when None); return the exit code."""
+    """Run the command line with the arguments `argv` (``sys.argv[1:]`` when None); return the exit code.
+
+    Ctrl-C is `_Interrupts`': never lost, and said in one line. With `argv` None (the process's own
+    command line), an interrupt after the work is done is ignored: it would only kill the exiting
+    interpreter, with a traceback or none.
+    """
     args = _parser().parse_args(argv)
+    with _Interrupts() as interrupts:
+        code = _main(args, interrupts)
+    if argv is None and threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    return code
+
+
+class _Interrupts:
+    """SIGINT, while the block runs in the main thread: KeyboardInterrupt as Python's own handler raises
+    it, and remembered, so that one raised where Python cannot pass it on (a weakref callback or a
+    ``__del__``, which it reports as "Exception ignored" and drops: h5py and xarray run both) is
+    raised again at the next `check`, not lost, and is not reported there."""
+
+    def __init__(self):
+        self.lost = False
+
+    def __enter__(self):
+        self._main = threading.current_thread() is threading.main_thread()
+        if self._main:
+            self._handler = signal.signal(signal.SIGINT, self._interrupted)
+            self._hook, sys.unraisablehook = sys.unraisablehook, self._unraisable
+        return self
+
+    def __exit__(self, *exception):
+        if self._main:
+            signal.signal(signal.SIGINT, self._handler)
+            sys.unraisablehook = self._hook
+
+    def _interrupted(self, signum, frame):
+        self.lost = True  # until it is seen to pass (`passed`)
+        raise KeyboardInterrupt
+
+    def _unraisable(self, unraisable):
+        if not issubclass(unraisable.exc_type, KeyboardInterrupt):
+            self._hook(unraisable)
+
+    def passed(self):
+        """The interrupt raised was caught where it is handled: none is lost."""
+        self.lost = False
+
+    def check(self):
+        """Raise KeyboardInterrupt if an interrupt was dropped since the last `passed`."""
+        if self.lost:
+            raise KeyboardInterrupt
+
+
+def _main(args, interrupts):
+    """`main` of the parsed arguments `args`."""
+    args.interrupts = interrupts
     try:
         args.command(args)
+        interrupts.check()
     except KeyboardInterrupt as interrupt:
+        interrupts.passed()
         return _fail(args, interrupt, f"interrupted{f': {interrupt}' if interrupt.args else ''}", EXIT_INTERRUPTED)
     except GrossSlipError as error:
         return _fail(args, error, f"{args.file}: {error}", EXIT_GROSS_SLIP)
@@ -377,7 +435,7 @@ def _run(args):
     history = resolve_history(args.file)
     output = Path(args.output or f"{history.stem}.h5")
     record = None if args.record == "default" else args.record
-    with _progress("step") as progress:
+    with _progress("step", args.interrupts) as progress:
         run = run_file(
             history,
             output,
@@ -396,12 +454,14 @@ def _run(args):
 
 
 @contextlib.contextmanager
-def _progress(unit):
+def _progress(unit, interrupts):
     """``progress(done, total)``, drawing a bar of `unit` on stderr when it is a terminal and the work
-    lasts `PROGRESS_DELAY` seconds."""
+    lasts `PROGRESS_DELAY` seconds; each call raises an interrupt dropped since the last one
+    (`_Interrupts.check`), so that the work stops there."""
     with tqdm(unit=unit, delay=PROGRESS_DELAY, disable=not sys.stderr.isatty(), file=sys.stderr) as bar:
 
         def progress(done, total):
+            interrupts.check()
             bar.total, bar.n = total, done
             bar.refresh()
 
@@ -504,7 +564,7 @@ def _sweep(args):
         again = "" if ran else " (its file was there: not run again)"
         print(f"{path}: case {args.case} of {len(cases)}, {_values(cases[args.case])}: {regime}{again}")
         return
-    with _progress("case") as progress:
+    with _progress("case", args.interrupts) as progress:
         swept = run_sweep(plan, args.scheduler, output, scheduler_file=args.scheduler_file, progress=progress)
     dims = " x ".join(f"{key} ({len(values)})" for key, values in plan.grid.items())
     print(f"{output}: {swept.regime.size} cases over {dims}: {_regimes(swept)}")

@@ -341,13 +341,23 @@ def run_file(
 
 @contextlib.contextmanager
 def _resume_said(checkpoint):
-    """A block whose interrupt, wherever it comes, says to resume where parts of the run are on disk."""
+    """A block whose interrupt or failure to write (a full disk, a folder turned read-only), wherever
+    it comes, says to resume where parts of the run are on disk."""
     try:
         yield
     except KeyboardInterrupt:
         if _parts(checkpoint):
-            raise KeyboardInterrupt(f"progress kept in {checkpoint}; continue with --resume") from None
+            raise KeyboardInterrupt(_kept(checkpoint)) from None
         raise
+    except OSError as error:
+        if _parts(checkpoint):
+            raise OSError(error.errno, f"{error.strerror or error}; {_kept(checkpoint)}", error.filename) from None
+        raise
+
+
+def _kept(checkpoint):
+    """What to do with the parts of a run left in `checkpoint`."""
+    return f"progress kept in {checkpoint}; continue with --resume"
 
 
 def _started(checkpoint, source, model, resume, skipping, attributes):
@@ -365,6 +375,12 @@ def _started(checkpoint, source, model, resume, skipping, attributes):
     shutil.rmtree(checkpoint, ignore_errors=True)  # a folder without parts: killed before its first
     notes = [f"{checkpoint}: no checkpoint to resume from: the run starts at step 0"] if resume else []
     return 0, None, notes, None
+
+
+def _damaged(checkpoint):
+    """What to do with a part of `checkpoint` that cannot be read (a part is written whole or not at
+    all, so only a change made outside the run damages one)."""
+    return f"delete it and the parts after it to resume from those before, or delete {checkpoint} to start again"
 
 
 def _save_part(part, checkpoint, attributes):
@@ -450,7 +466,10 @@ def _resumable(checkpoint, source, model, skipping, attributes):
     """The recorded steps and state of the parts in `checkpoint` (their per-cycle rows left on disk),
     checked to belong to this history file, the `model` asked (None: any), to have `skipping`
     steps or not and to store the per-cycle fields of `attributes`' ``cycle_fields`` policy."""
-    done = joined_steps(_parts(checkpoint))
+    try:
+        done = joined_steps(_parts(checkpoint))
+    except ResultError as error:  # a part damaged, or missing between two others
+        raise ResultError(f"{error}; {_damaged(checkpoint)}") from None
     if done.attrs.get("history_sha256") != source.sha256:
         raise ResultError(f"{checkpoint}: found a run of another version of {source.path}, expected this one")
     if done.attrs.get("cycle_fields") != attributes["cycle_fields"]:

@@ -17,7 +17,7 @@ from fretting.errors import HistoryError
 from fretting.loading.loads import Loads
 from fretting.results.variables import CYCLE_PEAKS
 
-__all__ = ["Nodes", "Solved", "State", "Tally"]
+__all__ = ["Continued", "Nodes", "Solved", "State", "Tally"]
 
 
 class Nodes(Protocol):
@@ -56,6 +56,20 @@ class Solved(Protocol):
 
     @property
     def slid(self) -> float: ...
+
+
+
+class Continued(Nodes, Protocol):
+    """What `State.check` reads of the model a state is continued on (a `fretting.models.base.Model`):
+    the increment of no load change (`at_rest`), its traction [Pa] and the pressure [Pa] under a
+    normal load. A model of method 4 also has ``limit``, ``f p`` in its own measure beside the ``g``
+    of its outcomes, and ``dissipation(ds)``, ``int f p |ds| dx`` [J/m] on its nodes."""
+
+    def at_rest(self, state: State) -> Solved: ...
+
+    def traction(self, outcome: Solved) -> np.ndarray: ...
+
+    def pressure_at(self, P: float) -> np.ndarray: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -262,8 +276,19 @@ class State:
             and np.array_equal(self.episode_start, other.episode_start)
         )
 
-    def check(self, contact, model: Nodes) -> None:
-        """Raise HistoryError unless this state can be continued on `contact` with `model` (a `Model`)."""
+    def check(self, contact, model: Continued) -> None:
+        """Raise HistoryError unless this state can be continued on `contact` with `model` (a `Model`).
+
+        Besides its fields' shapes, finite values and non-negative energies, the state must be one
+        the contact can be in, as far as that is cheap to tell (one product of the model's stiffness
+        with the slip, `consistency`): under its own loads its traction obeys Coulomb's law,
+        ``|q| <= f p`` at every node; a model that derives the slip from what it remembers (the
+        exact models: their turning points) gives back its slip; and, under a constant ``P``, the
+        energy it records since the contact was formed is at least ``int f p |s| dx``, since every
+        node's slip ``s`` was reached by increments each of which dissipated ``f p |ds|`` (method 4's
+        models, whose ``dissipation`` is that integral on their nodes). A slip far beyond what the
+        recorded loads and energy can produce, such as a uniform slip of 1e10 m, fails one of them.
+        """
         N = model.x.size
         fields = {"slip": self.slip, "episode_start": self.episode_start, "tally.w": self.tally.w}
         fields |= {"tally.slip_min": self.tally.slip_min, "tally.slip_max": self.tally.slip_max}
@@ -299,6 +324,55 @@ class State:
         P = contact.P if self.P is None else self.P
         if abs(self.Q) > contact.f * P or (abs(self.Q) == contact.f * P and not model.slides):
             raise HistoryError(f"state.Q = {self.Q!r} leaves no stick zone on this contact (f P = {contact.f * P!r})")
+        self.consistency(contact, model)
+
+    def consistency(self, contact, model: Continued) -> None:
+        """Raise HistoryError unless the slip agrees with the loads, the model's memory and the energy (`check`)."""
+        outcome = model.at_rest(self)
+        scale = float(np.max(np.abs(self.slip), initial=0.0))
+        off = np.abs(outcome.slip - self.slip) > SLIP_RTOL * scale
+        if off.any():
+            node = int(np.argmax(off))
+            raise HistoryError(
+                f"state.slip = {self.slip[node]!r} m at node {node}, where the model's memory gives "
+                f"{float(outcome.slip[node])!r} m: a slip the recorded turning points cannot produce"
+            )
+        excess = _excess(outcome, contact, model, contact.P if self.P is None else self.P)
+        if np.max(excess) > COULOMB_TOLERANCE:
+            node = int(np.argmax(excess))
+            raise HistoryError(
+                f"state.slip leaves a traction above f p by {float(excess[node]):.6g} f p0 at node {node} under "
+                f"the state's loads, expected at most f p (Coulomb): a slip the loads cannot produce"
+            )
+        if self.P is None and hasattr(model, "dissipation"):
+            least = model.dissipation(self.slip)
+            if least > self.dissipated * (1 + ENERGY_RTOL):
+                raise HistoryError(
+                    f"state.slip needs at least {least!r} J/m dissipated (int f p |slip| dx), "
+                    f"state.dissipated = {self.dissipated!r}: a slip the recorded energy cannot produce"
+                )
+
+
+#: How far the slip that a model derives from its memory may differ from the state's, relative to the
+#: largest slip: rounding of the closed forms.
+SLIP_RTOL = 1e-9
+#: How far beyond ``f p`` a state's traction may be, relative to the largest ``f p``: the rounding of
+#: the slip-to-traction product at the edges.
+COULOMB_TOLERANCE = 1e-9
+#: How far ``int f p |s| dx`` may exceed the energy dissipated, relative: rounding of the sums.
+ENERGY_RTOL = 1e-9
+
+
+def _excess(outcome, contact, model, P):
+    """``(|q| - f p) / max(f p)`` at the nodes after `outcome` under the normal load `P` [N/m]: in the
+    model's own measure where it has one (method 4: its ``g`` against its ``limit``), else from its
+    traction. Relative to the largest limit, since at the edges, where ``f p`` vanishes, ``g`` is
+    the difference of large numbers."""
+    if hasattr(model, "limit"):
+        g, limit = np.abs(outcome.g), model.limit
+    else:
+        g, limit = np.abs(model.traction(outcome)), contact.f * model.pressure_at(P)
+    return (g - limit) / np.max(limit)
 
 
 def _folded(op, held, rows, first, length):

@@ -10,11 +10,13 @@ import contextlib
 import datetime
 import errno
 import importlib.metadata
+import io
 import json
 import os
 import platform
 import re
 import secrets
+import shutil
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -23,10 +25,18 @@ import h5netcdf
 import h5py
 import numpy as np
 import xarray as xr
+from xarray.backends import H5NetCDFStore
 
 from fretting._version import __version__
 from fretting.errors import FrettingError
 from fretting.results.variables import AXES, VARIABLES
+
+try:
+    import resource  # the file size limit of `ulimit -f` (Unix)
+
+    resource_unlimited = resource.RLIM_INFINITY
+except ImportError:  # Windows
+    resource = resource_unlimited = None
 
 if TYPE_CHECKING:
     from fretting.loading.history_file import HistorySource
@@ -140,7 +150,8 @@ def _replacing(path):
         yield temporary
         os.replace(temporary, path)
     finally:
-        temporary.unlink(missing_ok=True)
+        with contextlib.suppress(OSError):  # a folder turned read-only: left to `remove_temporaries`
+            temporary.unlink(missing_ok=True)
 
 
 def save_joined(parts: Sequence[str | os.PathLike], path: str | os.PathLike, attributes: dict) -> None:
@@ -167,10 +178,37 @@ def save_joined(parts: Sequence[str | os.PathLike], path: str | os.PathLike, att
         first = next(rows, None)
         wrote = f"fretting.results.io.save_joined of {len(parts)} part{'s' * (len(parts) != 1)}"
         _write(head if first is None else head.assign(first.variables), temporary, path, wrote, fsync=False)
-        with h5netcdf.File(temporary, "r+") as file:
-            for found in rows:
-                _append_cycles(file, found)
+        try:
+            with h5netcdf.File(temporary, "r+") as file:
+                for found in rows:
+                    _room(temporary, found.nbytes, path)
+                    _append_cycles(file, found)
+        except (OSError, RuntimeError) as error:  # HDF5's write errors come as either
+            if getattr(error, "filename", None) == str(path):  # said already, by _room
+                raise
+            raise OSError(getattr(error, "errno", None), f"cannot write: {_reason(error)}", str(path)) from None
         _synced(temporary, path)
+
+
+#: Bytes that HDF5 may add to a file for its own records as rows are appended (B-tree nodes, heaps).
+HDF5_SLACK = 2**16
+
+
+def _room(temporary, needed, path):
+    """Refuse to add `needed` bytes (and `HDF5_SLACK`) to the file `temporary`, written for `path`,
+    where its disk has less room or the process may not make a file that large (``ulimit -f``).
+
+    Said before HDF5 writes, whose failure in the middle of a file may take the process down as it
+    closes the file. `needed` bounds what is written: the rows uncompressed.
+    """
+    needed += HDF5_SLACK
+    free = shutil.disk_usage(temporary.parent).free
+    if needed > free:
+        raise OSError(errno.ENOSPC, f"cannot write: its disk has {free} bytes free, about {needed} needed", str(path))
+    largest = resource.getrlimit(resource.RLIMIT_FSIZE)[0] if resource is not None else resource_unlimited
+    if largest != resource_unlimited and temporary.stat().st_size + needed > largest:
+        why = f"this process may write files of at most {largest} bytes (ulimit -f), about {needed} more needed"
+        raise OSError(errno.EFBIG, f"cannot write: {why}", str(path))
 
 
 def joined_steps(parts: Sequence[str | os.PathLike]) -> xr.Dataset:
@@ -178,15 +216,15 @@ def joined_steps(parts: Sequence[str | os.PathLike]) -> xr.Dataset:
     not read: the recorded steps, vertices and final state of a run in parts."""
     joiner = Joiner()
     for part in parts:
-        with xr.open_dataset(part, engine=ENGINE) as opened:
-            joiner.add(with_current_units(opened.drop_vars(_per_cycle(opened)).load()))
+        with open_result(part) as opened, _reading(part):
+            joiner.add(opened.drop_vars(_per_cycle(opened)).load())
     return joiner.result()
 
 
 def _rows(part):
     """The per-cycle variables of the result file `part`, read into memory."""
-    with xr.open_dataset(part, engine=ENGINE) as opened:
-        return with_current_units(opened[_per_cycle(opened)].load())
+    with open_result(part) as opened, _reading(part):
+        return opened[_per_cycle(opened)].load()
 
 
 def _per_cycle(result, dims=CYCLE_DIMS):
@@ -237,12 +275,31 @@ def _write(result: xr.Dataset, temporary: Path, path: Path, wrote: str, fsync: b
             encoding.setdefault(name, {}).update(COMPRESSION)
     for name in _per_cycle(result):
         encoding.setdefault(name, {})["chunksizes"] = (CYCLE_CHUNK_ROWS, *result[name].shape[1:])
+    image = io.BytesIO()
+    with h5netcdf.File(
+        image, "w"
+    ) as file:  # in memory: not xarray's to_netcdf, whose lock under dask.distributed names a file
+        result.dump_to_store(
+            H5NetCDFStore(file, mode="w"), encoding=encoding, unlimited_dims=set(result.dims) & set(CYCLE_DIMS)
+        )
+    _put(image.getbuffer(), temporary, path, fsync)
+
+
+def _put(image, temporary: Path, path: Path, fsync: bool) -> None:
+    """Write the bytes `image` to the file `temporary` and (`fsync`) flush them to disk; errors name `path`.
+
+    A file is formed in memory and written here, not by HDF5: a disk that fills or a folder that
+    turns read-only then fails this write with the system's reason, where HDF5 would fail in the
+    middle of its file and may take the process down as it closes it.
+    """
     try:
-        result.to_netcdf(temporary, engine=ENGINE, encoding=encoding, unlimited_dims=set(result.dims) & set(CYCLE_DIMS))
+        with open(temporary, "wb") as handle:
+            handle.write(image)
+            handle.flush()
+            if fsync:
+                os.fsync(handle.fileno())
     except OSError as error:
-        raise OSError(error.errno, f"cannot write: {error.strerror or error}", str(path)) from error
-    if fsync:
-        _synced(temporary, path)
+        raise OSError(error.errno, f"cannot write: {error.strerror or error}", str(path)) from None
 
 
 def cf_encoded(dataset: xr.Dataset, wrote: str) -> tuple[xr.Dataset, dict[str, dict]]:
@@ -320,8 +377,23 @@ def load(path: str | os.PathLike) -> xr.Dataset:
     --------
     See `save`.
     """
-    with open_result(path) as result:
+    with open_result(path) as result, _reading(path):
         return result.load()
+
+
+@contextlib.contextmanager
+def _reading(path):
+    """A block that reads the data of the file `path`: HDF5's errors (a damaged file: a chunk that
+    does not inflate) become one `ResultError` naming it."""
+    try:
+        yield
+    except (OSError, RuntimeError) as error:
+        raise ResultError(f"{path}: found data that cannot be read ({_reason(error)}): the file is damaged") from None
+
+
+def _reason(error):
+    """The first line of HDF5's account of `error`, without the file and the time it names."""
+    return (getattr(error, "strerror", None) or str(error)).splitlines()[0].split(" (file write failed")[0]
 
 
 def open_result(path: str | os.PathLike) -> xr.Dataset:

@@ -11,6 +11,7 @@ import xarray as xr
 
 import fretting as fr
 from fretting.physics.profiles import profile_class, recorded_profile
+from fretting.results import io
 from fretting.results.io import (
     CYCLE_CHUNK_ROWS,
     WRITTEN_ATTRIBUTES,
@@ -86,11 +87,11 @@ def test_failed_write_leaves_the_old_file(tmp_path, whole, monkeypatch, failure)
     path = tmp_path / "result.h5"
     path.write_bytes(b"the previous result")
 
-    def half_written(dataset, target, **options):
-        target.write_bytes(b"half a file")
+    def half_written(image, temporary, *arguments):
+        temporary.write_bytes(bytes(image[: len(image) // 2]))
         raise failure
 
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", half_written)
+    monkeypatch.setattr(io, "_put", half_written)
     with pytest.raises(type(failure)):
         save(whole, path)
     assert path.read_bytes() == b"the previous result"
