@@ -58,7 +58,6 @@ class Solved(Protocol):
     def slid(self) -> float: ...
 
 
-
 class Continued(Nodes, Protocol):
     """What `State.check` reads of the model a state is continued on (a `fretting.models.base.Model`):
     the increment of no load change (`at_rest`), its traction [Pa] and the pressure [Pa] under a
