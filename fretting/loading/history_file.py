@@ -46,6 +46,10 @@ KEY_KINDS = {
     "compliance": "compliance",
 }
 
+#: The error of a file nested deeper than the reader can follow: ``repeat`` blocks, inline tables or
+#: arrays within one another some hundreds of levels deep (each level is a call of the reader).
+TOO_DEEP = "found tables nested deeper than can be read (repeat blocks within repeat blocks?), expected a few levels"
+
 #: Keys whose value is an angle in degrees; a value with units (``"1.5 rad"``) is converted to them.
 ANGLE_KEYS = ("phase_deg", "P_phase_deg")
 
@@ -143,7 +147,7 @@ def read_history_source(path):
         text = data.decode("utf-8")
     except UnicodeDecodeError as error:
         raise HistoryFileError(path, None, None, f"found byte {data[error.start]:#x}, expected UTF-8 text") from None
-    contact, history = _Document(path, text).read()
+    contact, history = read_history_data(path, text, None)
     return HistorySource(path, text, hashlib.sha256(data).hexdigest(), contact, history)
 
 
@@ -154,7 +158,10 @@ def read_history_data(path, text, data, tables=None):
     and tables named by `data` are read next to `path`. The path of each table file read is
     appended to the list `tables`, when given (what a sweep's case depends on besides `data`).
     """
-    return _Document(path, text, data, tables).read()
+    try:
+        return _Document(path, text, data, tables).read()
+    except RecursionError:  # blocks read into their nested blocks
+        raise HistoryFileError(path, None, None, TOO_DEEP) from None
 
 
 class _Document:
@@ -171,6 +178,8 @@ class _Document:
         except tomllib.TOMLDecodeError as error:
             line = re.search(r"at line (\d+)", str(error))
             raise HistoryFileError(path, int(line[1]) if line else None, None, f"TOML syntax: {error}") from None
+        except RecursionError:  # the TOML reader recurses into inline tables and arrays
+            raise HistoryFileError(path, None, None, TOO_DEEP) from None
         self.lines = _key_lines(text)
         self.tables = [] if tables is None else tables
         self.units = {}  # kind -> (the unit of the file's plain numbers of that kind, its factor to SI)
@@ -494,6 +503,11 @@ BLOCKS = {
 }
 
 
+#: What a header row's cell must look like to be echoed in an error: a short name. A file that is
+#: no table (a key file, the process environment) has its first line said, not shown.
+_COLUMN = re.compile(r"[A-Za-z_]\w{0,31}")
+
+
 def _read_columns(table, key, path, names, all_required):
     """Columns of the CSV file at `path`, named by `key` of `table`, by column name.
 
@@ -515,7 +529,9 @@ def _read_columns(table, key, path, names, all_required):
         raise HistoryFileError(path, None, None, f"found no header row, expected one naming {expected}")
     line, header = rows[0]
     if not set(header) <= set(names) or len(set(header)) < len(header) or (all_required and len(header) < len(names)):
-        raise HistoryFileError(path, line, None, f"found columns {', '.join(header)}, expected {expected}")
+        named = all(map(_COLUMN.fullmatch, header))
+        found = f"columns {', '.join(header)}" if named else "a first row of no column names"
+        raise HistoryFileError(path, line, None, f"found {found}, expected {expected}")
     if len(rows) == 1:
         raise HistoryFileError(path, line, None, "found no data rows, expected a row of numbers after the header")
     values = np.empty((len(rows) - 1, len(header)))

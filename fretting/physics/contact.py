@@ -151,6 +151,11 @@ class Contact:
         self.specimen = int(specimen)
         self.nu = None if nu is None else poisson_ratio(nu)
         self.a, self.centre = (float(v) for v in profile.half_width(self.P, self.E_star))
+        if not self.a > 0:  # a load so small that the half-width rounds to nothing
+            raise ValueError(
+                f"P = {P!r} N/m gives a contact half-width a = {self.a!r} m on E_star = {self.E_star!r} Pa; "
+                f"expected a normal load that forms a contact of non-zero width"
+            )
         profile.check(self.a, self.centre, self.P, self.E_star)
         self.p0 = float(profile.peak_pressure(self.a, self.centre, self.P, self.E_star))
         force = self.f * self.p0 * self.a  # [N/m]; squared by a product, which overflows to inf, not an error

@@ -347,3 +347,32 @@ def test_the_specimen_is_named_in_the_contact(tmp_path, line, specimen):
 def test_a_bad_specimen(tmp_path, value):
     error = error_of(tmp_path, CONTACT + f"specimen = {value}\n" + SHEAR)
     assert error.key == "contact.specimen" and error.line == 8 and "expected one of 1, 2" in str(error)
+
+
+def test_blocks_nested_beyond_what_can_be_read_are_one_line(tmp_path):
+    """Repeat blocks 200 deep: the TOML reader and the block reader recurse per level; a one-line
+    error, not a RecursionError (issue 38). 100 levels still read."""
+    block = '{kind = "linear", Q = [1e4, 0], steps_per_segment = 2}'
+    for depth in (100, 200):
+        inner = block
+        for _ in range(depth):
+            inner = f'{{kind = "repeat", count = 1, blocks = [{inner}]}}'
+        path = write(tmp_path, CONTACT + f'\n[[loading]]\nkind = "repeat"\ncount = 1\nblocks = [{inner}]\n')
+        if depth == 100:
+            assert len(read_history(path)[1]) == 5  # the block: 0 -> 1e4 -> 0, two steps a segment
+        else:
+            with pytest.raises(HistoryFileError, match="nested deeper than can be read"):
+                read_history(path)
+
+
+def test_a_file_that_is_no_table_has_its_first_line_said_not_shown(tmp_path):
+    """A csv block naming a file that is no table (a key file, the environment) does not echo its
+    first line; a header with a misspelt column name is still shown (issue 38)."""
+    (tmp_path / "secret").write_text("token: 0123456789abcdef\n")
+    (tmp_path / "typo.csv").write_text("Q,sigmaa\n1,2\n")
+    cases = (("secret", "a first row of no column names", "0123456789"), ("typo.csv", "sigmaa", None))
+    for name, said, hidden in cases:
+        path = write(tmp_path, CONTACT + f'\n[[loading]]\nkind = "csv"\nfile = "{name}"\n')
+        with pytest.raises(HistoryFileError) as error:
+            read_history(path)
+        assert said in str(error.value) and (hidden is None or hidden not in str(error.value))

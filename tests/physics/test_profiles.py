@@ -396,3 +396,12 @@ def test_a_table_too_steep_for_its_rows_is_one_line(scale, message):
     x, h0 = np.loadtxt(EXAMPLES / "asymmetric_pad_gap.csv", delimiter=",", skiprows=3).T
     with pytest.raises(ValueError, match=message):
         fr.Contact(fr.Gap.from_table(x, scale * h0), E_STAR, 0.5, P)
+
+
+def test_a_load_too_small_to_form_a_contact_is_one_line():
+    """P = 5e-324 N/m (the smallest float) on Hertz: the half-width rounds to zero; a ValueError
+    naming P, not a ZeroDivisionError in the peak pressure (issue 38). 1e-300 still forms one."""
+    with pytest.raises(ValueError, match="P = 5e-324 N/m gives a contact half-width a = 0.0 m"):
+        fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 5e-324)
+    tiny = fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e-300)
+    assert tiny.a > 0 and np.isfinite(tiny.p0) and tiny.p0 > 0
