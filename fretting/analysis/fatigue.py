@@ -74,6 +74,7 @@ from __future__ import annotations
 
 import abc
 import errno
+import itertools
 import math
 import os
 import re
@@ -1543,11 +1544,13 @@ MATERIALS = EXAMPLES / "materials"
 
 
 def materials() -> dict[str, tuple[Path, str]]:
-    """The shipped material files: name (the file's stem) -> (path, the first line of its opening comment)."""
+    """The shipped material files: name (the file's stem) -> (path, the first paragraph of its opening comment,
+    on one line)."""
     found = {}
     for path in sorted(MATERIALS.glob("*.toml")):
         with path.open(encoding="utf-8") as lines:
-            found[path.stem] = (path, lines.readline().removeprefix("#").strip())
+            paragraph = itertools.takewhile(lambda line: line.strip() not in ("", "#"), lines)
+            found[path.stem] = (path, " ".join(line.removeprefix("#").strip() for line in paragraph))
     return found
 
 

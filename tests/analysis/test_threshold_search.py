@@ -105,6 +105,7 @@ def test_the_shipped_materials_load_and_name_their_source():
     for name, (path, description) in shipped.items():
         material = Material.from_file(path)
         assert material.E > 0 and description
+        assert description.endswith(".")  # the whole first paragraph, not its first line cut mid-sentence
         if name != "steel":
             assert "Source:" in path.read_text(encoding="utf-8")
     assert fatigue.material_path("al2024_t351") == shipped["al2024_t351"][0]
