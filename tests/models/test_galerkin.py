@@ -566,6 +566,27 @@ def test_the_increment_does_not_depend_on_the_solver_s_start(hertz, seed):
     assert np.max(np.abs(started.slip - plain.slip)) <= 1e-12 * np.max(np.abs(plain.slip))
 
 
+def test_the_energy_stage_skips_the_pass_after_a_small_refinement(monkeypatch):
+    """On the harness's 10-vertex random scene the energy stage's last refinement adds under
+    `SETTLED` of the nodes: the stage ends there, one pass fewer, on the mesh that the pass it skips
+    would have confirmed (node for node)."""
+    contact = harness.hertz_contact()
+    history = harness.baseline_history(contact, 2)
+    passes, run = [], gk.adaptation._Adaptation.run
+
+    def counted(adapt, *args, **options):
+        passes.append(adapt)
+        return run(adapt, *args, **options)
+
+    monkeypatch.setattr(gk.adaptation._Adaptation, "run", counted)
+    settled = fr.adapted_mesh(contact, history)
+    skipping = len(passes)
+    monkeypatch.setattr(gk.adaptation, "SETTLED", 0.0)
+    passes.clear()
+    np.testing.assert_array_equal(fr.adapted_mesh(contact, history), settled)
+    assert len(passes) == skipping + 1
+
+
 @pytest.mark.slow
 def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkeypatch):
     """Starting each pass's active sets from the directions the pass before found (the default)

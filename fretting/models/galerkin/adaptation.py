@@ -7,7 +7,8 @@ so that the adaptation lives with its model and imports nothing of the engine.
 Runs the history's turning points (`History.turning_points`, from the contact just formed), each
 curved stretch between them cut where its direction has turned by `MAX_TURN`, on a mesh graded
 toward the edges; refines every element that `fretting.models.galerkin.mesh.element_targets` finds too
-coarse at any of them, and runs them again until no element is. The other steps are not run:
+coarse at any of them, and runs them again until no element is, or until a refinement adds
+fewer than `SETTLED` of the nodes. The other steps are not run:
 along a proportional stretch each node slips one way only, so its dissipation is
 ``f p |s_end - s_start|`` and depends on the states at the turning points alone, and the
 boundaries of the steps between lie in the slip zones of the increment from one turning point
@@ -19,8 +20,8 @@ limit hides the zone that change slips at the edge, and is bisected (`_unseen_ed
 alone or ``sigma`` alone on a symmetric profile the mesh is kept symmetric, as the solution is. A
 history that reaches gross slip is adapted to the steps before it.
 
-Each pass starts the active set at a turning point from the slip directions the pass before found
-there (`_interpolated_directions`), which the answer does not depend on and which saves most of
+Each pass, of either stage, starts the active set at a turning point from the slip directions the
+pass before found there (`_guess`), which the answer does not depend on and which saves most of
 the releases of the passes after the first (benchmarks/adaptation_passes.py).
 """
 
@@ -55,6 +56,7 @@ __all__ = [
     "REFINEMENTS",
     "RESLIP",
     "SAMPLE_TURNS",
+    "SETTLED",
     "MeshTooLarge",
     "adapted_model",
     "refined_for",
@@ -64,6 +66,12 @@ __all__ = [
 #: Refinements of the mesh before `adapted_model` gives up: each at least halves an element, and 60
 #: halvings take pi below 1e-17.
 REFINEMENTS = 60
+
+#: A refinement of the energy stage (`adapted_model`) that adds fewer nodes than this fraction of
+#: the mesh ends it, with no pass on the mesh it gives: the pass after such a refinement adds under
+#: 1 % of the nodes, nothing on nearly every history (benchmarks/adaptation_passes.py prints each
+#: pass), and the stage of the ends refines that mesh again in any case.
+SETTLED = 0.05
 
 #: Turn [rad] of the load path's direction after which a curved stretch between turning points is
 #: cut, the direction taken in the plane of ``Q / (pi a)`` and ``sigma / 4`` [Pa], the mean and the
@@ -111,7 +119,8 @@ def adapted_model(spec, contact, history, run, max_nodes=None, recorded=None, ma
 
     Two stages. The energy: passes over the turning points (`MAX_TURN`) refine every element
     that `fretting.models.galerkin.element_targets` finds too coarse, with elements of
-    ``ENERGY_SPAN rtol a`` in the slip zones, until none is. The ends (`_located`): one pass on
+    ``ENERGY_SPAN rtol a`` in the slip zones, until none is or a refinement adds fewer than
+    `SETTLED` of the nodes. The ends (`_located`): one pass on
     that mesh over the turning points cut finer (`END_TURN`) refines, in one go, the elements
     that hold the stick ends of the steps in `recorded` (step numbers; None: every step), or that
     those ends sweep, to ``BOUNDARY_SPAN rtol a``; the zones are already located, so no pass on
@@ -151,9 +160,15 @@ def adapted_model(spec, contact, history, run, max_nodes=None, recorded=None, ma
                 f"stopped growing from the first {size // 2}"
             )
             grown.spec = replace(grown.spec, sample=sample)
-            return _located(grown, adapt, history[: steps[size - 1] + 1], recorded)
+            return _located(grown, adapt, history[: steps[size - 1] + 1], recorded, _by_step(adapt, steps))
         model = grown
-    return _located(model, adapt, history, recorded)
+    return _located(model, adapt, history, recorded, _by_step(adapt, steps))
+
+
+def _by_step(adapt, steps):
+    """The slip directions (and nodes [m]) of `adapt`'s last pass, by the step of the history of
+    each of its turning points, at the history's `steps`."""
+    return {int(steps[turn]): found for turn, found in adapt.directions.items()}
 
 
 def _push(model, turning, step):
@@ -200,10 +215,12 @@ def _units(contact):
     return np.pi * contact.a, 4.0
 
 
-def _located(model, adapt, history, recorded):
+def _located(model, adapt, history, recorded, by_step):
     """`model`'s mesh refined so that the stick ends of the steps `recorded` of `history` are located
     (`adapted_model`, second stage), then until the energies agree (`_energy_checked`); `model`
-    itself where nothing needs refining. Either way its spec, or that of the `MeshTooLarge`'s model
+    itself where nothing needs refining. Its pass starts from the slip directions `by_step` (step of
+    `history`: directions, nodes [m]) of the energy stage's last pass where a turning point is one of
+    those. Either way its spec, or that of the `MeshTooLarge`'s model
     where the refinement passes its bound, says where increments fall below the solver's floor
     (`_below_floor_said`)."""
     units = _units(model.contact)
@@ -216,7 +233,8 @@ def _located(model, adapt, history, recorded):
         found = element_targets(model.theta, outcome.ds, adapt.rtol, model.breakpoints, *spans[step], levels=None)
         np.minimum(targets, found, out=targets)
 
-    before = _Energies.of(model, turning, adapt.run, observe, with_ends=False)
+    known = {turn: by_step[step] for turn, step in enumerate(steps.tolist()) if step in by_step}
+    before = _Energies.of(model, turning, adapt.run, observe, with_ends=False, known=known)
     theta = adapt.refined(model.theta, targets)
     try:
         if not np.array_equal(theta, model.theta):
@@ -280,14 +298,17 @@ class _Energies(NamedTuple):
     ends: list
     reslip: np.ndarray
     held: np.ndarray
+    directions: dict
 
     @classmethod
-    def of(cls, model, turning, run, observe=None, with_ends=True):
-        """Run `turning` on `model` from the virgin state with the engine's loop `run`;
-        ``observe(step, outcome)`` sees each increment too. Without `with_ends`, ``ends`` is left
-        empty (the pass whose mesh is refined before any is needed)."""
+    def of(cls, model, turning, run, observe=None, with_ends=True, known=None):
+        """Run `turning` on `model` from the virgin state with the engine's loop `run`, the active
+        set of each increment started from the slip directions `known` of a pass on a coarser mesh
+        (`_guess`; None: from the increment before); ``observe(step, outcome)`` sees each increment
+        too. Without `with_ends`, ``ends`` is left empty (the pass whose mesh is refined before any
+        is needed)."""
         energy, ends, reslip = np.zeros(len(turning)), [()] * len(turning), np.full(len(turning), np.inf)
-        held = np.zeros(len(turning), dtype=bool)
+        held, directions = np.zeros(len(turning), dtype=bool), {}
 
         def watch(step, outcome):
             ds, before = outcome.ds, outcome.slip - outcome.ds  # exactly the slip before where ds = 0
@@ -296,14 +317,16 @@ class _Energies(NamedTuple):
                 held[step] = held_by_allowance(outcome.g, model.limit, _push(model, turning, step)).size > 0
             if with_ends:
                 ends[step] = boundaries(model.theta, ds)
+            directions[step] = np.sign(ds).astype(np.int8), model.x
             again = (ds != 0) & (before != 0)
             if again.any():
                 reslip[step] = np.max(np.abs(ds[again])) / np.max(np.abs(before[again]))
             if observe is not None:
                 observe(step, outcome)
 
-        run(model, turning, State.virgin(model), observe=watch, tally=False)
-        return cls(energy, ends, reslip, held)
+        guess = None if known is None else _guess(known, model.x)
+        run(model, turning, State.virgin(model), observe=watch, guess=guess, tally=False)
+        return cls(energy, ends, reslip, held, directions)
 
     def below_floor(self, rtol):
         """The increments that re-slip by less than ``ROUNDING / rtol`` of the slip locked in
@@ -333,7 +356,7 @@ def _energy_checked(model, adapt, turning, before):
     energy (a ratchet: benchmarks/small_loops.py).
     """
     for _ in range(REFINEMENTS):
-        now = _Energies.of(model, turning, adapt.run)
+        now = _Energies.of(model, turning, adapt.run, known=before.directions)
         checkable = now.checkable(adapt.rtol) & before.checkable(adapt.rtol)
         change = np.where(checkable, np.abs(now.energy - before.energy), 0.0)
         unsettled, worst = _unsettled(turning, now.energy, change, adapt.rtol)
@@ -399,9 +422,10 @@ class _Adaptation:
     energy's mesh, `max_work` of the run's ``N^2 x increments`` on the ends' mesh."""
 
     def __init__(self, spec, contact, history, run, max_nodes, mirrored, max_work=None):
-        self.spec, self.contact, self.history, self.run, self.rtol = spec, contact, history, run, spec.rtol
+        self.spec, self.contact, self.history, self.follow, self.rtol = spec, contact, history, run, spec.rtol
         self.max_nodes, self.mirrored, self.max_work = max_nodes, mirrored, max_work
         self.increments = len(history) - 1  # the run's, up to gross slip
+        self.directions = {}  # of the last pass: turning point: (slip directions, nodes [m])
 
     def __call__(self, turning, theta):
         """The model whose mesh, refined from `theta` [rad], resolves the increments of `turning`."""
@@ -423,24 +447,27 @@ class _Adaptation:
                 if max_nodes is not None and (size := _bisected_size(model.theta, targets)) > max_nodes:
                     raise MeshTooLarge(size, step, model)
 
-            def guess(step, known=known, x=model.x):
-                return _interpolated_directions(*known[step], x) if step in known else None
-
-            try:
-                self.run(model, turning, State.virgin(model), observe=observe, guess=guess, tally=False)
-            except GrossSlipError as error:  # named by the step of the history whose loads reached it
-                raise GrossSlipError(self._step_at(error.Q, error.sigma), error.Q, error.sigma, error.limit) from None
+            self.run(model, turning, State.virgin(model), observe=observe, guess=_guess(known, model.x), tally=False)
+            self.directions = directions
             refined = self.refined(theta, targets)
             if np.array_equal(refined, theta):
                 return model
             if max_nodes is not None and refined.size > max_nodes:
                 raise MeshTooLarge(refined.size, len(turning) - 1, model)
+            if refined.size < (1 + SETTLED) * theta.size:  # the pass on it would add next to nothing
+                return replace(self.spec, theta=refined).build(self.contact, previous=model)
             theta = refined
         raise SolverError(f"the mesh still needed refining after {REFINEMENTS} refinements ({theta.size} nodes)")
 
-    def _step_at(self, Q, sigma):
-        """The first step of the history at the loads `Q` [N/m], `sigma` [Pa]."""
-        return self.history.first_step(lambda loads, tensions: (loads == Q) & (tensions == sigma))
+    def run(self, model, turning, state, **options):
+        """The engine's loop over `turning`, a `GrossSlipError` named by the first step of the history
+        whose loads reached it, not by the step of `turning`."""
+        try:
+            return self.follow(model, turning, state, **options)
+        except GrossSlipError as error:
+            Q, sigma = error.Q, error.sigma
+            at = self.history.first_step(lambda loads, tensions: (loads == Q) & (tensions == sigma))
+            raise GrossSlipError(at, Q, sigma, error.limit) from None
 
     def check_work(self, theta, model, step, change=None):
         """Raise `MeshTooLarge` (with `model`, the mesh before, and `change`) if a run on `theta`
@@ -531,6 +558,17 @@ def _bisected_size(theta, targets):
     bound of `refine`'s, which grades the mesh after (so a bound passed here is passed for certain)."""
     halvings = np.ceil(np.log2(np.maximum(np.diff(theta) / targets, 1.0)))
     return 1 + int(np.sum(2.0**halvings))
+
+
+def _guess(known, at):
+    """The ``guess(step)`` of the engine's loop for a pass on the mesh of nodes `at` [m]: the slip
+    directions `known` (step: directions, nodes [m]) that a pass on a coarser mesh found at that
+    step, interpolated (`_interpolated_directions`); None at steps it did not solve."""
+
+    def guess(step):
+        return _interpolated_directions(*known[step], at) if step in known else None
+
+    return guess
 
 
 def _interpolated_directions(directions, x, at):
