@@ -36,11 +36,16 @@ cross no change of the cells in contact, so that Jaeger's rule holds exactly on 
 increment with ``|dQ| + (pi a / 4) |dsigma| <= f dP`` slips nowhere, and proportional loading
 ``Q = lambda (P - P0)``, ``lambda < f``, carries ``q = lambda (p(P) - p(P0))``. The parts also
 change ``P`` by at most ``load_part`` of the load (`DEFAULT_LOAD_PART`): each is one implicit
-step of the solver, under the friction limit of its end load. Its energy ``int f p(P) |ds|`` is
-taken by the trapezoidal rule in ``P``, ``f (p_begin + p_end) |ds| / 2``: the pressure at the
-nodes is linear in ``P`` over a part, and the slip grows with ``P`` nearly linearly over it, so the
-energy errs at second order in ``load_part`` where the end load alone (an implicit Euler rule)
-errs at first order.
+step of the solver, under the friction limit of its end load. Its energy is taken by the
+trapezoidal rule in ``P`` on the nodal forces at its ends, ``(|g_begin| + |g_end|) |ds| / 2``: at a node
+that slips through the part both are the limit, ``f (p_begin + p_end) h / 2``, linear in ``P`` over the
+part, and the slip grows with ``P`` nearly linearly over it, so the energy errs at second order in
+``load_part`` where the end load alone (an implicit Euler rule) errs at first order. A node that
+starts to slip within the part, or leaves the contact at its end under a limit that falls to zero,
+carries at the start the traction it had then, not the limit: friction does no more work than the
+traction carried. So the slip of the size of the solver's rounding that a leaving node may take on
+a history that slips nowhere (its traction is zero there in exact arithmetic) dissipates in
+proportion to that traction, not to ``f`` (issue 38).
 
 Memory. ``s`` at a node in contact is its relative displacement since the contact was formed; at
 a node out of contact it is that of the two free surfaces there, computed after every part of
@@ -323,14 +328,14 @@ class NormalModel(Model):
     def increment(self, state, loads, guess=None):
         """The increment to the loads ``Q``, ``sigma``, ``P`` [N/m], solved in parts at the loads where cells enter
         or leave (`parts`), each on the cells in contact over it; the energy of a part is
-        ``f (p_begin + p_end) h |ds| / 2`` summed over its nodes, the trapezoidal rule in ``P`` (module docstring)."""
+        ``(|g_begin| + |g_end|) |ds| / 2`` summed over its nodes, the trapezoidal rule in ``P`` (module docstring)."""
         after = (loads.Q, loads.sigma, loads.normal(self.contact))
         if guess is None:
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
         before = (state.Q, state.sigma, self.load(state))
         locked = self.forces(state.slip, *before)
         slip, ds, density = state.slip, np.zeros(self.x.size), np.zeros(self.x.size)
-        g, dissipation, P_begin = None, 0.0, before[2]
+        g, dissipation = locked, 0.0
         for fraction, m in self.parts(before[2], after[2]):
             Q_, sigma_, P_ = (
                 end if fraction == 1 else begin + fraction * (end - begin)
@@ -339,13 +344,12 @@ class NormalModel(Model):
             nodes, limit = self.cells(m), self.contact.f * self.force(P_, m)
             g_stuck = Q_ * self.punch(m) + self.stiffness(m).G @ self.bulk_slip(sigma_)[nodes]
             solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes])
-            slip, g = slip.copy(), np.zeros(self.x.size)
+            g_begin, slip, g = g, slip.copy(), np.zeros(self.x.size)
             slip[nodes], g[nodes] = solved.slip, solved.g
             ds[nodes] += solved.ds
-            mean = (limit[nodes] + self.contact.f * self.force(P_begin, m)[nodes]) / 2  # trapezoidal rule in P
+            mean = (np.abs(g_begin[nodes]) + np.abs(solved.g)) / 2  # trapezoidal rule in P
             density[nodes] += mean / self.h * np.abs(solved.ds)
             dissipation += float(np.dot(mean, np.abs(solved.ds)))
-            P_begin = P_
             slip = self.free_surface(slip, g, sigma_, m)
         edges = self.edges_slip(before, after)
         return NormalOutcome(g, ds, slip, dissipation, P=after[2], density=density, edges=edges, locked=locked)
