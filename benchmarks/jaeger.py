@@ -108,7 +108,9 @@ class Jaeger:
         return np.pi * np.asarray(c) ** 2 * self.E_star / (4 * self.R)
 
     def _set(self, edges, ratio):
-        self.memory = Memory(edges, ratio, self.R, self.E_star)
+        """The memory of bands `edges`, `ratio`, neighbours of equal ratio merged (their edge puts no kink)."""
+        keep = np.concatenate([[True], ratio[1:] != ratio[:-1]])
+        self.memory = Memory(np.append(edges[:-1][keep], edges[-1]), ratio[keep], self.R, self.E_star)
 
     def _slip_zone(self, Q, s):
         """Set ``lambda = s f`` on ``(c, a)``, ``c`` such that the contact carries `Q` [N/m]; returns ``c`` [m]."""
