@@ -23,8 +23,8 @@ traction [f p0], leaving out `accuracy.BAND` a about the stick ends, the contact
 former edges and stick ends the memory keeps (where ``lambda`` jumps by more than `KINK` f); the
 energy dissipated up to each step, over the reference's total for the history. Targets: `TARGETS`.
 
-    python benchmarks/varying_accuracy.py [--scenes walk0,inphase,...] [--cells 768] [--load-part 0.0025]
-        [--no-self] [--page docs/validation/varying-load.md]
+    python benchmarks/varying_accuracy.py [--scenes walk0,inphase,...] [--flat-scenes walk,...] [--cells 768]
+        [--load-part 0.0025] [--no-fine] [--no-finer] [--page ../docs/validation/varying-load.md]
 """
 
 import argparse
@@ -237,8 +237,8 @@ def run(contact, history, cells, part):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scenes", default=",".join(SCENES))
-    parser.add_argument("--profiles", default="hertz,flat")
+    parser.add_argument("--scenes", default=",".join(SCENES), help="on Hertz")
+    parser.add_argument("--flat-scenes", default=",".join(SCENES), help="on the rounded flat")
     parser.add_argument("--cells", type=int, default=DEFAULT_CELLS)
     parser.add_argument("--load-part", type=float, default=DEFAULT_LOAD_PART)
     parser.add_argument("--no-finer", action="store_true", help="skip the FINER run (the self-reference's check)")
@@ -255,9 +255,9 @@ def main(argv=None):
     say(f"load_part={args.load_part:g}); targets {TARGETS}")
     say(f"  {'run':<28}" + "".join(f"{name:>16}" for name in TARGETS) + "  CPU [s]")
     contacts = {"hertz": hertz_contact(), "flat": rounded_flat_contact()}
-    for profile in args.profiles.split(","):
+    for profile, names in (("hertz", args.scenes), ("flat", args.flat_scenes)):
         contact = contacts[profile]
-        for name in args.scenes.split(","):
+        for name in filter(None, names.split(",")):
             build, exact = SCENES[name]
             history = build(contact)
             say(f"{profile} {name}: {len(history) - 1} steps")
