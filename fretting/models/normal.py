@@ -37,10 +37,15 @@ increment with ``|dQ| + (pi a / 4) |dsigma| <= f dP`` slips nowhere, and proport
 ``Q = lambda (P - P0)``, ``lambda < f``, carries ``q = lambda (p(P) - p(P0))``. The parts also
 change ``P`` by at most ``load_part`` of the load (`DEFAULT_LOAD_PART`): each is one implicit
 step of the solver, under the friction limit of its end load. Its energy ``int f p(P) |ds|`` is
-taken by the trapezoidal rule in ``P``, ``f (p_begin + p_end) |ds| / 2``: the pressure at the
+taken by the trapezoidal rule in ``P``, ``f (p_start + p_end) h |ds| / 2``: the pressure at the
 nodes is linear in ``P`` over a part, and the slip grows with ``P`` nearly linearly over it, so the
 energy errs at second order in ``load_part`` where the end load alone (an implicit Euler rule)
-errs at first order.
+errs at first order. ``p_start`` is the pressure at the part's start, but where the pressure falls
+a node that was stuck then starts to slip only once its limit has fallen to the traction it carried
+(`slip_start`): a node that leaves the contact at the part's end, under a limit that falls to exactly
+zero, may take a slip of the size of the solver's rounding on a history that slips nowhere (its
+traction is zero there in exact arithmetic), and that slip dissipates in proportion to the traction
+it carried, not to ``f`` (issue 38).
 
 Memory. ``s`` at a node in contact is its relative displacement since the contact was formed; at
 a node out of contact it is that of the two free surfaces there, computed after every part of
@@ -323,14 +328,15 @@ class NormalModel(Model):
     def increment(self, state, loads, guess=None):
         """The increment to the loads ``Q``, ``sigma``, ``P`` [N/m], solved in parts at the loads where cells enter
         or leave (`parts`), each on the cells in contact over it; the energy of a part is
-        ``f (p_begin + p_end) h |ds| / 2`` summed over its nodes, the trapezoidal rule in ``P`` (module docstring)."""
+        ``(f p_start h + f p_end h) |ds| / 2`` summed over its nodes (`slip_start`), the trapezoidal rule in ``P``
+        (module docstring)."""
         after = (loads.Q, loads.sigma, loads.normal(self.contact))
         if guess is None:
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
         before = (state.Q, state.sigma, self.load(state))
         locked = self.forces(state.slip, *before)
         slip, ds, density = state.slip, np.zeros(self.x.size), np.zeros(self.x.size)
-        g, dissipation, P_begin = None, 0.0, before[2]
+        g, dissipation, P_begin = locked, 0.0, before[2]
         for fraction, m in self.parts(before[2], after[2]):
             Q_, sigma_, P_ = (
                 end if fraction == 1 else begin + fraction * (end - begin)
@@ -339,10 +345,11 @@ class NormalModel(Model):
             nodes, limit = self.cells(m), self.contact.f * self.force(P_, m)
             g_stuck = Q_ * self.punch(m) + self.stiffness(m).G @ self.bulk_slip(sigma_)[nodes]
             solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes])
-            slip, g = slip.copy(), np.zeros(self.x.size)
+            g_begin, slip, g = g, slip.copy(), np.zeros(self.x.size)
             slip[nodes], g[nodes] = solved.slip, solved.g
             ds[nodes] += solved.ds
-            mean = (limit[nodes] + self.contact.f * self.force(P_begin, m)[nodes]) / 2  # trapezoidal rule in P
+            start = slip_start(self.contact.f * self.force(P_begin, m)[nodes], np.abs(g_begin[nodes]), limit[nodes])
+            mean = (start + limit[nodes]) / 2  # trapezoidal rule in P
             density[nodes] += mean / self.h * np.abs(solved.ds)
             dissipation += float(np.dot(mean, np.abs(solved.ds)))
             P_begin = P_
@@ -439,6 +446,13 @@ class NormalModel(Model):
 
     def surface_at(self, outcome):
         return self.surface[0], self.pressure_at(outcome.P)
+
+
+def slip_start(begin, carried, end):
+    """The friction limit [N/m] at which a node starts to slip in a part of an increment: that at the part's
+    start, `begin`, but where the limit falls no more than the force the node `carried` then (a stuck node
+    slips once the falling limit reaches its traction), nor less than that at its end, `end`."""
+    return np.minimum(begin, np.maximum(carried, end))
 
 
 def kink_end(x, slip, deficit, stuck, slipping, E_star):

@@ -1,0 +1,304 @@
+"""Accuracy of the varying-load model (`fretting.models.Varying`) at every step, against a converged reference.
+
+Histories (`SCENES`), on the Hertz contact of `harness.hertz_contact` and the rounded flat of
+`harness.rounded_flat_contact`:
+
+- ``walk``: a seeded random walk of (P, Q, sigma), P in [0.7, 1.3] of the contact's, Q within 0.6 f P,
+  sigma within 0.3 f p0 (``walk0``: the same with ``sigma = 0``);
+- ``inphase``: the loops ``P = P0 (1 + 0.3 sin)``, ``Q = r 0.3 f P0 sin``, three cycles at ``r = 0.95``
+  then three at ``r = 1.05`` (``|dQ/dP|`` near ``f``: below it the contact shakes down, above it does not);
+- ``boundary``: in-phase loops at ``|dQ/dP| = 0.98 f``, then 1.02 f, about a mean shear ``0.3 f P0``;
+- ``recede``: Cattaneo-Mindlin at ``Q = 0.45 f P0``, the load down to ``0.6 P0`` (the contact recedes past
+  the slip zones), ``Q`` reversed, the load up to ``1.3 P0`` (it grows over them again) and back.
+
+Reference. With ``sigma = 0`` on Hertz: Jaeger's superposition, exact (benchmarks/jaeger.py), its
+steps in `PARTS` parts and in twice as many (the table prints the change). Otherwise
+the package itself on `FINE` cells with parts a quarter of the default's, shown converged by the run
+on `FINER` cells: the change between the two is printed, and must lie well below the targets.
+
+Figures, each the worst over the steps of a history (`compare`): stick ends [a of the step's contact];
+the slip increment of the step at the nodes in contact at both of its ends, over its largest (over the
+history's largest where the step slips by less than `SLIVER` of that); the
+traction [f p0], leaving out `accuracy.BAND` a about the stick ends, the contact edges and the
+former edges and stick ends the memory keeps (where ``lambda`` jumps by more than `KINK` f); the
+energy dissipated up to each step, over the reference's total for the history. Targets: `TARGETS`.
+
+    python benchmarks/varying_accuracy.py [--scenes walk0,inphase,...] [--flat-scenes walk,...] [--cells 768]
+        [--load-part 0.0025] [--no-fine] [--no-finer] [--page ../docs/validation/varying-load.md]
+"""
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from harness import hertz_contact, rounded_flat_contact
+from jaeger import Jaeger
+
+import fretting as fr
+from fretting.analysis.accuracy import BAND
+from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART, Varying
+
+#: Targets at every step: stick ends [a], slip [of the step's largest], traction [f p0], energy [relative].
+TARGETS = {"stick": 1e-3, "slip": 1e-3, "traction": 1e-3, "energy": 1e-4}
+
+#: Parts of a receding step of the exact reference (and four times as many for its convergence).
+PARTS = 256
+
+#: Slip [of the step's largest] below which the exact solution's slip zone counts as stuck (`ExactRun._end`).
+SLIVER = 1e-6
+
+#: Jumps of ``lambda`` [f] that put a kink in the exact traction (left out of the traction error).
+KINK = 1e-2
+
+#: Cells and load part of the self-reference, and of the finer run that shows it converged.
+FINE = (2 * DEFAULT_CELLS, DEFAULT_LOAD_PART / 4)
+FINER = (4 * DEFAULT_CELLS, DEFAULT_LOAD_PART / 4)
+
+STEPS = 16  # per cycle or segment
+
+
+def _history(P, Q, sigma, cycle_length=None):
+    n = len(P)
+    vertex = np.arange(0, n, STEPS)
+    if cycle_length is None:
+        number = np.zeros(n, dtype=np.int64)
+    else:
+        number = np.concatenate([[0], (np.arange(1, n) - 1) // cycle_length + 1])
+    return fr.History(np.asarray(Q, float), np.asarray(sigma, float), vertex, number, np.asarray(P, float))
+
+
+def walk(contact, sigma=True, seed=7, segments=6):
+    rng = np.random.default_rng(seed)
+    P0, fP0, fp0 = contact.P, contact.f * contact.P, contact.f * contact.p0
+    P = np.concatenate([[1.0], rng.uniform(0.7, 1.3, segments)]) * P0
+    Q = np.concatenate([[0.0], rng.uniform(-0.6, 0.6, segments) * P[1:] / P0]) * fP0
+    s = np.concatenate([[0.0], rng.uniform(-0.3, 0.3, segments)]) * fp0 * sigma
+    path = fr.History.piecewise_linear(Q, s, STEPS, P=P)
+    return _history(path.P, path.Q, path.sigma)
+
+
+def inphase(contact, cycles=3):
+    theta = 2 * np.pi * np.arange(2 * cycles * STEPS + 1) / STEPS
+    r = np.where(np.arange(theta.size) <= cycles * STEPS, 0.95, 1.05)
+    P = contact.P * (1 + 0.3 * np.sin(theta))
+    return _history(P, r * 0.3 * contact.f * contact.P * np.sin(theta), 0 * theta, STEPS)
+
+
+def boundary(contact, cycles=2):
+    """``Q`` to ``0.3 f P0`` at ``P0``, then loops ``P = P0 (1 + 0.25 sin)``, ``dQ = r f dP``: `cycles` at
+    ``r = 0.98``, then `cycles` at 1.02."""
+    ramp = np.linspace(0, 1, STEPS + 1)
+    theta = 2 * np.pi * np.arange(1, 2 * cycles * STEPS + 1) / STEPS
+    r = np.where(np.arange(1, theta.size + 1) <= cycles * STEPS, 0.98, 1.02)
+    fP0 = contact.f * contact.P
+    P = contact.P * np.concatenate([np.ones(ramp.size), 1 + 0.25 * np.sin(theta)])
+    Q = fP0 * np.concatenate([0.3 * ramp, 0.3 + r * 0.25 * np.sin(theta)])
+    return _history(P, Q, 0 * P, STEPS)
+
+
+def recede(contact):
+    P0, fP0 = contact.P, contact.f * contact.P
+    P = [P0, P0, 0.6 * P0, 0.6 * P0, 1.3 * P0, P0]
+    Q = [0.0, 0.45 * fP0, 0.45 * fP0, -0.3 * fP0, -0.3 * fP0, 0.2 * fP0]
+    path = fr.History.piecewise_linear(Q, None, STEPS, P=P)
+    return _history(path.P, path.Q, 0 * path.Q)
+
+
+#: name: (history builder, on Hertz with sigma = 0: exact reference)
+SCENES = {
+    "walk0": (lambda c: walk(c, sigma=False), True),
+    "walk": (walk, False),
+    "inphase": (inphase, True),
+    "boundary": (boundary, True),
+    "recede": (recede, True),
+}
+
+
+class ExactRun:
+    """Jaeger's solution at every step of a history, as the arrays `compare` reads."""
+
+    def __init__(self, contact, history, parts):
+        jaeger = Jaeger(contact.profile.R, contact.E_star, contact.f, contact.P)
+        self.memory, self.stick, self.energy = [jaeger.memory], [jaeger.memory.a], [0.0]
+        for P, Q in zip(history.P[1:], history.Q[1:], strict=True):
+            step = jaeger.advance(float(P), float(Q), parts)
+            self.memory.append(jaeger.memory)
+            self.stick.append(jaeger.memory.a if step.stick is None else self._end(step.stick))
+            self.energy.append(self.energy[-1] + step.energy)
+        self.energy = np.array(self.energy)
+
+    def _end(self, c):
+        """The stick end [m] of the last step: the innermost ``|x|`` past `c` where its slip exceeds `SLIVER` of
+        its largest.
+
+        A part that resets bands already at the limit slips there by nothing; one that reaches just past them,
+        into a band below the limit, moves the end of Jaeger's stick zone there while the slip beyond grows by
+        a sliver's worth: the end read from the slip is where a method 4 grid can see it."""
+        before, after = self.memory[-2], self.memory[-1]
+        x = np.linspace(c, min(before.a, after.a), 4001)
+        ds = np.abs(after.slip(x) - before.slip(x))
+        over = np.flatnonzero(ds > SLIVER * ds.max())
+        if over.size == 0 or over[0] == 0:
+            return c
+        low, high = x[over[0] - 1], x[over[0]]
+        for _ in range(40):
+            middle = (low + high) / 2
+            low, high = (
+                (low, middle) if abs(after.slip(middle) - before.slip(middle)) > SLIVER * ds.max() else (middle, high)
+            )
+        return float(high)
+
+    def slip(self, k, x):
+        return self.memory[k].slip(x) - self.memory[k - 1].slip(x)
+
+    def traction(self, k, x):
+        return self.memory[k].traction(x)
+
+    def kinks(self, k, f):
+        return self.memory[k].kinks(KINK * f)
+
+
+class PackageRun:
+    """A run of the package read as the reference (`compare`): stick ends, slip, traction, energy per step."""
+
+    def __init__(self, result):
+        self.result = result
+        self.energy = np.cumsum(result.dissipation.values)
+        self.stick = [central_end(result, k) for k in range(result.sizes["step"])]
+        self._x = result.x.values
+
+    def slip(self, k, x):
+        r = self.result
+        return np.interp(x, self._x, r.slip.values[k] - r.slip.values[k - 1])
+
+    def traction(self, k, x):
+        return np.interp(x, self._x, self.result.q.values[k])
+
+    def kinks(self, k, f):
+        """The stick ends of every earlier step and the edges of the contacts met: where the memory may kink."""
+        c = self.result.centre if "centre" in self.result else 0.0
+        ends = [self.stick[j] for j in range(k)] + list(self.result.a.values[:k])
+        return np.asarray(ends) - c
+
+
+def central_end(result, k):
+    """Half-length [m] of the stick zone about the centre at step `k` (the mean of its two ends' distances)."""
+    start, end = result.stick_start.values[k], result.stick_end.values[k]
+    keep = ~np.isnan(start)
+    if not keep.any():
+        return 0.0
+    i = int(np.argmin(np.abs((start[keep] + end[keep]) / 2)))
+    return (end[keep][i] - start[keep][i]) / 2
+
+
+def compare(result, reference, contact):
+    """Worst figures over the steps of `result` against `reference` (`ExactRun` or `PackageRun`), as `TARGETS`."""
+    x, a, q = result.x.values, result.a.values, result.q.values
+    fp0, worst = contact.f * contact.p0, dict.fromkeys(TARGETS, 0.0)
+    where = dict.fromkeys(TARGETS, 0)
+    own = PackageRun(result)
+    history_slip = max(
+        np.max(np.abs(reference.slip(k, x[np.abs(x) < min(a[k], a[k - 1])])), initial=0.0)
+        for k in range(1, result.sizes["step"])
+    )
+    for k in range(1, result.sizes["step"]):
+        figures = {"stick": abs(own.stick[k] - reference.stick[k]) / a[k]}
+        both = np.abs(x) < min(a[k], a[k - 1])
+        expected = reference.slip(k, x[both])
+        largest = np.max(np.abs(expected), initial=0.0)
+        found = result.slip.values[k, both] - result.slip.values[k - 1, both]
+        figures["slip"] = np.max(np.abs(found - expected)) / (
+            largest if largest > SLIVER * history_slip else history_slip
+        )
+        avoid = np.concatenate([[reference.stick[k], a[k]], reference.kinks(k, contact.f)])
+        band = (np.abs(x) < a[k]) & np.all(np.abs(np.abs(x)[:, None] - np.abs(avoid)) > BAND * a[k], axis=1)
+        figures["traction"] = np.max(np.abs(q[k, band] - reference.traction(k, x[band])), initial=0.0) / fp0
+        figures["energy"] = abs(own.energy[k] - reference.energy[k]) / reference.energy[-1]
+        for name, value in figures.items():
+            if value > worst[name]:
+                worst[name], where[name] = float(value), k
+    return worst, where
+
+
+def line(label, worst, where, seconds=None):
+    flags = {name: "*" if worst[name] > TARGETS[name] else " " for name in TARGETS}
+    cells = " ".join(f"{worst[n]:9.2e}{flags[n]}({where[n]:3d})" for n in TARGETS)
+    time_ = "" if seconds is None else f" {seconds:7.2f}"
+    return f"  {label:<28}{cells}{time_}"
+
+
+def run(contact, history, cells, part):
+    start = time.process_time()
+    result = fr.simulate(contact, history, model=Varying(cells, load_part=part))
+    return result, time.process_time() - start
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--scenes", default=",".join(SCENES), help="on Hertz")
+    parser.add_argument("--flat-scenes", default=",".join(SCENES), help="on the rounded flat")
+    parser.add_argument("--cells", type=int, default=DEFAULT_CELLS)
+    parser.add_argument("--load-part", type=float, default=DEFAULT_LOAD_PART)
+    parser.add_argument("--no-finer", action="store_true", help="skip the FINER run (the self-reference's check)")
+    parser.add_argument("--no-fine", action="store_true", help="skip the FINE run against the exact reference")
+    parser.add_argument("--page", type=Path, help="also write the output to this Markdown page")
+    args = parser.parse_args(argv)
+    out = []
+
+    def say(text=""):
+        print(text, flush=True)
+        out.append(text)
+
+    say(f"varying-load model: worst figures over the steps (step in brackets; * over target) of Varying({args.cells},")
+    say(f"load_part={args.load_part:g}); targets {TARGETS}")
+    say(f"  {'run':<28}" + "".join(f"{name:>16}" for name in TARGETS) + "  CPU [s]")
+    contacts = {"hertz": hertz_contact(), "flat": rounded_flat_contact()}
+    for profile, names in (("hertz", args.scenes), ("flat", args.flat_scenes)):
+        contact = contacts[profile]
+        for name in filter(None, names.split(",")):
+            build, exact = SCENES[name]
+            history = build(contact)
+            say(f"{profile} {name}: {len(history) - 1} steps")
+            result, seconds = run(contact, history, args.cells, args.load_part)
+            if exact and profile == "hertz":
+                reference = ExactRun(contact, history, PARTS)
+                finer = ExactRun(contact, history, 2 * PARTS)
+                say(line("default vs exact", *compare(result, reference, contact), seconds))
+                if not args.no_fine:
+                    fine, fine_seconds = run(contact, history, *FINE)
+                    say(line(f"Varying{FINE} vs exact", *compare(fine, reference, contact), fine_seconds))
+                change = {
+                    "energy": float(np.max(np.abs(finer.energy - reference.energy)) / finer.energy[-1]),
+                    "stick": max(abs(u - v) for u, v in zip(finer.stick, reference.stick, strict=True)) / contact.a,
+                }
+                say(
+                    f"  exact, {PARTS} -> {2 * PARTS} parts per step: energy {change['energy']:.1e},"
+                    f" stick ends {change['stick']:.1e} a"
+                )
+            else:
+                fine, fine_seconds = run(contact, history, *FINE)
+                reference = PackageRun(fine)
+                say(line(f"default vs Varying{FINE}", *compare(result, reference, contact), seconds))
+                if not args.no_finer:
+                    finer, finer_seconds = run(contact, history, *FINER)
+                    say(line(f"{FINE} vs {FINER}", *compare(fine, PackageRun(finer), contact), finer_seconds))
+    if args.page:
+        args.page.write_text(page(out, argv))
+    return 0
+
+
+def page(lines, argv):
+    """The docs page: what is measured (this module's docstring) and the table printed."""
+    command = " ".join(["python benchmarks/varying_accuracy.py", *(argv if argv is not None else sys.argv[1:])])
+    text = __doc__.split("\n\n    python")[0]
+    return (
+        "# Accuracy under a varying normal load\n\n"
+        f"Generated by `{command}` (run from `benchmarks/`); do not edit by hand.\n\n"
+        f"{text.split(chr(10), 1)[1].strip()}\n\n```text\n" + "\n".join(lines) + "\n```\n"
+    )
+
+
+if __name__ == "__main__":
+    sys.exit(main())
