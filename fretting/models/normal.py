@@ -164,12 +164,9 @@ class Varying(ModelSpec):
         return (self.cells, self.load_part) == (DEFAULT_CELLS, DEFAULT_LOAD_PART)
 
     def attributes(self) -> dict:
-        return {
-            "model": self.name,
-            "cells": int(self.cells),
-            "half_width": float(self.half_width),
-            "load_part": float(self.load_part),
-        }
+        """The model's name, cells and load part, and the half-width its cells span once resolved."""
+        spans = {} if self.half_width is None else {"half_width": float(self.half_width)}
+        return {"model": self.name, "cells": int(self.cells)} | spans | {"load_part": float(self.load_part)}
 
     def holds_for(self, contact: Contact, history: History | None) -> str | None:
         if not (contact.profile.SYMMETRIC and hasattr(contact.profile, "load")):

@@ -4,6 +4,7 @@ out, and the node angles of a resolved spec by their count, not hundreds of numb
 import numpy as np
 import pytest
 
+import fretting as fr
 from fretting.models import Exact, Grid, InPhase, Mesh, Varying
 
 
@@ -29,3 +30,13 @@ def test_the_node_angles_of_a_resolved_spec_are_counted_not_printed():
     printed = repr(Mesh(theta=theta, fallback="capped"))
     assert printed == "Mesh(theta=<481 values>, fallback='capped')"
     assert len(repr(Exact(theta=theta[::2]))) < 40 and "<241 values>" in repr(Exact(theta=theta[::2]))
+
+
+def test_unresolved_and_resolved_varying_specs_compare_and_hash():
+    """An unresolved Varying (no half-width yet) equals another like it and hashes; a resolved one
+    differs from it (it was a TypeError: float(None) in its attributes)."""
+    contact = fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e5)
+    unresolved = fr.models.Varying()
+    assert unresolved == fr.models.Varying() and hash(unresolved) == hash(fr.models.Varying())
+    resolved = unresolved.resolved_for(contact, None)
+    assert resolved != unresolved and resolved == unresolved.resolved_for(contact, None)
