@@ -336,11 +336,12 @@ def spectrum(cycles, varying_P=False, seed=SEED):
     ``B_k`` uniform in [0.5, 1) and ``phi_k`` in [45, 135) degrees; with `varying_P`, ``P = P_0 (1
     + C_k (sin(theta + psi_k) - sin(psi_k)))``, ``C_k`` uniform in [0, `P_AMPLITUDE`), ``psi_k`` in
     [0, 360) degrees: every cycle starts and ends at ``P_0``, ``Q = 0``. Seeded draws
-    (`numpy.random.default_rng`); the loads are straight between the steps.
+    (`numpy.random.default_rng`), the first cycles the same whatever `cycles`; the loads are
+    straight between the steps.
     """
     contact = fr.read_history(EXAMPLE)[0]
     rng = np.random.default_rng(seed)
-    A, B, phi, C, psi = rng.random((5, cycles, 1))
+    A, B, phi, C, psi = np.moveaxis(rng.random((cycles, 5, 1)), 1, 0)  # a row a cycle: the first cycles stay
     theta = 2 * np.pi * np.arange(1, SPECTRUM_STEPS + 1) / SPECTRUM_STEPS
     Q = Q_AMPLITUDE * (0.5 + A / 2) * np.sin(theta)
     sigma = SIGMA_AMPLITUDE * (0.5 + B / 2) * np.sin(theta + np.radians(45 + 90 * phi))

@@ -1,7 +1,8 @@
 """The default against a dense method-4 code at equal error: the speed ratio of issue 34, scene by scene.
 
-Run:  python benchmarks/speed_ratio.py [--quick] [--page PATH]
-      (about 15 minutes on one core; --quick, a smoke run of fewer nodes and 1 repeat: 2 minutes)
+Run:  python benchmarks/speed_ratio.py [--quick] [--page PATH] [--truth N] [--scenes NAME ...]
+      (about 15 minutes of CPU on one core; --quick, a smoke run of fewer nodes, shorter scenes and 1
+      repeat: under a minute; --truth, a finer truth than `TRUTH_NODES`; --scenes, some of them)
 
 Against another checkout: ``PYTHONPATH=<checkout> python benchmarks/speed_ratio.py`` (this folder
 is found next to the script; only ``fretting.simulate(contact, history)`` and the fields of its
@@ -450,18 +451,19 @@ def _table(header, lines):
 
 
 def _meta(quick, repeats, seconds):
-    info = harness._meta(quick, repeats, seconds)
-    return info | {"flags": " --quick" if quick else ""}
+    return harness._meta(quick, repeats, seconds)
 
 
-def benchmark(quick=False, repeats=None, log=None):
-    """Every scene measured: ``(measured, meta)``."""
+def benchmark(quick=False, repeats=None, log=None, truth_nodes=None, names=None, flags=""):
+    """The scenes `names` (None: all) measured: ``(measured, meta)``; `truth_nodes` None: the mode's."""
     log = log or (lambda message: None)
     repeats = repeats if repeats is not None else (1 if quick else REPEATS)
-    nodes, truth_nodes = (QUICK_NODES, QUICK_TRUTH) if quick else (NODES, TRUTH_NODES)
+    nodes, truth = (QUICK_NODES, QUICK_TRUTH) if quick else (NODES, TRUTH_NODES)
+    truth_nodes = truth_nodes or truth
+    chosen = [scene for scene in scenes(quick) if names is None or scene.name in names]
     start = time.perf_counter()
-    measured = [measure_scene(scene, nodes, truth_nodes, repeats, log) for scene in scenes(quick)]
-    return measured, _meta(quick, repeats, time.perf_counter() - start)
+    measured = [measure_scene(scene, nodes, truth_nodes, repeats, log) for scene in chosen]
+    return measured, _meta(quick, repeats, time.perf_counter() - start) | {"flags": flags}
 
 
 def main(argv=None):
@@ -473,10 +475,19 @@ def main(argv=None):
         default=str(HERE.parent / "docs" / "validation" / "speed-ratio.md"),
         help="generated page (default docs/validation/speed-ratio.md; '-': none)",
     )
+    parser.add_argument("--truth", type=int, default=None, metavar="N", help=f"the truth's N (default {TRUTH_NODES})")
+    names = [scene.name for scene in scenes()]
+    parser.add_argument("--scenes", nargs="+", choices=names, default=None, help="these scenes only (default: all)")
     args = parser.parse_args(argv)
+    if args.truth is not None and args.truth <= max(QUICK_NODES if args.quick else NODES):
+        parser.error(f"--truth must be above the finest N scanned, found {args.truth}")
     print(f"fretting {fr.__version__} from {Path(fr.__file__).parent}", file=sys.stderr)
     log = lambda message: print(message, file=sys.stderr, flush=True)  # noqa: E731
-    measured, meta = benchmark(args.quick, args.repeats, log)
+    flags = " --quick" * args.quick + "".join(
+        f" --{name} {value}" for name, value in (("repeats", args.repeats), ("truth", args.truth)) if value is not None
+    )
+    flags += f" --scenes {' '.join(args.scenes)}" if args.scenes else ""
+    measured, meta = benchmark(args.quick, args.repeats, log, args.truth, args.scenes, flags)
     text = markdown(measured, meta)
     print(text[text.index("## Summary") :].split("\n## ")[0])
     if args.page != "-":
