@@ -399,7 +399,7 @@ def spectra_rows():
         notes.append(f"- {name}: energy per cycle of the first {few} cycles against dense_method4 N = {fine}"
                      f" (N = {coarse} differs from it by {change:.1e})")  # fmt: skip
         cpu_cycle = (long["cpu"] - short["cpu"]) / (many - few)
-        peak_cycle = max(long["peak"] - short["peak"], 0) / (many - few)
+        peak_cycle = max(long["peak"] - short["peak"], _loads_bytes(varying_P)) / (many - few)
         per_step[varying_P] = cpu_cycle / SPECTRUM_STEPS
         projected = {
             n: (long["cpu"] + cpu_cycle * (n - many), long["peak"] + peak_cycle * (n - many)) for n in SPECTRUM_TARGETS
@@ -415,8 +415,9 @@ def spectra_rows():
     for line in notes:
         print(line)
     print(
-        "- projected: the longer run plus the cost per cycle between the two runs (CPU time; peak memory, an upper"
-        " bound where the records and the fields per cycle stop growing)"
+        "- projected: the longer run plus the cost per cycle between the two runs (CPU time; peak memory, at least"
+        " the loads of the history held by its steps, 8 bytes a load and 4 a cycle number: an upper bound where the"
+        " records and the fields per cycle stop growing)"
     )
     for label, ratio in (
         ("the default of each", per_step[True] / per_step[False]),
@@ -427,6 +428,13 @@ def spectra_rows():
             f"- CPU time per step, varying P over constant P on the same history, {label}: {ratio:.2f}"
             f" (target <= {VARYING_P_RATIO:g}: {met})"
         )
+
+
+def _loads_bytes(varying_P):
+    """Bytes [B] of the loads of `SPECTRUM_CYCLES` cycles' difference held by their steps (`spectrum`'s arrays)."""
+    few, many = SPECTRUM_CYCLES
+    history = spectrum(many - few, varying_P)[1]
+    return sum(v.nbytes for v in (history.Q, history.sigma, history.cycle, history.P) if v is not None)
 
 
 def _spectrum_met(projected):
