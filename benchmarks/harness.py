@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
+import dense_method4
 import numpy as np
 import xarray as xr
 
@@ -59,12 +60,6 @@ ONE_THREAD = {name: "1" for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", 
 
 #: Names of the long targets that `benchmark` runs (None: all of `long_targets`).
 LONG_RUNS = None
-
-#: Working-set changes one baseline increment may take before it gives up.
-BASELINE_ITERATIONS = 200
-
-#: Rounding allowance of the baseline's friction test, relative to the largest limit.
-BASELINE_ROUNDING = 1e-13
 
 ERRORS = ("stick_ends_a", "energy_rel", "traction_fp0")
 
@@ -380,18 +375,13 @@ SMOOTH = ["hertz", "rounded_flat", "asymmetric"]
 
 
 def baseline_simulate(contact, history, nodes):
-    """Method 4 on ``N`` Gauss-Chebyshev points, written the way the field writes it by hand.
+    """Method 4 on ``N`` Gauss-Chebyshev points, written the way the field writes it by hand, as a dataset.
 
-    The slip ``s_k`` lives at ``t_k = cos((2k - 1) pi / (2N))``, ``x = centre + a t``, and the
-    dislocation kernel is the dense matrix ``G`` of ``sqrt(1 - t_j^2) q_d(t_j) = -sum_k G_jk s_k``,
-    ``G = (E_star / (a N)) sum_n n T_n(t_j) T_n(t_k)`` (formulation.md section 4). Each increment
-    starts from the previous increment's slip set and iterates: solve ``G_SS ds_S = g_trial_S -
-    dir_S f p_S sqrt(1 - t_S^2)`` with `numpy.linalg.solve`, stick the slipping nodes whose slip
-    went against its direction, release the stuck nodes whose traction exceeds the friction
-    limit, until nothing moves. Independent of `fretting.models.solver`; the same discretisation, so
-    its increments equal the engine's Chebyshev model's. Stick-zone ends are the engine's own
-    sub-grid estimate (`fretting.models.method4.stick_zones`), so that the two are compared as solvers,
-    not as post-processing.
+    `dense_method4.simulate` (the solver: a dense solve per active-set iteration) on a constant
+    normal load, independent of `fretting.models.solver`; the same discretisation, so its
+    increments equal the engine's Chebyshev model's. Stick-zone ends are the engine's own sub-grid
+    estimate (`fretting.models.method4.stick_zones`) of the slip since each point's episode began,
+    so that the two are compared as solvers, not as post-processing.
 
     Returns
     -------
@@ -400,48 +390,31 @@ def baseline_simulate(contact, history, nodes):
         ``cycle_dissipation`` over ``step``, ``x``, ``zone``, ``cycle_number``; attributes
         ``a``, ``p0``, ``f``, ``P``, ``E_star``, ``centre``, ``nodes``.
     """
-    a, N = contact.a, nodes
-    theta = (2 * np.arange(N, 0, -1) - 1) * np.pi / (2 * N)
-    t = np.cos(theta)
-    n = np.arange(N)
-    T = np.cos(np.outer(theta, n))
-    G = contact.E_star / (a * N) * (T * n) @ T.T
-    limit = contact.f * contact.pressure_weighted(t)
-    tolerance = BASELINE_ROUNDING * limit.max()
-    root = np.sqrt(1 - t**2)
-    weight = a * np.pi / N
-    steps = len(history)
-    slip, episode_start, direction = np.zeros(N), np.zeros(N), np.zeros(N)
-    q, slips, dissipation = np.zeros((steps, N)), np.zeros((steps, N)), np.zeros(steps)
-    zones = [[(-1.0, 1.0)]]
-    for k in range(1, steps):
-        g_trial = (history.Q[k] / np.pi + history.sigma[k] * a * t / 4) / a - G @ slip
-        ds, g, direction = _baseline_increment(G, g_trial, limit, direction, tolerance)
-        episode = slip - episode_start
-        new_slip = slip + ds
-        episode_start = np.where(ds == 0, new_slip, np.where(np.sign(ds) * np.sign(episode) < 0, slip, episode_start))
-        slip = new_slip
-        q[k], slips[k], dissipation[k] = g / root, slip, weight * np.abs(ds) @ limit
+    run = dense_method4.simulate(contact, history, nodes)
+    a, t = contact.a, (run.x - contact.centre) / contact.a
+    episode_start, zones = np.zeros(nodes), [[(-1.0, 1.0)]]
+    for before, slip in itertools.pairwise(run.slip):
+        ds, episode = slip - before, before - episode_start
+        episode_start = np.where(ds == 0, slip, np.where(np.sign(ds) * np.sign(episode) < 0, before, episode_start))
         zones.append(stick_zones(t, slip - episode_start))
-    q[0] = (history.Q[0] / np.pi + history.sigma[0] * a * t / 4) / a / root
     width = max(len(z) for z in zones)
-    ends = np.full((steps, width, 2), np.nan)
+    ends = np.full((len(zones), width, 2), np.nan)
     for k, z in enumerate(zones):
         ends[k, : len(z)] = z
     ends = contact.centre + a * ends
-    cycles = np.zeros(steps, dtype=int) if history.cycle is None else history.cycle
+    cycles = np.zeros(len(history), dtype=int) if history.cycle is None else history.cycle
     return xr.Dataset(
         {
             "Q": ("step", history.Q),
             "sigma": ("step", history.sigma),
-            "q": (("step", "x"), q),
-            "slip": (("step", "x"), slips),
+            "q": (("step", "x"), run.q),
+            "slip": (("step", "x"), run.slip),
             "stick_start": (("step", "zone"), ends[..., 0]),
             "stick_end": (("step", "zone"), ends[..., 1]),
-            "dissipation": ("step", dissipation),
-            "cycle_dissipation": ("cycle_number", np.bincount(cycles, weights=dissipation)[1:]),
+            "dissipation": ("step", run.dissipation),
+            "cycle_dissipation": ("cycle_number", np.bincount(cycles, weights=run.dissipation)[1:]),
         },
-        coords={"step": np.arange(steps), "x": contact.centre + a * t},
+        coords={"step": np.arange(len(history)), "x": run.x},
         attrs={
             "a": a,
             "p0": contact.p0,
@@ -449,30 +422,9 @@ def baseline_simulate(contact, history, nodes):
             "P": contact.P,
             "E_star": contact.E_star,
             "centre": contact.centre,
-            "nodes": N,
+            "nodes": nodes,
         },
     )
-
-
-def _baseline_increment(G, g_trial, limit, direction, tolerance):
-    """Iterate the slip set until the friction conditions hold; returns ``ds``, ``g``, the slip directions."""
-    direction = direction.copy()
-    for _ in range(BASELINE_ITERATIONS):
-        slipping = np.flatnonzero(direction)
-        if slipping.size == direction.size:
-            raise fr.SolverError("baseline: every node slips")
-        ds = np.zeros_like(g_trial)
-        if slipping.size:
-            rhs = g_trial[slipping] - direction[slipping] * limit[slipping]
-            ds[slipping] = np.linalg.solve(G[np.ix_(slipping, slipping)], rhs)
-        g = g_trial - G @ ds
-        backwards = (direction != 0) & (direction * ds < 0)
-        released = (direction == 0) & (np.abs(g) - limit > tolerance)
-        if not backwards.any() and not released.any():
-            return ds, g, direction
-        direction[backwards] = 0
-        direction[released] = np.sign(g[released])
-    raise fr.SolverError(f"baseline: the slip set did not settle in {BASELINE_ITERATIONS} iterations")
 
 
 # -- Measurement ------------------------------------------------------------------------------

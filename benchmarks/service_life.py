@@ -27,6 +27,17 @@ in a fresh process, on one BLAS thread:
   ``rtol`` `FINE_RTOL`. Histories this short (under 20000 steps) record every step, so their
   peak memory grows with the recorded fields.
 
+- spectra (``--spectra`` alone, issue 34): non-periodic out-of-phase spectra (`spectrum`: every
+  cycle its own random amplitudes of Q and sigma and its own phase between them, `SPECTRUM_STEPS`
+  steps a cycle), with a constant normal load and with a varying one (each cycle its own amplitude
+  and phase of P), run by ``fretting.simulate`` at default settings recording the last step, in a
+  fresh process each, for the cycles of `SPECTRUM_CYCLES`; the time and memory of 10^4 and 10^6
+  cycles projected from the two (linear in the cycles beyond the longer run, at the cost per cycle
+  between the two: the mesh of the default has reached its bound there); the energy per cycle of
+  the first cycles against `dense_method4` on a converged grid (its change from a coarser grid
+  printed); and the CPU time per step of the varying load over that of the constant load on the
+  same history, with the default of each and with `fretting.models.Varying` on both.
+
 The table ends each row with the issue's target and whether it is met ("?" where the row does not
 give that figure).
 
@@ -37,7 +48,7 @@ are extrapolated linearly in the cycles, and printed as such.
 Run:  python benchmarks/service_life.py [--short] [--Q-alone] [--million] [--out-of-phase]   (--short:
 10^3 cycles in phase and 10^4 of Q alone, two minutes; default 10^4 and 10^5, about 15 minutes;
 --Q-alone: the rows of Q alone only; --million: 10^6 cycles of each as well, half an hour more;
---out-of-phase: those rows only, ten minutes)
+--out-of-phase: those rows only, ten minutes; --spectra: the spectra of issue 34 only, five minutes)
 """
 
 import argparse
@@ -284,8 +295,164 @@ def _extrapolated(row, cycles):
     return Row(row.history, row.model, cycles, row.seconds / row.cycles * cycles, None, None, measured=False)
 
 
-def main(short=False, Q_only=False, million=False, out_of_phase=False):
+#: Spectra of issue 34: cycles of the two timed runs, steps a cycle, largest relative amplitude of P.
+SPECTRUM_CYCLES, SPECTRUM_STEPS, P_AMPLITUDE = (8, 24), 32, 0.1
+
+#: Grids of `dense_method4` for the spectra's reference energies (the first of `SPECTRUM_CYCLES`
+#: cycles): the reference and the coarser one it is checked against; and its parts where P varies.
+SPECTRUM_NODES = {False: (2048, 1536), True: (1024, 768)}
+SPECTRUM_LOAD_PART = 1 / 1600
+
+#: The targets of issue 34 for the spectra: CPU time [s] and peak memory [bytes] by cycles, and the
+#: largest ratio of the CPU time per step of a varying normal load over that of a constant one.
+SPECTRUM_TARGETS = {10**4: (60.0, None), 10**6: (2 * 3600.0, 1e9)}
+VARYING_P_RATIO = 2.0
+
+#: A child that runs a spectrum at default settings (``varying_P``; ``same_cells``: on
+#: `fretting.models.Varying`) recording the last step and prints its CPU time, peak memory and
+#: energy per cycle.
+SPECTRUM_CHILD = """
+import json, resource, sys, time
+sys.path.insert(0, {here!r})
+import fretting as fr
+import service_life
+from fretting.models.normal import Varying
+spec = json.loads(sys.argv[1])
+contact, history = service_life.spectrum(spec["cycles"], spec["varying_P"])
+model = {{"model": Varying()}} if spec["same_cells"] else {{}}
+start = time.process_time()
+result = fr.simulate(contact, history, record=[len(history) - 1], **model)
+cpu = time.process_time() - start
+peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+print(json.dumps({{"cpu": cpu, "peak": peak, "energy": result.cycle_dissipation.values.tolist(),
+                  "model": f"{{result.attrs['model']}}, {{result.attrs['nodes']}} nodes"}}))
+"""
+
+
+def spectrum(cycles, varying_P=False, seed=SEED):
+    """The example's contact and `cycles` non-periodic out-of-phase cycles of `SPECTRUM_STEPS` steps.
+
+    Cycle ``k``: ``Q = Q_AMPLITUDE A_k sin(theta)``, ``sigma = SIGMA_AMPLITUDE B_k sin(theta +
+    phi_k)``, ``theta = 2 pi j / SPECTRUM_STEPS``, ``j = 1 .. SPECTRUM_STEPS``, with ``A_k``,
+    ``B_k`` uniform in [0.5, 1) and ``phi_k`` in [45, 135) degrees; with `varying_P`, ``P = P_0 (1
+    + C_k (sin(theta + psi_k) - sin(psi_k)))``, ``C_k`` uniform in [0, `P_AMPLITUDE`), ``psi_k`` in
+    [0, 360) degrees: every cycle starts and ends at ``P_0``, ``Q = 0``. Seeded draws
+    (`numpy.random.default_rng`), the first cycles the same whatever `cycles`; the loads are
+    straight between the steps.
+    """
+    contact = fr.read_history(EXAMPLE)[0]
+    rng = np.random.default_rng(seed)
+    A, B, phi, C, psi = np.moveaxis(rng.random((cycles, 5, 1)), 1, 0)  # a row a cycle: the first cycles stay
+    theta = 2 * np.pi * np.arange(1, SPECTRUM_STEPS + 1) / SPECTRUM_STEPS
+    Q = Q_AMPLITUDE * (0.5 + A / 2) * np.sin(theta)
+    sigma = SIGMA_AMPLITUDE * (0.5 + B / 2) * np.sin(theta + np.radians(45 + 90 * phi))
+    P = None
+    if varying_P:
+        psi = 2 * np.pi * psi
+        P = np.concatenate(
+            [[contact.P], (contact.P * (1 + P_AMPLITUDE * C * (np.sin(theta + psi) - np.sin(psi)))).ravel()]
+        )
+    cycle = np.concatenate([[0], np.repeat(np.arange(1, cycles + 1), SPECTRUM_STEPS)])
+    loads = (np.concatenate([[0.0], v.ravel()]) for v in (Q, sigma))
+    return contact, fr.History(*loads, np.arange(0, cycles * SPECTRUM_STEPS + 1, SPECTRUM_STEPS), cycle, P)
+
+
+def spectrum_run(cycles, varying_P, same_cells=False):
+    """What `SPECTRUM_CHILD` prints for `cycles` cycles: ``cpu`` [s], ``peak`` [bytes], ``energy`` [J/m]
+    per cycle and ``model``."""
+    spec = json.dumps({"cycles": cycles, "varying_P": varying_P, "same_cells": same_cells})
+    code = SPECTRUM_CHILD.format(here=str(Path(__file__).resolve().parent))
+    found = subprocess.run(
+        [sys.executable, "-c", code, spec], check=True, capture_output=True, text=True, env=os.environ | ONE_THREAD
+    )
+    return json.loads(found.stdout.splitlines()[-1])
+
+
+def spectrum_reference(varying_P):
+    """Energy per cycle [J/m] of the first ``SPECTRUM_CYCLES[0]`` cycles by `dense_method4` on the
+    finer of `SPECTRUM_NODES`, and the largest relative change from the coarser."""
+    import dense_method4
+
+    contact, history = spectrum(SPECTRUM_CYCLES[0], varying_P)
+    energies = [
+        np.bincount(history.cycle, weights=dense_method4.simulate(contact, history, n, SPECTRUM_LOAD_PART).dissipation)[
+            1:
+        ]
+        for n in SPECTRUM_NODES[varying_P]
+    ]
+    return energies[0], worst(energies[1], energies[0])
+
+
+def spectra_rows():
+    """The spectra of issue 34: a table of the constant and the varying normal load, each at its
+    default, with projected time and memory and the energy error of the first cycles; then the
+    ratios of the CPU time per step, varying over constant."""
+    few, many = SPECTRUM_CYCLES
+    print("| spectrum | model | cycles run | CPU s | peak MB | energy error | 10^4 cycles | 10^6 cycles | target |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
+    per_step, notes = {}, []
+    for varying_P in (False, True):
+        name = "out of phase, varying P" if varying_P else "out of phase"
+        short, long = (spectrum_run(n, varying_P) for n in (few, many))
+        reference, change = spectrum_reference(varying_P)
+        error = worst(np.array(short["energy"]), reference)
+        fine, coarse = SPECTRUM_NODES[varying_P]
+        notes.append(f"- {name}: energy per cycle of the first {few} cycles against dense_method4 N = {fine}"
+                     f" (N = {coarse} differs from it by {change:.1e})")  # fmt: skip
+        cpu_cycle = (long["cpu"] - short["cpu"]) / (many - few)
+        peak_cycle = max(long["peak"] - short["peak"], _loads_bytes(varying_P)) / (many - few)
+        per_step[varying_P] = cpu_cycle / SPECTRUM_STEPS
+        projected = {
+            n: (long["cpu"] + cpu_cycle * (n - many), long["peak"] + peak_cycle * (n - many)) for n in SPECTRUM_TARGETS
+        }
+        cells = [f"{seconds:.0f} s, {peak / 1e9:.2g} GB" for seconds, peak in projected.values()]
+        print(f"| {name} | {long['model']} | {few}, {many} | {short['cpu']:.1f}, {long['cpu']:.1f} | "
+              f"{short['peak'] / 1e6:.0f}, {long['peak'] / 1e6:.0f} | {error:.1e} | {' | '.join(cells)} | "
+              f"{_spectrum_met(projected)} |")  # fmt: skip
+    same = {
+        v: spectrum_run(many, v, same_cells=True)["cpu"] - spectrum_run(few, v, same_cells=True)["cpu"]
+        for v in (False, True)
+    }
+    for line in notes:
+        print(line)
+    print(
+        "- projected: the longer run plus the cost per cycle between the two runs (CPU time; peak memory, at least"
+        " the loads of the history held by its steps, 8 bytes a load and 4 a cycle number: an upper bound where the"
+        " records and the fields per cycle stop growing)"
+    )
+    for label, ratio in (
+        ("the default of each", per_step[True] / per_step[False]),
+        ("fretting.models.Varying on both (the same cells)", same[True] / same[False]),
+    ):
+        met = "met" if ratio <= VARYING_P_RATIO else "MISSED"
+        print(
+            f"- CPU time per step, varying P over constant P on the same history, {label}: {ratio:.2f}"
+            f" (target <= {VARYING_P_RATIO:g}: {met})"
+        )
+
+
+def _loads_bytes(varying_P):
+    """Bytes [B] of the loads of `SPECTRUM_CYCLES` cycles' difference held by their steps (`spectrum`'s arrays)."""
+    few, many = SPECTRUM_CYCLES
+    history = spectrum(many - few, varying_P)[1]
+    return sum(v.nbytes for v in (history.Q, history.sigma, history.cycle, history.P) if v is not None)
+
+
+def _spectrum_met(projected):
+    words = []
+    for cycles, (seconds, memory) in SPECTRUM_TARGETS.items():
+        at_seconds, at_peak = projected[cycles]
+        words.append(f"10^{round(np.log10(cycles))}: < {seconds:.0f} s {'met' if at_seconds <= seconds else 'MISSED'}")
+        if memory is not None:
+            words.append(f"< {memory / 1e9:g} GB {'met' if at_peak <= memory else 'MISSED (upper bound)'}")
+    return ", ".join(words)
+
+
+def main(short=False, Q_only=False, million=False, out_of_phase=False, spectra=False):
     in_phase, Q_alone = (10**3, 10**4) if short else (10**4, 10**5)
+    if spectra:
+        spectra_rows()
+        return
     with tempfile.TemporaryDirectory() as directory:
         folder = Path(directory)
         if out_of_phase:
@@ -309,5 +476,8 @@ if __name__ == "__main__":
     parser.add_argument(
         "--out-of-phase", action="store_true", help="the rows of non-periodic out-of-phase cycles only (minutes)"
     )
+    parser.add_argument(
+        "--spectra", action="store_true", help="the non-periodic spectra of issue 34 only, constant and varying P"
+    )
     arguments = parser.parse_args()
-    main(arguments.short, arguments.Q_only, arguments.million, arguments.out_of_phase)
+    main(arguments.short, arguments.Q_only, arguments.million, arguments.out_of_phase, arguments.spectra)
