@@ -28,10 +28,11 @@ from scipy.optimize import brentq
 
 from fretting.errors import GrossSlipError, HistoryError, SolverError
 from fretting.loading.loads import Loads
+from fretting.models.base import UNFOLLOWED
 from fretting.models.state import State, Tally
 from fretting.physics.surface import bulk_stress
 
-__all__ = ["BRACKET", "STRAIGHT", "UNFOLLOWED", "advance", "displaced", "follow", "skippable", "slid"]
+__all__ = ["BRACKET", "STRAIGHT", "advance", "displaced", "follow", "skippable", "slid"]
 
 #: Largest ``|sin|`` of the turn between two increments, in units of ``(f P, f p0)``, that counts
 #: as straight: the steps of a linear segment meet it to rounding, and a sampled curve with a
@@ -108,10 +109,6 @@ def displaced(model, state, loads, step=None):
         held, end = replace(held, Q=end), limit
     Q = brentq(missed, held.Q, end, xtol=eps * sliding, rtol=4 * eps)
     return replace(loads, Q=float(Q))
-
-
-#: What a `GrossSlipError` of displacement control adds where the model does not slide.
-UNFOLLOWED = "under displacement control only fretting.models.Exact follows gross slip (Q alone, constant P)"
 
 
 def slid(model, state, loads):

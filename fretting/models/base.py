@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
+from fretting.errors import GrossSlipError
 from fretting.loading.loads import CONVERTED, NAMED, LoadBlock, Loads
 from fretting.physics.surface import SurfaceStress
 
@@ -37,7 +38,7 @@ if TYPE_CHECKING:
 #: returning the last `State` (`fretting.engine.follow.follow`), which a spec that adapts its nodes runs.
 Run = Callable[..., "State"]
 
-__all__ = ["Model", "ModelSpec", "Outcome"]
+__all__ = ["UNFOLLOWED", "Model", "ModelSpec", "Outcome"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -227,6 +228,11 @@ class ModelSpec(abc.ABC):
         )
 
 
+#: What a `fretting.errors.GrossSlipError` of displacement control adds where the model does not
+#: slide (`Model.slides`).
+UNFOLLOWED = "under displacement control only fretting.models.Exact follows gross slip (Q alone, constant P)"
+
+
 class Model(abc.ABC):
     """A contact discretised: the fixed arrays of every increment, and the increment itself.
 
@@ -274,8 +280,9 @@ class Model(abc.ABC):
 
     def slide(self, state: State, loads: Loads, du: float) -> Outcome:
         """`Outcome` of the increment to ``loads.Q = +-friction_force`` and a uniform slide `du` [m] of the
-        whole contact (`slides`). A model that does not slide refuses it."""
-        raise NotImplementedError(f"{self.spec.description} does not follow gross slip")
+        whole contact (`slides`). By default the contact's gross slip, which the model does not follow:
+        a `fretting.errors.GrossSlipError` naming the model that does (`UNFOLLOWED`)."""
+        raise GrossSlipError(None, loads.Q, loads.sigma, self.friction_force, UNFOLLOWED)
 
     #: True if `window` steps a run of increments for less than `increment` one at a time does (the
     #: engine then takes the unrecorded steps a window at a time).

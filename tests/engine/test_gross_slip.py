@@ -201,3 +201,12 @@ def test_other_symmetric_profiles_slide(profile):
     if isinstance(profile, fr.FlatPunch):
         assert delta_t == pytest.approx(contact.displacement_compliance * fP, rel=1e-12)
         assert energy[0] == pytest.approx(4 * fP * 0.3 * delta_t, rel=1e-9)
+
+
+def test_a_model_that_does_not_slide_refuses_a_slide_with_the_contract_error():
+    """`Model.slide`'s default is the gross-slip error naming the model that follows it, not a stub."""
+    contact = fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e5)
+    model = fr.models.Grid(32).build(contact)
+    assert not model.slides
+    with pytest.raises(fr.GrossSlipError, match="only fretting.models.Exact follows gross slip"):
+        model.slide(fr.State.virgin(model), fr.Loads(contact.f * contact.P), 1e-6)
