@@ -354,7 +354,8 @@ class Gap(Profile):
         singular there; the pressure of a contact that holds one is integrated about it (`pressure`),
         and the Galerkin mesh resolves the traction about them
         (tests/models/test_galerkin.py::test_rounded_flat). Neither is done for a point it is not told
-        of: at an undeclared cusp ``|x|^(3/2)`` the pressure is 1.3 % low. A table finds its own
+        of: at an undeclared cusp the pressure comes out low, by about a percent at ``|x|^(3/2)``
+        (tests/physics/test_profiles.py::test_the_pressure_at_a_cusp_is_the_closed_form). A table finds its own
         (`from_table`).
 
     Notes
@@ -505,8 +506,9 @@ class Gap(Profile):
     def pressure(self, t: np.ndarray, a: float, centre: float, P: float, E_star: float) -> np.ndarray:
         """The pressure [Pa]: the sine series of the Notes, or where the contact holds a breakpoint, its integral.
 
-        Next to a breakpoint the series converges slowly (at a cusp ``|x|^(3/2)`` its 1024 terms leave the
-        pressure 1.3 % low), so there the pressure is the integral of eq (1) bounded at both ends,
+        Next to a breakpoint the series converges slowly (at a cusp its terms leave the pressure low:
+        tests/physics/test_profiles.py::test_the_pressure_at_a_cusp_is_the_closed_form), so there the
+        pressure is the integral of eq (1) bounded at both ends,
         ``p = (E_star / 2 pi) sin(theta) int_0^pi (h0'(centre + a cos u) - h0'(centre + a t)) / (cos u - t) du``
         (the principal value taken out by the subtracted slope, since ``PV int_0^pi du / (cos u - t) = 0``),
         by Gauss-Legendre on the pieces between ``theta`` and the breakpoints, graded toward each end

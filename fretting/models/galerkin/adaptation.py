@@ -68,9 +68,9 @@ __all__ = [
 REFINEMENTS = 60
 
 #: A refinement of the energy stage (`adapted_model`) that adds fewer nodes than this fraction of
-#: the mesh ends it, with no pass on the mesh it gives: the pass after such a refinement adds under
-#: 1 % of the nodes, nothing on nearly every history (benchmarks/adaptation_passes.py prints each
-#: pass), and the stage of the ends refines that mesh again in any case.
+#: the mesh ends it, with no pass on the mesh it gives: the pass after such a refinement adds
+#: little or nothing (`python benchmarks/adaptation_passes.py --log` prints each pass), and the
+#: stage of the ends refines that mesh again in any case.
 SETTLED = 0.05
 
 #: Turn [rad] of the load path's direction after which a curved stretch between turning points is
