@@ -21,13 +21,13 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from fretting.analysis.nucleation import complete_cycles
 from fretting.engine.simulation import simulate
 from fretting.loading.history import History
 from fretting.loading.loads import Loads
 from fretting.models.exact import Exact
 from fretting.models.state import State
 from fretting.physics.contact import Contact
+from fretting.results.loops import LOOP_VARIABLES, with_loops
 from fretting.results.variables import REGIMES, variable
 
 __all__ = [
@@ -69,15 +69,12 @@ def sliding_cycles(delta_star: float, cycles: int, steps: int = QUARTER_STEPS) -
 
 
 def loop_cycles(result: xr.Dataset) -> xr.Dataset:
-    """The fretting loop of each load cycle of a displacement-controlled `result`, recorded whole.
+    """The fretting loop of each load cycle of a displacement-controlled `result`.
 
-    Variables on ``cycle_number`` (NaN, and regime -1, for a cycle not recorded whole):
-    ``Q_amplitude`` half the range of ``Q`` [N/m]; ``delta_amplitude`` half the range of
-    ``delta`` [m]; ``loop_opening`` the distance between the loop's two crossings of ``Q = 0``
-    [m], each interpolated by a cubic in ``Q`` through the steps of its branch (at most four,
-    where ``Q`` is strictly monotonic); ``cycle_dissipation`` [J/m]; ``energy_ratio`` and
-    ``sliding_ratio`` (Fouvry's ``A`` and ``B``); ``cycle_regime`` the largest regime of its
-    increments (`fretting.results.variables.REGIMES`).
+    The variables on ``cycle_number`` that the run wrote (`fretting.results.loops.LOOP_VARIABLES`:
+    ``Q_amplitude``, ``delta_amplitude``, ``loop_opening``, ``energy_ratio``, ``sliding_ratio``,
+    ``cycle_regime``; NaN, and regime -1, for a cycle not recorded whole), with
+    ``cycle_dissipation``; computed from the recorded steps of a result written without them.
 
     Raises
     ------
@@ -86,55 +83,10 @@ def loop_cycles(result: xr.Dataset) -> xr.Dataset:
     """
     if "delta" not in result or "cycle_number" not in result.dims:
         raise ValueError("the result has no delta or no load cycles: run a history of delta cycles on a datum")
-    Q, delta, regime = result.Q.values, result.delta.values, result.regime.values
-    rows = complete_cycles(result)
-    n = len(rows)
-    out = {name: np.full(n, np.nan) for name in ("Q_amplitude", "delta_amplitude", "loop_opening")}
-    cycle_regime = np.full(n, -1, dtype=np.int8)
-    for k, row in enumerate(rows):
-        if row is None:
-            continue
-        out["Q_amplitude"][k] = np.ptp(Q[row]) / 2
-        out["delta_amplitude"][k] = np.ptp(delta[row]) / 2
-        out["loop_opening"][k] = _opening(Q[row], delta[row])
-        cycle_regime[k] = regime[row][1:].max()
-    energy = result.cycle_dissipation.values
-    work = 4 * out["Q_amplitude"] * out["delta_amplitude"]
-    data = {name: variable(name, values) for name, values in out.items()}
-    data |= {
-        "cycle_dissipation": variable("cycle_dissipation", energy),
-        "energy_ratio": variable("energy_ratio", energy / work),
-        "sliding_ratio": variable("sliding_ratio", out["loop_opening"] / 2 / out["delta_amplitude"]),
-        "cycle_regime": variable("cycle_regime", cycle_regime),
-    }
-    return xr.Dataset(data, coords={"cycle_number": result.cycle_number.values}, attrs=_datum(result.attrs))
-
-
-def _opening(Q, delta):
-    """Distance [m] between the ``delta`` of the falling and of the rising crossing of ``Q = 0`` of
-    one loop (NaN where it does not cross both ways)."""
-    at = {}
-    for i in np.flatnonzero((Q[:-1] > 0) & (Q[1:] <= 0) | (Q[:-1] < 0) & (Q[1:] >= 0)):
-        way = int(np.sign(Q[i + 1] - Q[i]))
-        if way not in at:
-            at[way] = _crossing(Q, delta, i, way)
-    return abs(at[-1] - at[1]) if len(at) == 2 else np.nan
-
-
-def _crossing(Q, delta, i, way):
-    """``delta`` [m] at ``Q = 0`` between steps `i` and ``i + 1``, where ``Q`` moves `way` (+-1): a
-    cubic in ``Q`` through up to four steps around them along which ``Q`` moves strictly that way."""
-    lo, hi = i, i + 1
-    while hi - lo < 3:
-        if lo > 0 and (Q[lo] - Q[lo - 1]) * way > 0:
-            lo -= 1
-        elif hi + 1 < Q.size and (Q[hi + 1] - Q[hi]) * way > 0:
-            hi += 1
-        else:
-            break
-    scale = np.abs(Q[lo : hi + 1]).max()
-    fit = np.polyfit(Q[lo : hi + 1] / scale, delta[lo : hi + 1], hi - lo)
-    return float(np.polyval(fit, 0.0))
+    if not all(name in result for name in LOOP_VARIABLES):  # written before the run wrote them
+        result = with_loops(result)
+    data = {name: result[name].variable for name in ("cycle_dissipation", *LOOP_VARIABLES)}
+    return xr.Dataset(data, coords={"cycle_number": result.cycle_number.variable}, attrs=_datum(result.attrs))
 
 
 def _datum(attrs):
