@@ -45,7 +45,7 @@ import xarray as xr
 from fretting._version import __version__
 from fretting.analysis import nucleation
 from fretting.engine.simulation import simulate
-from fretting.errors import GrossSlipError, MissingDependencyError
+from fretting.errors import FrettingError, GrossSlipError, MissingDependencyError
 from fretting.loading.examples import EXAMPLES
 from fretting.loading.history import History
 from fretting.loading.history_file import (
@@ -67,6 +67,7 @@ __all__ = [
     "VARIABLES",
     "Base",
     "Case",
+    "NoWorkersError",
     "Sweep",
     "case_file",
     "curves",
@@ -151,6 +152,13 @@ REGIME_COLOURS = ("#eeeeee", "#cfe2f3", "#f4c7c3")
 
 #: Resolution of the map that `save_map` writes, as `fretting plot`'s figures.
 MAP_DPI = 100
+
+#: Seconds between two questions to the scheduler, while no case completes, of whether it has workers.
+WORKER_POLL_SECONDS = 1.0
+
+#: Seconds a sweep waits on a scheduler without workers (every one killed) before it stops: longer
+#: than a local cluster's nanny takes to restart a killed worker, or a batch system to start one.
+NO_WORKERS_SECONDS = 60.0
 
 #: Seconds a sweep waits for the file of its scheduler to appear (`sweep`'s `scheduler_file`).
 SCHEDULER_FILE_SECONDS = 60.0
@@ -539,15 +547,54 @@ def run_sweep(plan, scheduler=None, output=None, *, scheduler_file=None, progres
         distributed = _distributed()
         with _client(distributed, scheduler, scheduler_file, len(todo)) as client:
             futures = {client.submit(run_case, cases[k].contact, cases[k].history, pure=False): k for k in todo}
-            for done, future in enumerate(distributed.as_completed(futures), start=len(cases) - len(todo) + 1):
-                k = futures[future]
-                summaries[k] = future.result()
-                _keep(summaries[k], files[k], plan.base, cases[k])
-                progress(done, len(cases))
+            finished = len(cases) - len(todo)
+            try:
+                for future in _completed(distributed, client, futures):
+                    k = futures[future]
+                    summaries[k] = future.result()
+                    _keep(summaries[k], files[k], plan.base, cases[k])
+                    finished += 1
+                    progress(finished, len(cases))
+            except NoWorkersError as error:
+                raise NoWorkersError(f"{error}; {_kept_cases(finished, len(cases), output)}") from None
     dataset = _combine(plan, summaries)
     if output is not None:
         save(dataset, output)
     return dataset
+
+
+class NoWorkersError(FrettingError, RuntimeError):
+    """The scheduler of a sweep has had no worker for `NO_WORKERS_SECONDS`: its cases would wait forever."""
+
+
+def _completed(distributed, client, futures):
+    """The futures `futures` of `client` as each completes, while the scheduler has workers.
+
+    Every `WORKER_POLL_SECONDS` without a future completed, asks the scheduler for its workers;
+    raises NoWorkersError once it has had none for `NO_WORKERS_SECONDS` (each worker killed, and
+    none restarted or added: a future would wait forever).
+    """
+    pending, alone = set(futures), None
+    while pending:
+        try:
+            done, pending = distributed.wait(pending, timeout=WORKER_POLL_SECONDS, return_when="FIRST_COMPLETED")
+        except TimeoutError:
+            done = ()
+        yield from done
+        if client.scheduler_info()["workers"]:
+            alone = None
+        elif alone is None:
+            alone = time.monotonic()
+        elif time.monotonic() - alone > NO_WORKERS_SECONDS:
+            raise NoWorkersError(f"the dask scheduler has had no workers for {NO_WORKERS_SECONDS:g} s")
+
+
+def _kept_cases(finished, total, output):
+    """What became of the cases of a sweep stopped with `finished` of `total` done: where they are, how to go on."""
+    if output is None:
+        return f"{finished} of {total} cases finished, none kept (no output file)"
+    folder = Path(output).with_suffix(".cases")
+    return f"{finished} of {total} cases finished, kept in {folder}; run the sweep again with workers to run the rest"
 
 
 def run_one(plan, k, output):
