@@ -52,6 +52,7 @@ from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.galerkin import DEFAULT_RTOL, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK
 from fretting.results.io import ResultError, load, save
 from fretting.results.tables import cycle_table, step_table, write_csv
+from fretting.studies import running
 from fretting.studies.maps import FileScene, nucleation_boundary
 from fretting.studies.sweeps import (
     REGIMES,
@@ -70,6 +71,9 @@ from fretting.studies.sweeps import (
 __all__ = ["main"]
 
 EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
+
+#: The variables of a running-condition sweep that `fretting plot` maps over (delta*, P), with the boundary.
+RUNNING_MAPS = ("cycle_regime", "energy_ratio")
 
 #: Default resolution of `fretting plot` and `fretting stress --figure` (raster formats): 6.4 x 4.4
 #: inch figures at 100 dpi keep results/ of eight examples near 5 MB (7.9 MB at 150 dpi).
@@ -613,6 +617,14 @@ def _sweep_plot(args):
         figure = Figure(figsize=args.size, layout="constrained")
         draw(cases, ax=figure.subplots())
         _saved(figure, directory / f"{Path(args.file).stem}_{name}", args)
+    if running.running_dims(cases) is not None:  # a sweep over P and a displacement amplitude
+        from fretting import plots
+
+        mapped = running.running_cases(cases)
+        for name in RUNNING_MAPS:
+            figure = Figure(figsize=args.size, layout="constrained")
+            plots.running_condition_map(mapped, name, ax=figure.subplots())
+            _saved(figure, directory / f"{Path(args.file).stem}_running_{name}", args)
 
 
 def _stress(args):

@@ -15,6 +15,7 @@ do; for a given history of ``Q``, ``Q*``, the opening and ``E_d`` do not (docs/t
 from __future__ import annotations
 
 import csv
+import itertools
 import math
 from pathlib import Path
 
@@ -34,6 +35,8 @@ __all__ = [
     "fit_datum",
     "loop_cycles",
     "read_loop",
+    "running_cases",
+    "running_dims",
     "running_map",
     "sliding_cycles",
     "transition_displacement",
@@ -95,36 +98,78 @@ def _datum(attrs):
 
 def running_map(contact: Contact, P, delta_amplitude, cycles: int = 2, steps: int = QUARTER_STEPS) -> xr.Dataset:
     """Running-condition map of `contact` over the normal loads `P` [N/m] and displacement amplitudes
-    `delta_amplitude` [m]: each point runs the exact model over `sliding_cycles` and keeps the
-    last cycle's `loop_cycles` numbers.
+    `delta_amplitude` [m]: each point runs the exact model over `sliding_cycles`, in this process, as a
+    case of a sweep (`fretting.studies.sweeps.run_cases`), and keeps its last cycle's loop.
 
     Returns a dataset on ``(P, delta_amplitude)`` of ``Q_amplitude``, ``cycle_dissipation``,
     ``loop_opening``, ``energy_ratio``, ``sliding_ratio`` and ``cycle_regime``, with the boundary
-    ``transition`` (`transition_displacement`) on ``P``. The contact's profile, moduli, ``f``,
-    datum and compliance are kept; its ``P`` is replaced by each of `P`.
+    ``transition`` (`transition_displacement`) on ``P`` (`running_cases`). The contact's profile,
+    moduli, ``f``, datum and compliance are kept; its ``P`` is replaced by each of `P`.
     """
-    P, amplitudes = np.asarray(P, dtype=float), np.asarray(delta_amplitude, dtype=float)
-    names = ("Q_amplitude", "cycle_dissipation", "loop_opening", "energy_ratio", "sliding_ratio", "cycle_regime")
-    values = {name: np.empty((P.size, amplitudes.size)) for name in names}
-    boundary = np.empty(P.size)
-    for i, load in enumerate(P):
-        loaded = _at_load(contact, load)
-        boundary[i] = transition_displacement(loaded)
-        for j, amplitude in enumerate(amplitudes):
-            result = simulate(loaded, sliding_cycles(amplitude, cycles, steps), Exact())
-            last = loop_cycles(result).isel(cycle_number=-1)
-            for name in names:
-                values[name][i, j] = last[name].values
-    dims = ("P", "delta_amplitude")
-    data = {name: variable(name, values[name], dims) for name in names}
-    data["cycle_regime"] = variable("cycle_regime", values["cycle_regime"].astype(np.int8), dims)
-    data["transition"] = variable("transition", boundary)
+    from fretting.studies import sweeps  # which runs cases of this module's transition_displacement
+
+    grid = {"contact.P": [float(load) for load in P], "delta_amplitude": [float(value) for value in delta_amplitude]}
+    cases = [
+        sweeps.Case(values, _at_load(contact, values["contact.P"]), _run_by(values, cycles, steps), ())
+        for values in (dict(zip(grid, point, strict=True)) for point in itertools.product(*grid.values()))
+    ]
+    mapped = running_cases(sweeps.gathered(grid, sweeps.run_cases(cases, None, in_process=True)))
+    return mapped.assign_attrs({"cycles": cycles} | _datum(vars(contact)))
+
+
+def _run_by(values, cycles, steps):
+    """`sliding_cycles` of the amplitude of `values` on the exact model, as a case of a sweep runs it."""
+    return sliding_cycles(values["delta_amplitude"], cycles, steps)
+
+
+#: The variables of a running-condition map (`running_cases`) -> those of a sweep's that they are.
+MAPPED = {
+    "Q_amplitude": "Q_amplitude",
+    "cycle_dissipation": "energy_per_cycle",
+    "loop_opening": "loop_opening",
+    "energy_ratio": "energy_ratio",
+    "sliding_ratio": "sliding_ratio",
+    "cycle_regime": "cycle_regime",
+}
+
+
+def running_dims(cases: xr.Dataset) -> tuple[str, str] | None:
+    """The dimensions ``(of P, of delta_amplitude)`` of a sweep dataset over the normal load (a key
+    ``contact.P``) and the displacement amplitude (a key ending in ``delta_amplitude``), and no other;
+    None for any other sweep."""
+    ends = {dim: cases[dim].attrs.get("key", dim).rsplit(".", 1)[-1] for dim in cases.regime.dims}
+    found = [next((dim for dim, end in ends.items() if end == name), None) for name in ("P", "delta_amplitude")]
+    if len(ends) != 2 or None in found or any(cases[dim].dtype.kind not in "iuf" for dim in found):
+        return None
+    return tuple(found)
+
+
+def running_cases(cases: xr.Dataset) -> xr.Dataset:
+    """The running-condition map (as `running_map` gives it) of a sweep dataset over the normal load and
+    the displacement amplitude (`running_dims`): the last cycle's loop of each case, and the boundary
+    ``transition`` on ``P``.
+
+    Raises
+    ------
+    ValueError
+        Where `cases` is not such a sweep.
+    """
+    dims = running_dims(cases)
+    if dims is None:
+        raise ValueError("a running-condition map needs a sweep over contact.P and a delta_amplitude, and no other key")
+    order = ("P", "delta_amplitude")
+    data = {name: variable(name, cases[swept].transpose(*dims).values, order) for name, swept in MAPPED.items()}
+    data["transition"] = variable("transition", cases.transition.transpose(*dims).values[:, 0])
     coords = {
-        "P": xr.Variable("P", P, {"units": "N/m", "long_name": "normal load per unit length of each row of the map"}),
-        "delta_amplitude": variable("delta_amplitude", amplitudes, ("delta_amplitude",)),
+        "P": xr.Variable(
+            "P",
+            cases[dims[0]].values,
+            {"units": "N/m", "long_name": "normal load per unit length of each row of the map"},
+        ),
+        "delta_amplitude": variable("delta_amplitude", cases[dims[1]].values, ("delta_amplitude",)),
     }
-    attrs = {"regimes": ", ".join(f"{k} {name}" for k, name in enumerate(REGIMES)), "cycles": cycles}
-    return xr.Dataset(data, coords=coords, attrs=attrs | _datum(vars(contact)))
+    attrs = {"regimes": ", ".join(f"{k} {name}" for k, name in enumerate(REGIMES))}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def _at_load(contact, P):
