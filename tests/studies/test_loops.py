@@ -76,31 +76,15 @@ def test_unrecorded_cycles_have_none(contact, mixed):
         np.testing.assert_array_equal(np.delete(values, 1), np.delete(whole[name].values, 1), err_msg=name)
 
 
-FILE = (
-    HERTZ_TOML
-    + """datum = 5e-3
+def delta_cycles(amplitude, count):
+    """History-file blocks: up to `amplitude` [m] in 5 steps, then `count` cycles of +-`amplitude`."""
+    cycle = f'{{ kind = "linear", delta = [{-amplitude}, {amplitude}], steps_per_segment = 7, cycle = true }}'
+    up = f'[[loading]]\nkind = "linear"\ndelta = [{amplitude}]\nsteps_per_segment = 5\n'
+    return up + f'[[loading]]\nkind = "repeat"\ncount = {count}\nblocks = [{cycle}]\n'
 
-[[loading]]
-kind = "linear"
-delta = [1e-6]
-steps_per_segment = 5
 
-[[loading]]
-kind = "repeat"
-count = 4
-blocks = [{ kind = "linear", delta = [-1e-6, 1e-6], steps_per_segment = 7, cycle = true }]
-
-[[loading]]
-kind = "linear"
-delta = [3e-6]
-steps_per_segment = 5
-
-[[loading]]
-kind = "repeat"
-count = 3
-blocks = [{ kind = "linear", delta = [-3e-6, 3e-6], steps_per_segment = 7, cycle = true }]
-"""
-)
+#: Four cycles of +-1 um in partial slip, then three of +-3 um in gross slip (delta_t = 1.64 um).
+FILE = HERTZ_TOML + "datum = 5e-3\n" + delta_cycles(1e-6, 4) + delta_cycles(3e-6, 3)
 
 
 def test_a_file_run_in_chunks_interrupted_and_resumed_is_the_run_in_one_piece(tmp_path, monkeypatch):
