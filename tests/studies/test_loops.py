@@ -109,3 +109,24 @@ def test_a_file_run_in_chunks_interrupted_and_resumed_is_the_run_in_one_piece(tm
     result = fr.load(output)
     for name in LOOP_VARIABLES:
         np.testing.assert_array_equal(result[name].values, whole[name].values, err_msg=name)
+
+
+def test_a_run_that_skips_steps_has_the_loops_of_the_cycles_it_records(tmp_path):
+    """`run_file` of a force-controlled history on a datum, recording cycle 2 only (with the steps either
+    side, which show it whole): the other cycles' steps are skipped or not recorded, their loops NaN;
+    cycle 2's is the whole run's."""
+    source = tmp_path / "forced.toml"
+    blocks = '[[loading]]\nkind = "sine"\nQ_amplitude = 40e3\ncycles = 3\nsteps_per_cycle = 16\n'
+    source.write_text(HERTZ_TOML + "datum = 5e-3\n" + blocks)
+    contact, history = fr.read_history(source)
+    whole = fr.simulate(contact, history, fr.models.Exact())
+    steps = np.flatnonzero(history.cycle == 2)
+    run = runner.run_file(
+        source, tmp_path / "forced.h5", fr.models.Exact(), record=np.r_[steps[0] - 1, steps, steps[-1] + 1]
+    )
+    result = fr.load(run.output)
+    assert "skipped" in " ".join(run.notes)
+    assert result.cycle_regime.values.tolist() == [-1, 1, -1]
+    for name in LOOP_VARIABLES[:-1]:
+        assert np.isnan(result[name].values[[0, 2]]).all(), name
+        np.testing.assert_allclose(result[name].values[1], whole[name].values[1], rtol=1e-12, err_msg=name)
