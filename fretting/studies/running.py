@@ -1,12 +1,14 @@
 """Fretting loops and running-condition maps under displacement control (docs/guide/displacement.md).
 
 A rig that imposes ``+-delta*`` records, cycle by cycle, the loop of ``Q`` against ``delta``;
-`loop_cycles` reduces each loop to the numbers of Fouvry, Kapsa & Vincent (1995): the amplitudes
-``Q*`` and ``delta*``, the opening ``2 delta_0`` at ``Q = 0``, the energy ``E_d``, the energy ratio
-``A = E_d / (4 Q* delta*)``, the sliding ratio ``B = delta_0 / delta*`` and the regime of the cycle.
-`running_map` runs the exact model over a grid of normal loads and displacement amplitudes and
-maps them, with the partial-slip / gross-slip boundary ``delta_t(P)`` (`transition_displacement`,
-eq D6 of docs/theory/displacement.md). `fit_datum` finds the datum of a rig from a measured loop.
+`loop_cycles` gives the numbers of Fouvry, Kapsa & Vincent (1995) that the run wrote for each loop
+(`fretting.results.loops`): the amplitudes ``Q*`` and ``delta*``, the opening ``2 delta_0`` at
+``Q = 0``, the energy ``E_d``, the energy ratio ``A = E_d / (4 Q* delta*)``, the sliding ratio
+``B = delta_0 / delta*`` and the regime of the cycle. `running_map` runs the exact model over a grid
+of normal loads and displacement amplitudes as the cases of a sweep, and `running_cases` maps a
+sweep dataset over them, with the partial-slip / gross-slip boundary ``delta_t(P)``
+(`transition_displacement`, eq D6 of docs/theory/displacement.md). `fit_datum` finds the datum of a
+rig from a measured loop.
 
 Which numbers depend on the datum ``L`` and the rig compliance ``C``: ``delta*``, ``A`` and ``B``
 do; for a given history of ``Q``, ``Q*``, the opening and ``E_d`` do not (docs/theory/displacement.md#datum-dependence).
