@@ -5,10 +5,12 @@ Each group of commands is a module here (`results`, `stress`, `sweeps`, `fatigue
 parsers and holds their actions; `common` holds what they share.
 
 Exit codes: 0 success, 2 bad input (files, keys, values, arguments), 3 gross slip, 1 a solver
-failure, 130 interrupted. Errors are one line on stderr; ``--debug`` shows the traceback.
+failure, 130 interrupted, 141 output closed by its reader (``fretting examples | head``: quietly, as
+a shell's tools end on SIGPIPE). Errors are one line on stderr; ``--debug`` shows the traceback.
 """
 
 import argparse
+import os
 import signal
 import sys
 import threading
@@ -22,7 +24,7 @@ from fretting.results.io import ResultError
 
 __all__ = ["main"]
 
-EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED = 1, 2, 3, 130
+EXIT_FAILURE, EXIT_INPUT, EXIT_GROSS_SLIP, EXIT_INTERRUPTED, EXIT_PIPE = 1, 2, 3, 130, 141
 
 
 def main(argv=None):
@@ -90,6 +92,9 @@ def _main(args, interrupts):
         return _fail(args, interrupt, f"interrupted{f': {interrupt}' if interrupt.args else ''}", EXIT_INTERRUPTED)
     except GrossSlipError as error:
         return _fail(args, error, f"{args.file}: {error}", EXIT_GROSS_SLIP)
+    except BrokenPipeError:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # nothing more to flush at exit
+        return EXIT_PIPE
     except OSError as error:
         return _fail(args, error, f"{error.filename or args.file}: {error.strerror or error}", EXIT_INPUT)
     except (HistoryError, ResultError, MaterialFileError, MissingDependencyError) as error:
