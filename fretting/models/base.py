@@ -231,8 +231,8 @@ class ModelSpec(abc.ABC):
 #: What a `fretting.errors.GrossSlipError` of displacement control adds where the model does not
 #: slide (`Model.slides`).
 UNFOLLOWED = (
-    "under displacement control fretting.models.Exact (Q alone), Grid and Mesh (Q and sigma) follow gross slip "
-    "under a constant P"
+    "under displacement control fretting.models.Exact (Q alone), Grid, Mesh and Varying (Q and sigma) follow "
+    "gross slip under a constant P"
 )
 
 
@@ -278,7 +278,7 @@ class Model(abc.ABC):
         """
 
     #: True if the model follows gross slip under displacement control (`slide`): its `increment`
-    #: reaches ``|Q| = sliding_force`` exactly (the exact model of ``Q`` alone, method 4's models).
+    #: reaches ``|Q| = sliding_force`` exactly (the exact model of ``Q`` alone, method 4's models, the cells).
     slides: bool = False
 
     def sliding_force(self, P: float | None = None) -> float:

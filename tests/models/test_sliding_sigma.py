@@ -1,8 +1,9 @@
-"""Gross slip of method 4's models (`Grid`, `Mesh`) under displacement control, with a bulk tension
-``sigma`` (docs/theory/displacement.md#sliding-sigma): the energy of a slide against its closed form,
-the slip of a slide against the strain mismatch of ``sigma``, a point that ``sigma`` would reverse
-sticking instead, the regime of every step, force control still refusing ``|Q| >= f P``, a history in
-and out of gross slip split and resumed bit for bit, and the mesh against the exact model at ``sigma = 0``."""
+"""Gross slip of method 4's models (`Grid`, `Mesh`, the cells of `Varying`) under displacement control,
+with a bulk tension ``sigma`` (docs/theory/displacement.md#sliding-sigma): the energy of a slide
+against its closed form, the slip of a slide against the strain mismatch of ``sigma``, a point that
+``sigma`` would reverse sticking instead, the regime of every step, force control still refusing
+``|Q| >= f P``, a history in and out of gross slip split and resumed bit for bit, and the mesh
+against the exact model at ``sigma = 0``."""
 
 import numpy as np
 import pytest
@@ -15,8 +16,13 @@ from fretting.studies.running import sliding_cycles, transition_displacement
 
 GROSS, PARTIAL = REGIMES.index("gross_slip"), REGIMES.index("partial_slip")
 
-MODELS = [fr.models.Grid(64), fr.models.Mesh(theta=uniform_theta(64))]
-IDS = ["grid", "mesh"]
+MODELS = [fr.models.Grid(64), fr.models.Mesh(theta=uniform_theta(64)), fr.models.Varying(64)]
+IDS = ["grid", "mesh", "cells"]
+
+
+def resolved(spec, contact):
+    """`spec` with its nodes fixed on `contact` (the cells over its own contact), for a `fr.Stepper`."""
+    return spec.resolved_for(contact, None)
 
 
 @pytest.fixture(scope="module")
@@ -69,9 +75,11 @@ def strain_mismatch_error(contact, spec):
 def test_a_slide_under_a_changing_tension_takes_the_strain_mismatch(contact):
     """With the traction held at ``f p``, the slip changes by the slide plus the bulk strain mismatch,
     ``ds = d delta + d sigma x / (2 E_star)``: on the Chebyshev grid to rounding (``x`` is its first
-    polynomial); on a mesh in ``theta``, which holds ``x = a cos(theta)`` to second order, the error
-    falls four times as the elements halve."""
+    polynomial), on the cells to rounding (their stuck load of ``sigma`` is that of this slip); on a mesh in
+    ``theta``, which holds ``x = a cos(theta)`` to second order, the error falls four times as the elements
+    halve."""
     assert strain_mismatch_error(contact, fr.models.Grid(64)) < 1e-10
+    assert strain_mismatch_error(contact, fr.models.Varying(64)) < 1e-10
     coarse, fine = (strain_mismatch_error(contact, fr.models.Mesh(theta=uniform_theta(n))) for n in (32, 64))
     assert fine < 1e-3 and coarse / fine > 3.5
 
@@ -86,7 +94,7 @@ def test_a_tension_that_would_reverse_an_edge_sticks_it(contact, spec):
     d_sigma = 0.2 * fp0
     outcomes = {}
     for share in (1.2, 0.5):
-        stepper = fr.Stepper(contact, spec)
+        stepper = fr.Stepper(contact, resolved(spec, contact))
         stepper.step(delta=1.5 * delta_t)
         assert stepper.state.Q == pytest.approx(fP, rel=1e-15)
         reach = d_sigma * np.max(np.abs(stepper.model.x - contact.centre)) / (2 * contact.E_star)
@@ -94,7 +102,7 @@ def test_a_tension_that_would_reverse_an_edge_sticks_it(contact, spec):
     (slid, Q_slid), (stuck, Q_stuck) = outcomes[1.2], outcomes[0.5]
     assert Q_slid == pytest.approx(fP, rel=1e-15) and np.all(slid.ds > 0)
     assert Q_stuck < fP * (1 - 1e-6)
-    x = fr.Stepper(contact, spec).model.x - contact.centre
+    x = stepper.model.x - contact.centre
     held, back = x[stuck.ds == 0], x[stuck.ds < 0]
     assert held.size and np.all(held < 0)
     assert np.all(back < held.min())
@@ -135,9 +143,11 @@ def test_a_history_in_and_out_of_gross_slip_split_anywhere_resumes_bit_for_bit(c
 def cycle_errors(contact, exact, elements):
     """Largest error of ``Q`` [f P] over the steps, and of the cycle's energy [relative], of the uniform mesh
     of `elements` elements against the `exact` result of one gross-slip cycle."""
-    mesh = fr.simulate(contact, sliding_cycles(1.5 * transition_displacement(contact), 1, 16), fr.models.Mesh(
-        theta=uniform_theta(elements)
-    ))
+    mesh = fr.simulate(
+        contact,
+        sliding_cycles(1.5 * transition_displacement(contact), 1, 16),
+        fr.models.Mesh(theta=uniform_theta(elements)),
+    )
     assert np.array_equal(mesh.regime.values, exact.regime.values)
     fP = contact.f * contact.P
     return (
