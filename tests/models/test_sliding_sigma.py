@@ -108,6 +108,30 @@ def test_a_tension_that_would_reverse_an_edge_sticks_it(contact, spec):
     assert np.all(back < held.min())
 
 
+def test_sliding_erases_the_memory_of_partial_slip(contact):
+    """Two pasts of partial slip under different tensions, then the same slide under ``sigma = 0.2 f p0`` and
+    a reversal: from the slide on, the slip fields agree to rounding (the sliding field of eq D10, its
+    uniform part fixed by ``delta``), and so do ``Q`` and the slip after the reversal."""
+    delta_t, fp0 = transition_displacement(contact), contact.f * contact.p0
+    pasts = (([0.0, 0.6, -0.4], [0.0, 0.4, -0.3]), ([0.0, -0.8, 0.5, 0.1], [0.0, -0.2, 0.1, 0.2]))
+    spec = fr.models.Grid(48)
+    runs = []
+    for delta, sigma in pasts:
+        delta, sigma = delta + [1.4, 1.6, 0.9], sigma + [0.2, 0.2, 0.2]
+        history = fr.History.piecewise_linear(
+            delta=[d * delta_t for d in delta], sigma=[s * fp0 for s in sigma], steps_per_segment=4
+        )
+        runs.append(fr.simulate(contact, history, spec))
+    slid = [int(np.argmax(run.regime.values == GROSS)) for run in runs]
+    scale = np.abs(runs[0].slip.values).max()
+    for back in (9, 1):  # the last slide, and the last step of the reversal
+        slips = [run.slip.values[-back] for run in runs]
+        assert np.max(np.abs(slips[0] - slips[1])) < 1e-9 * scale, back
+    assert runs[0].Q.values[-1] == pytest.approx(runs[1].Q.values[-1], rel=1e-9)
+    assert runs[0].regime.values[-1] == PARTIAL and all(run.regime.values[-9] == GROSS for run in runs)
+    assert slid[0] != slid[1] or not np.array_equal(runs[0].slip.values[slid[0] - 1], runs[1].slip.values[slid[1] - 1])
+
+
 @pytest.mark.parametrize("spec", MODELS, ids=IDS)
 def test_force_control_still_refuses_gross_slip(contact, spec):
     """The ``Q`` and ``sigma`` a displacement run found, fed to force control: the run stops with
