@@ -88,7 +88,7 @@ def displaced(model, state, loads, step=None):
     held = state.loads
     if (held.delta, held.sigma, held.P) == (loads.delta, loads.sigma, loads.P):
         return replace(loads, Q=held.Q)
-    sliding = min(model.friction_force, contact.f * contact.P)
+    sliding = model.sliding_force()
 
     def missed(Q):
         """``delta(Q) - delta`` [m] of the trial increment to `Q` [N/m]."""
@@ -135,7 +135,7 @@ def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=Tru
     are given no other.
     """
     Q, sigma = loads.Q, loads.sigma
-    sliding = min(model.friction_force, model.contact.f * loads.normal(model.contact))  # no stick zone from here on
+    sliding = model.sliding_force(loads.normal(model.contact))  # no stick zone from here on
     sliding_whole = loads.delta is not None and model.slides and abs(Q) == sliding
     if abs(Q) >= sliding and not sliding_whole:
         raise GrossSlipError(step, Q, sigma, sliding)
@@ -337,7 +337,7 @@ class _Run:
         if state.slid:  # the rows are the Masing sums alone: after gross slip, step by step
             return None
         ahead = self.solved[solved : solved + PREPARED_STEPS]
-        sliding = min(model.friction_force, model.contact.f * model.contact.P)
+        sliding = model.sliding_force()
         ahead = ahead[: _leading(self.windowed[ahead] & (np.abs(history.Q[ahead]) < sliding))]
         if ahead.size == 0:
             return None

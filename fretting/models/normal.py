@@ -77,7 +77,7 @@ import numpy as np
 from scipy import linalg, optimize
 
 from fretting.models.base import Model, ModelSpec, Outcome
-from fretting.models.method4 import extrapolated_end, stick_zones
+from fretting.models.method4 import extrapolated_end, on_the_point, stick_zones
 from fretting.models.solver import Stiffness, solve_increment
 
 if TYPE_CHECKING:
@@ -320,7 +320,8 @@ class NormalModel(Model):
     def at_rest(self, state):
         P = self.load(state)
         g = self.forces(state.slip, state.Q, state.sigma, P)
-        return NormalOutcome(g, np.zeros(self.x.size), state.slip, 0.0, P=P, density=np.zeros(self.x.size), locked=g)
+        zero = np.zeros(self.x.size)
+        return NormalOutcome(g, zero, state.slip, 0.0, slid=state.slid, P=P, density=zero, locked=g)
 
     def increment(self, state, loads, guess=None):
         """The increment to the loads ``Q``, ``sigma``, ``P`` [N/m], solved in parts at the loads where cells enter
@@ -328,6 +329,8 @@ class NormalModel(Model):
         ``(f p_start h + f p_end h) |ds| / 2`` summed over its nodes (`slip_start`), the trapezoidal rule in ``P``
         (module docstring)."""
         after = (loads.Q, loads.sigma, loads.normal(self.contact))
+        if abs(after[0]) >= self.sliding_force(after[2]):  # on the point of sliding
+            return self.slide(state, loads, 0.0)
         if guess is None:
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
         before = (state.Q, state.sigma, self.load(state))
@@ -352,7 +355,38 @@ class NormalModel(Model):
             P_begin = P_
             slip = self.free_surface(slip, g, sigma_, m)
         edges = self.edges_slip(before, after)
-        return NormalOutcome(g, ds, slip, dissipation, P=after[2], density=density, edges=edges, locked=locked)
+        return NormalOutcome(
+            g, ds, slip, dissipation, slid=state.slid, P=after[2], density=density, edges=edges, locked=locked
+        )
+
+    #: The cells follow gross slip under a constant ``P`` (`slide`); the engine prescribes no displacement
+    #: under a varying one (docs/theory/displacement.md#sliding-sigma).
+    slides = True
+
+    def slide(self, state, loads, du):
+        """`Outcome` of gross slip under the contact's ``P``: the cells in contact on the point of sliding in the
+        direction of ``loads.Q`` under ``loads.sigma`` (`fretting.models.method4.on_the_point`), slid by the
+        uniform `du` [m], the free surface outside them carried as by `increment`."""
+        P = loads.normal(self.contact)
+        m, sign = self.pairs(P), np.sign(loads.Q)
+        nodes, limit = self.cells(m), self.contact.f * self.force(P, m)
+        slip = state.slip.copy()
+        if (loads.Q, loads.sigma) == (state.Q, state.sigma):  # on the point of sliding already
+            slip[nodes] += du
+        else:
+            stiffness = self.stiffness(m)
+            G_sigma = stiffness.G @ self.bulk_slip(loads.sigma)[nodes]
+            load = sign * limit[nodes].sum() * self.punch(m) + G_sigma - sign * limit[nodes]
+            slip[nodes] = on_the_point(stiffness, load, state.slip[nodes], sign) + du
+        g, ds = np.zeros(self.x.size), np.zeros(self.x.size)
+        g[nodes], ds[nodes] = sign * limit[nodes], slip[nodes] - state.slip[nodes]
+        locked = self.forces(state.slip, state.Q, state.sigma, self.load(state))
+        density = limit / self.h * np.abs(ds)
+        slip = self.free_surface(slip, g, loads.sigma, m)
+        dissipation = float(np.dot(limit, np.abs(ds)))
+        return NormalOutcome(
+            g, ds, slip, dissipation, slid=state.slid + du, P=P, density=density, edges=(True, True), locked=locked
+        )
 
     def edges_slip(self, before, after):
         """Whether each edge of the contact (``x = -a``, ``x = a``) slips in the increment from the loads
