@@ -30,7 +30,7 @@ from fretting.errors import GrossSlipError, HistoryError, SolverError
 from fretting.loading.loads import Loads
 from fretting.models.base import UNFOLLOWED
 from fretting.models.state import State, Tally
-from fretting.physics.surface import bulk_stress
+from fretting.physics.surface import SurfaceStress, bulk_stress
 
 __all__ = ["BRACKET", "STRAIGHT", "advance", "displaced", "follow", "skippable", "slid"]
 
@@ -161,11 +161,14 @@ def specimen_surface(model, outcome, sigma):
 
     `sigma` [Pa] is the differential bulk tension after the increment; the specimen is the
     contact's (`Contact.specimen`). One product with the model's precomputed Hilbert matrix
-    (`Model.surface`), the formula `fretting.analysis.nucleation.surface_stress`
-    evaluates at the recorded steps.
+    (`Model.surface`) with the square-root profile at the stick ends fitted to the slip
+    (`fretting.physics.surface.SurfaceStress.at_stick_ends`), the formula
+    `fretting.analysis.nucleation.surface_stress` evaluates at the recorded steps.
     """
     surface, p = model.surface_at(outcome)
     body, q = model.contact.specimen, model.traction(outcome)
+    if isinstance(surface, SurfaceStress):  # nodal tractions' or closed form's: the stick ends from the slip
+        surface = surface.at_stick_ends(q, outcome.slip, outcome.ds == 0, sigma, model.contact.E_star / model.contact.a)
     return surface(q, p, bulk_stress(sigma, body, specimen=body), body), np.abs(q)
 
 
