@@ -54,7 +54,9 @@ just before (continuity) under a traction that starts from zero; a node that lea
 traction and forgets its slip. Everything depends on the loads and the slip alone, so a periodic
 history that shakes down repeats its cycles bit for bit.
 
-Stick ends. An end between a stuck and a slipping node is placed by the square-root kink of the
+Stick ends. A node at the limit that does not slip (a band that entered at the limit ratio ``f``) is moved by
+the solver's rounding only, and counts as stuck (`ROUNDING`). An end between a stuck and a slipping node is placed
+by the square-root kink of the
 traction, from the friction deficit of the one and the slip of the other (`kink_end`); slip zones one
 cell wide are common here, as an edge recedes. The deficit is taken against the limit of the slip
 zone's direction, ``f p - s q`` with ``s f p`` the slip zone's traction: a receding edge often slips
@@ -111,6 +113,12 @@ DEFAULT_LOAD_PART = 1 / 400
 #: `NormalModel` keeps: consecutive parts of an increment mostly share a contact, and one not kept costs
 #: ``O(m^2)`` to form again (`slip_to_traction`), less than keeping many costs in memory traffic.
 CACHED_CONTACTS = 8
+
+#: Episode slip [of the largest at the step's nodes in contact] at or below which a node counts as stuck when its
+#: stick zones are read (`NormalModel.stick_zones`): nodes at the limit that do not slip (bands that entered at the
+#: limit ratio ``f`` and stay there, Jaeger 1998) take slips of the size of the solver's rounding, far below this,
+#: and would otherwise split a stick zone into pieces a node wide.
+ROUNDING = 1e-9
 
 
 @dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
@@ -418,7 +426,8 @@ class NormalModel(Model):
 
     def stick_zones(self, outcome, state):
         """Stick intervals in ``t = (x - centre) / a`` of the contact formed, within the contact of the
-        increment's load. An end between a stuck and a slipping node is `kink_end`, from the traction
+        increment's load. A node whose episode slip is within `ROUNDING` of the largest is stuck. An end between a
+        stuck and a slipping node is `kink_end`, from the traction
         deficit of one and the slip of the other, unless the slip zone has reached a former edge
         (`pinned`): there it is extrapolated from the slip of two slipping nodes
         (`fretting.models.method4.extrapolated_end`). An end at the outermost node in contact is `edge_end`."""
@@ -440,7 +449,9 @@ class NormalModel(Model):
                     return end
             return kink_end(position * a, d, deficit(slipping), stuck, slipping, self.contact.E_star) / a
 
-        zones = stick_zones(t, (outcome.slip - state.episode_start)[nodes], located)
+        episode = (outcome.slip - state.episode_start)[nodes]
+        episode = np.where(np.abs(episode) > ROUNDING * np.max(np.abs(episode), initial=0.0), episode, 0.0)
+        zones = stick_zones(t, episode, located)
         outer = (0, t.size - 1)
         zones = [
             tuple(
