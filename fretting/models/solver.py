@@ -30,10 +30,9 @@ another, so the Cholesky factor of the slipping nodes' block of ``G`` is kept th
 increment and bordered by the nodes released (`_Factor`); a working set that loses nodes keeps
 the blocks of the factor before the first that holds one of them. The releases at a slip front
 shrink about geometrically from one solve to the next, so from the second on the tail they
-predict is released with them (`_ahead`), and a node the guess starts slipping is left stuck
-where the new loads moved its traction off the limit (`UNLOADED`): starts, which the answer does
-not depend on, that save solves. Each increment starts a new factor, so what it computes depends
-on its loads and starting state alone, and a repeating state repeats bit for bit. The products with ``G``
+predict is released with them (`_ahead`): a start, which the answer does not depend on, that
+saves solves. Each increment starts a new factor, so what it computes depends on its loads and
+starting state alone, and a repeating state repeats bit for bit. The products with ``G``
 take only the rows a step needs (the slipping nodes' for a solve, the stuck nodes' for the
 releases). The stuck nodes' traction ``G held`` is multiplied anew at every solve, not updated
 by the rows of the nodes that join or leave the stuck ones: an update's rounding would depend on
@@ -68,11 +67,6 @@ MAX_RUNS = 16
 #: this fraction of the slipping ones: ``|K|^3 / 3`` and a few ``N^2`` products against the
 #: ``|S|^3 / 3`` of a Cholesky factor of the slipping block.
 COMPLEMENT = 0.25
-
-#: A node the guess would start slipping is left stuck where its traction lies below its limit by
-#: more than this fraction of it (`solve_increment`): the load change moved it off the limit, and
-#: it would most often stick again and leave the factor.
-UNLOADED = 1e-6
 
 #: Largest ratio of the geometric tail of releases at a slip front that `_ahead` predicts from the
 #: last two releases of an increment: one near 1 would release nodes far beyond the front.
@@ -220,7 +214,6 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
         return Increment(slip, np.zeros_like(slip), g, 0)
     if guess is not None:  # and the nodes whose traction exceeds the limit already
         direction[:] = guess
-        direction[direction * g < (1 - UNLOADED) * limit] = 0  # moved off its limit: it sticks first
         direction[over] = np.sign(g[over])
         if direction.all():
             direction[:] = 0
