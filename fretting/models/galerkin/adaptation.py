@@ -38,6 +38,7 @@ from fretting.models.galerkin.mesh import (
     ENERGY_SPAN,
     LEVELS_PER_PASS,
     MIN_SIZE,
+    SWEPT_SPAN,
     boundaries,
     element_targets,
     initial_theta,
@@ -120,13 +121,13 @@ def adapted_model(spec, contact, history, run, max_nodes=None, recorded=None, ma
     Two stages. The energy: passes over the turning points (`MAX_TURN`) refine every element
     that `fretting.models.galerkin.element_targets` finds too coarse, with elements of
     ``ENERGY_SPAN rtol a`` in the slip zones, until none is or a refinement adds fewer than
-    `SETTLED` of the nodes. The ends (`_located`): one pass on
-    that mesh over the turning points cut finer (`END_TURN`) refines, in one go, the elements
-    that hold the stick ends of the steps in `recorded` (step numbers; None: every step), or that
-    those ends sweep, to ``BOUNDARY_SPAN rtol a``; the zones are already located, so no pass on
-    the finer mesh is needed, except where an increment slips again by less than ``RESLIP rtol``
-    of the slip locked in: passes on the finer meshes then refine until each cycle's energy
-    settles to `rtol` (`_energy_checked`).
+    `SETTLED` of the nodes. The ends (`_located`): one pass on that mesh over the turning points
+    cut finer (`END_TURN`) refines, in one go, the elements that hold the stick ends of the steps
+    in `recorded` (step numbers; None: every step), or that those ends sweep, to
+    ``BOUNDARY_SPAN rtol a`` up to the history's first vertex and ``SWEPT_SPAN rtol a`` after it
+    (`_spans`); the zones are already located, so no pass on the finer mesh is needed, except
+    where an increment slips again by less than ``RESLIP rtol`` of the slip locked in: passes on
+    the finer meshes then refine until each cycle's energy settles to `rtol` (`_energy_checked`).
 
     A history of more than `SAMPLE_TURNS` turning points is adapted to a sample of them: the
     first `SAMPLE_TURNS`, then twice as many from the mesh found, and so on, until a doubling
@@ -226,7 +227,7 @@ def _located(model, adapt, history, recorded, by_step):
     units = _units(model.contact)
     steps = history.turning_steps(END_TURN, units)
     turning = history.turning_points(END_TURN, units)
-    spans = _spans(steps, recorded)
+    spans = _spans(steps, recorded, _first_vertex(history))
     targets = np.full(model.theta.size - 1, np.inf)
 
     def observe(step, outcome):
@@ -247,6 +248,12 @@ def _located(model, adapt, history, recorded, by_step):
         error.model = _below_floor_said(error.model, before, adapt.rtol)
         raise
     return _below_floor_said(model, before, adapt.rtol)
+
+
+def _first_vertex(history):
+    """The step of `history`'s first vertex after the start (its last step if it has none)."""
+    later = history.vertex_step[history.vertex_step > 0]
+    return int(later[0]) if later.size else len(history) - 1
 
 
 def _finer(model, theta):
@@ -536,21 +543,23 @@ def remapped(state, theta, finer):
     return replace(state, slip=onto(state.slip), episode_start=onto(state.episode_start), tally=tally, model=model)
 
 
-def _spans(steps, recorded):
+def _spans(steps, recorded, first):
     """The spans (``swept``, ``end`` of `element_targets`) of each increment between the turning
-    points at the history's `steps`, shape (len(steps), 2): `BOUNDARY_SPAN` where a step strictly
-    inside the increment (``swept``), or its last step (``end``), is in `recorded` (None: all are),
-    else `ENERGY_SPAN`. Row 0, the starting state, is never solved."""
+    points at the history's `steps`, shape (len(steps), 2): where a step strictly inside the
+    increment (``swept``), or its last step (``end``), is in `recorded` (None: all are),
+    `BOUNDARY_SPAN` up to the history's `first` vertex and `SWEPT_SPAN` after it; else
+    `ENERGY_SPAN`. Row 0, the starting state, is never solved."""
+    located = np.where(steps <= first, BOUNDARY_SPAN, SWEPT_SPAN)[:, None]
     if recorded is None:
-        return np.full((steps.size, 2), BOUNDARY_SPAN)
+        return np.broadcast_to(located, (steps.size, 2))
     recorded = np.asarray(recorded, dtype=np.int64)
     marks = np.zeros(int(steps[-1]) + 2, dtype=np.int64)
     marks[recorded[recorded <= steps[-1]] + 1] = 1  # a run stopped by gross slip records no later step
     counted = np.cumsum(marks)  # counted[s + 1]: recorded steps up to s
-    first = np.concatenate([[0], steps[:-1] + 1])  # one past the turning point before
-    inside = counted[steps] - counted[first]  # steps first .. steps - 1
+    first_inside = np.concatenate([[0], steps[:-1] + 1])  # one past the turning point before
+    inside = counted[steps] - counted[first_inside]  # steps first_inside .. steps - 1
     last = counted[steps + 1] - counted[steps]
-    return np.where(np.stack([inside, last], axis=1) > 0, BOUNDARY_SPAN, ENERGY_SPAN)
+    return np.where(np.stack([inside, last], axis=1) > 0, located, ENERGY_SPAN)
 
 
 def _bisected_size(theta, targets):
