@@ -597,3 +597,15 @@ def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkey
     warm = fr.adapted_mesh(contact, history)
     monkeypatch.setattr(gk.adaptation, "_interpolated_directions", lambda *args: None)
     np.testing.assert_array_equal(warm, fr.adapted_mesh(contact, history))
+
+
+def test_the_spans_of_the_slip_zones_are_finer_up_to_the_first_vertex():
+    """Each increment's slip zones and ends (`_spans`: swept, end) get `BOUNDARY_SPAN` up to the
+    history's first vertex, `SWEPT_SPAN` after it, `ENERGY_SPAN` where none of its steps is recorded."""
+    steps = np.array([0, 8, 16, 24])
+    coarse, fine, energy = gk.SWEPT_SPAN, gk.BOUNDARY_SPAN, gk.ENERGY_SPAN
+    every = gk.adaptation._spans(steps, None, first=8)
+    np.testing.assert_array_equal(every, [[fine, fine], [fine, fine], [coarse, coarse], [coarse, coarse]])
+    some = gk.adaptation._spans(steps, [3, 20], first=8)  # inside the first and the third increment
+    np.testing.assert_array_equal(some, [[energy, energy], [fine, energy], [energy, energy], [coarse, energy]])
+    assert fine < coarse < energy
