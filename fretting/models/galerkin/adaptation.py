@@ -124,10 +124,11 @@ def adapted_model(spec, contact, history, run, max_nodes=None, recorded=None, ma
     `SETTLED` of the nodes. The ends (`_located`): one pass on that mesh over the turning points
     cut finer (`END_TURN`) refines, in one go, the elements that hold the stick ends of the steps
     in `recorded` (step numbers; None: every step), or that those ends sweep, to
-    ``BOUNDARY_SPAN rtol a`` up to the history's first vertex and ``SWEPT_SPAN rtol a`` after it
-    (`_spans`); the zones are already located, so no pass on the finer mesh is needed, except
-    where an increment slips again by less than ``RESLIP rtol`` of the slip locked in: passes on
-    the finer meshes then refine until each cycle's energy settles to `rtol` (`_energy_checked`).
+    ``SWEPT_SPAN rtol a`` on the straight stretches after the history's first vertex and to
+    ``BOUNDARY_SPAN rtol a`` elsewhere (`_spans`); the zones are already located, so no pass on
+    the finer mesh is needed, except where an increment slips again by less than ``RESLIP rtol``
+    of the slip locked in: passes on the finer meshes then refine until each cycle's energy
+    settles to `rtol` (`_energy_checked`).
 
     A history of more than `SAMPLE_TURNS` turning points is adapted to a sample of them: the
     first `SAMPLE_TURNS`, then twice as many from the mesh found, and so on, until a doubling
@@ -227,7 +228,7 @@ def _located(model, adapt, history, recorded, by_step):
     units = _units(model.contact)
     steps = history.turning_steps(END_TURN, units)
     turning = history.turning_points(END_TURN, units)
-    spans = _spans(steps, recorded, _first_vertex(history))
+    spans = _spans(steps, recorded, _straight(history, steps))
     targets = np.full(model.theta.size - 1, np.inf)
 
     def observe(step, outcome):
@@ -250,10 +251,21 @@ def _located(model, adapt, history, recorded, by_step):
     return _below_floor_said(model, before, adapt.rtol)
 
 
-def _first_vertex(history):
-    """The step of `history`'s first vertex after the start (its last step if it has none)."""
-    later = history.vertex_step[history.vertex_step > 0]
-    return int(later[0]) if later.size else len(history) - 1
+def _straight(history, steps):
+    """Which increments between the turning points at `history`'s `steps` [bool] may have their slip
+    zones at `SWEPT_SPAN`: those after the history's first vertex that run from one vertex to the
+    next, straight in the plane of Q and sigma.
+
+    Up to the first vertex the zones grow from the edges with no slip locked in, so that a step's
+    slip is as small as its zones are narrow; along a curved stretch the zones of the steps
+    between grow into slip locked in before, where `located_end` can leave an end about an
+    element off (benchmarks/trajectories.py: the ``ellipse_*`` histories).
+    """
+    vertices = history.vertex_step
+    starts = np.concatenate([[0], steps[:-1]])
+    later = vertices[vertices > 0]
+    first = later[0] if later.size else len(history) - 1
+    return np.isin(steps, vertices) & np.isin(starts, vertices) & (starts >= first)
 
 
 def _finer(model, theta):
@@ -543,13 +555,14 @@ def remapped(state, theta, finer):
     return replace(state, slip=onto(state.slip), episode_start=onto(state.episode_start), tally=tally, model=model)
 
 
-def _spans(steps, recorded, first):
+def _spans(steps, recorded, straight):
     """The spans (``swept``, ``end`` of `element_targets`) of each increment between the turning
     points at the history's `steps`, shape (len(steps), 2): where a step strictly inside the
     increment (``swept``), or its last step (``end``), is in `recorded` (None: all are),
-    `BOUNDARY_SPAN` up to the history's `first` vertex and `SWEPT_SPAN` after it; else
-    `ENERGY_SPAN`. Row 0, the starting state, is never solved."""
-    located = np.where(steps <= first, BOUNDARY_SPAN, SWEPT_SPAN)[:, None]
+    `SWEPT_SPAN` where the increment is one of those `straight` (`_straight`), else
+    `BOUNDARY_SPAN`; `ENERGY_SPAN` where none is recorded. Row 0, the starting state, is never
+    solved."""
+    located = np.where(straight, SWEPT_SPAN, BOUNDARY_SPAN)[:, None]
     if recorded is None:
         return np.broadcast_to(located, (steps.size, 2))
     recorded = np.asarray(recorded, dtype=np.int64)
