@@ -16,9 +16,25 @@ whole default run and the fallback, on the scenes of the harness that have no cl
 non-periodic out-of-phase spectrum of benchmarks/service_life.py (4 and 16 cycles) and the
 histories of benchmarks/trajectories.py named (default: one of each kind that adapts differently).
 
-Run:  python benchmarks/adaptation_passes.py [--log [HISTORY ...]]   (about 10 seconds; --log about
-two minutes; set OPENBLAS_NUM_THREADS=1). With ``--time [HISTORY ...]``, the CPU time of the
-default run of each of those histories (no default ones named), median of 3.
+With ``--drivers``, what sets the node count of the adapted mesh (`fretting.adapted_mesh`, both
+stages) on the same histories: its nodes as it is, and with each error indicator of
+`fretting.models.galerkin.element_targets` left out in turn (`DRIVERS`): the stick ends (the
+spans of the elements in slip zones and at boundaries, ``swept`` and ``end``), the energy (zone
+and boundary fractions), the slip (the grading from the contact's edges), the traction (the
+elements at the pressure's breakpoints).
+
+With ``--ends [HISTORY ...]`` (default: `trajectories.QUICK`), the stick ends that `located_end`
+places at every step on the mesh of the energy stage alone (every span `ENERGY_SPAN`: the ends
+located without refining for them) and on the default's mesh, against the converged reference
+of benchmarks/trajectories.py (its cache): nodes, the worst distance [a] and the steps over
+1e-3 a and 5e-4 a, and the worst slip relative to the step's (``slip_step``), which that
+refinement holds.
+
+Run:  python benchmarks/adaptation_passes.py [--log [HISTORY ...]] [--drivers [HISTORY ...]]
+[--ends [HISTORY ...]] (about 10 seconds; --log about two minutes, --drivers about five, --ends
+one plus the references not yet cached; set OPENBLAS_NUM_THREADS=1).
+With ``--time [HISTORY ...]``, the CPU time of the default run of each of those histories (no
+default ones named), median of 3.
 """
 
 import argparse
@@ -32,6 +48,7 @@ import service_life
 import trajectories
 
 import fretting as fr
+from fretting.analysis.accuracy import zone_distance
 
 method4 = sys.modules["fretting.models.method4"]
 follow_module = sys.modules["fretting.engine.follow"]
@@ -156,11 +173,116 @@ def log(names):
             )
 
 
+mesh_module = sys.modules["fretting.models.galerkin.mesh"]
+SPAN, ZONE_FRACTION = mesh_module._span, mesh_module.zone_fraction
+GRADED_FROM_EDGE, ELEMENT_TARGETS = mesh_module._graded_from_edge, adaptation.element_targets
+
+
+def _without_ends(position, rtol, span=None):
+    """`mesh._span` with no bound from the spans asked for the stick ends (``swept``, ``end``)."""
+    return SPAN(position, rtol) if span is None else np.full(np.shape(position), np.inf)
+
+
+def _slip_grading(theta, left, rtol):
+    """`mesh._graded_from_edge` with the `zone_fraction` it grades by, while that is left out."""
+    with _patched({(mesh_module, "zone_fraction"): ZONE_FRACTION}):
+        return GRADED_FROM_EDGE(theta, left, rtol)
+
+
+def _without_breakpoints(theta, ds, rtol=mesh_module.DEFAULT_RTOL, breakpoints=(), *rest, **options):
+    """`element_targets` as the adaptation calls it, without the pressure's breakpoints."""
+    return ELEMENT_TARGETS(theta, ds, rtol, (), *rest, **options)
+
+
+#: The error indicators of `element_targets` that `--drivers` leaves out, each by the functions
+#: it replaces: ``(module, name): replacement``.
+DRIVERS = {
+    "ends": {(mesh_module, "_span"): _without_ends},
+    "energy": {
+        (mesh_module, "zone_fraction"): lambda rtol: np.inf,
+        (mesh_module, "boundary_fraction"): lambda rtol: np.inf,
+        (mesh_module, "_graded_from_edge"): _slip_grading,
+    },
+    "slip": {(mesh_module, "_graded_from_edge"): lambda theta, left, rtol: np.full(theta.size - 1, np.inf)},
+    "traction": {(adaptation, "element_targets"): _without_breakpoints},
+}
+
+
+class _patched:
+    """Replace functions ``(module, name): replacement`` for a ``with`` block."""
+
+    def __init__(self, functions):
+        self.functions, self.saved = functions, {}
+
+    def __enter__(self):
+        for (module, name), function in self.functions.items():
+            self.saved[module, name] = getattr(module, name)
+            setattr(module, name, function)
+
+    def __exit__(self, *exc):
+        for (module, name), function in self.saved.items():
+            setattr(module, name, function)
+
+
+def drivers(names):
+    """Print the nodes of the adapted mesh, and with each indicator of `DRIVERS` left out."""
+    for name, (contact, history) in logged_histories(names).items():
+        nodes = {"all": fr.adapted_mesh(contact, history).size}
+        for driver, functions in DRIVERS.items():
+            with _patched(functions):
+                nodes[driver] = fr.adapted_mesh(contact, history).size
+        shares = [f"{d} {n:5d} ({100 * (n / nodes['all'] - 1):+4.0f} %)" for d, n in nodes.items() if d != "all"]
+        print(f"{name:30} {nodes['all']:5d} nodes; without " + ", ".join(shares), flush=True)
+
+
+def _energy_spans(steps, recorded, straight):
+    """`adaptation._spans` with every span `ENERGY_SPAN`: no refinement for the stick ends."""
+    return np.full((steps.size, 2), mesh_module.ENERGY_SPAN)
+
+
+def ends(names):
+    """Print the located stick ends at every step on the energy's mesh and on the default's, against
+    the reference of benchmarks/trajectories.py."""
+    cases = trajectories.cases()
+    for name in names or trajectories.QUICK:
+        contact, history = cases[name]
+        reference = trajectories.fine_run(
+            contact, history, trajectories.REFERENCE_ELEMENTS, trajectories.BANDED.get(name, 0)
+        )
+        reference = trajectories.with_located_ends(reference, contact)
+        for label, functions in (("energy mesh", {(adaptation, "_spans"): _energy_spans}), ("default", {})):
+            with _patched(functions):
+                result = fr.simulate(contact, history)
+            run = trajectories.fields_of(result)
+            distance = np.array([_zone_distance(run, reference, k) / contact.a for k in range(1, len(history))])
+            slip_step = trajectories.score(run, reference, contact, history)["slip_step"][0]
+            print(
+                f"{name:28} {label:11} {result.attrs['nodes']:5d} nodes  ends: worst {distance.max():.1e} a "
+                f"(step {1 + distance.argmax()}), over 1e-3 a at {np.sum(distance > 1e-3)} and over 5e-4 a at "
+                f"{np.sum(distance > 5e-4)} of {distance.size} steps;  slip_step {slip_step:.1e}",
+                flush=True,
+            )
+
+
+def _zone_distance(run, reference, k):
+    """`zone_distance` [m] of the stick zones of step `k` of `run` and `reference` (trajectories' fields)."""
+    zones = (trajectories._zones(fields["stick_start"][k], fields["stick_end"][k]) for fields in (run, reference))
+    return zone_distance(*zones)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--log", nargs="*", metavar="HISTORY", help="the default's passes (module docstring)")
     parser.add_argument("--time", nargs="*", metavar="HISTORY", help="CPU time of the default, median of 3")
+    parser.add_argument("--drivers", nargs="*", metavar="HISTORY", help="what sets the nodes (module docstring)")
+    parser.add_argument("--ends", nargs="*", metavar="HISTORY", help="located ends at every step (module docstring)")
     args = parser.parse_args()
+    if args.ends is not None:
+        ends(args.ends)
+        return
+    if args.drivers is not None:
+        drivers(args.drivers or LOGGED)
+        return
     if args.log is not None:
         log(args.log or LOGGED)
         return

@@ -63,6 +63,11 @@ LONG_RUNS = None
 
 ERRORS = ("stick_ends_a", "energy_rel", "traction_fp0")
 
+#: Steps after which the slip error is also held relative to the step's own largest slip (before it
+#: only relative to the history's largest): the first increments of a history slip in slivers at the
+#: contact edges, whose largest slip is a tiny part of what follows.
+FIRST_STEPS = 4
+
 
 # -- Configurations -------------------------------------------------------------------------
 

@@ -77,7 +77,7 @@ def main(argv=None):
         clean += ok
         first = err.strip().splitlines()[:1] or [""]
         kind = "ignored exception" if "Exception ignored" in err else "traceback" if "Traceback" in err else ""
-        kind = "start-up traceback" if kind == "traceback" and "fretting/cli.py" not in err else kind
+        kind = "start-up traceback" if kind == "traceback" and "fretting/cli/" not in err else kind
         print(
             f"{number:3d} {delay:6.3f} s exit {code:4d} {'clean' if ok else 'NOT CLEAN':9} {kind:18} {first[0][:100]}"
         )

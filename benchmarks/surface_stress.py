@@ -1,12 +1,15 @@
-"""Error at every node and cost of `fretting.analysis.nucleation.surface_stress` on the exact models.
+"""Error at every node and cost of `fretting.analysis.nucleation.surface_stress` on the exact and discretised models.
 
-A Hertz contact (R = 50 mm, E = 210 GPa, nu = 0.3, f = 0.6, P = 100 N/mm) under the default model:
-the largest error at any node, relative to p0, against Cattaneo-Mindlin at Q = 0.5 f P and
-Nowell-Hills at Q = 0.5 f P with sigma = 0.2 f p0 in phase (McEwen's surface stress of their
-elliptical loads), and the wall-clock time (best of `--repeats`) of `fretting.simulate`, whose
-engine tallies the per-cycle peaks of the surface stress, and of `surface_stress` on three
-histories: 20 sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within
-0.8 f P, and 200 cycles of in-phase Q and sigma. Run it on two checkouts to compare them:
+A Hertz contact (R = 50 mm, E = 210 GPa, nu = 0.3, f = 0.6, P = 100 N/mm) under the default model, the
+default Galerkin mesh, the default grid and the 96-node grid: the largest error at any node, relative
+to p0, against Cattaneo-Mindlin at Q = 0.5 f P and Nowell-Hills at Q = 0.5 f P with sigma = 0.2 f p0 in
+phase (McEwen's surface stress of their elliptical loads), with where it lies, ``(x - e) / b``; for a
+discretised model also the error of its nodal tractions alone (the stick flags cleared, so that no
+stick end is fitted: `fretting.physics.surface.SurfaceStress.at_stick_ends`). Then the wall-clock time
+(best of `--repeats`) of `fretting.simulate`, whose engine tallies the per-cycle peaks of the surface
+stress, and of `surface_stress` on three histories, under the default model and the default grid: 20
+sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within 0.8 f P, and 200
+cycles of in-phase Q and sigma. Run it on two checkouts to compare them:
 
     python benchmarks/surface_stress.py [--repeats 3]
 """
@@ -29,16 +32,21 @@ def ellipse_transform(x, centre, half_width):
     return -2 * (d - np.sign(d) * np.sqrt(np.clip(d**2 - half_width**2, 0, None))) / half_width
 
 
-def closed_form_error(tau):
-    """Largest error [p0] of body 1's surface stress at Q = 0.5 f P with sigma = tau f p0 in phase."""
+def closed_form_error(tau, model):
+    """Largest error [p0] of body 1's surface stress at Q = 0.5 f P with sigma = tau f p0 in phase, where it
+    lies, ``(x - e) / b``, and the error of the nodal tractions alone (NaN for an exact model)."""
     fP, fp0, a = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0, CONTACT.a
     Q, sigma = 0.5 * fP, tau * fp0
-    result = fr.simulate(CONTACT, fr.History.piecewise_linear([0.0, Q], [0.0, sigma], 4))
+    result = fr.simulate(CONTACT, fr.History.piecewise_linear([0.0, Q], [0.0, sigma], 4), model)
     x = result.x.values
     b, e = cf.stick_half_width(CONTACT, Q), cf.nowell_hills_offset(CONTACT, sigma)
     expected = -CONTACT.pressure(x) + fp0 * (ellipse_transform(x, 0.0, a) - b / a * ellipse_transform(x, e, b))
     error = np.abs(nucleation.surface_stress(result, body=1).values[-1] - expected)
-    return result.attrs["model"], x.size, error.max() / CONTACT.p0, (x[error.argmax()] - e) / b
+    nodal = np.nan
+    if result.attrs["model"] in ("grid", "mesh"):
+        cleared = result.assign(stick=(("step", "x"), np.zeros(result.stick.shape, dtype=bool)))
+        nodal = np.abs(nucleation.surface_stress(cleared, body=1).values[-1] - expected).max() / CONTACT.p0
+    return result.attrs["model"], x.size, error.max() / CONTACT.p0, (x[error.argmax()] - e) / b, nodal
 
 
 def histories():
@@ -55,15 +63,21 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
     repeats = parser.parse_args().repeats
-    for tau in (0.0, 0.2):
-        model, nodes, error, where = closed_form_error(tau)
-        print(f"{model:8s} {nodes} nodes, sigma = {tau} f p0: largest error {error:.2e} p0, (x - e) / b = {where:.4f}")
-    for name, history in histories().items():
-        result = fr.simulate(CONTACT, history)
-        run = min(timeit.repeat(lambda history=history: fr.simulate(CONTACT, history), number=1, repeat=repeats))
-        stress = min(timeit.repeat(lambda result=result: nucleation.surface_stress(result), number=1, repeat=repeats))
-        size = f"{result.sizes['step']} steps x {result.sizes['x']} nodes"
-        print(f"{name} ({result.attrs['model']}, {size}): simulate {run:.3f} s, surface_stress {stress:.3f} s")
+    for model in (None, fr.models.Mesh(), fr.models.Grid(), fr.models.Grid(96)):
+        for tau in (0.0, 0.2):
+            name, nodes, error, where, nodal = closed_form_error(tau, model)
+            alone = "" if np.isnan(nodal) else f"; nodal tractions alone {nodal:.2e} p0"
+            print(
+                f"{name:8s} {nodes:5d} nodes, sigma = {tau} f p0: largest error {error:.2e} p0 at (x - e) / b = "
+                f"{where:.4f}{alone}"
+            )
+    for model in (None, fr.models.Grid()):
+        for name, history in histories().items():
+            result = fr.simulate(CONTACT, history, model)
+            run = min(timeit.repeat(lambda h=history, m=model: fr.simulate(CONTACT, h, m), number=1, repeat=repeats))
+            stress = min(timeit.repeat(lambda r=result: nucleation.surface_stress(r), number=1, repeat=repeats))
+            size = f"{result.sizes['step']} steps x {result.sizes['x']} nodes"
+            print(f"{name} ({result.attrs['model']}, {size}): simulate {run:.3f} s, surface_stress {stress:.3f} s")
 
 
 if __name__ == "__main__":

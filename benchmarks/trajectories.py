@@ -31,7 +31,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from harness import asymmetric_flat
+from harness import FIRST_STEPS, asymmetric_flat
 
 import fretting as fr
 from fretting.analysis.accuracy import BAND, memory_kinks, traction_error, zone_distance
@@ -43,8 +43,6 @@ from fretting.models.method4 import stick_zones
 REFERENCE_ELEMENTS = 4000
 #: Elements of the coarser mesh whose agreement with the reference shows it converged.
 CHECK_ELEMENTS = 2000
-#: Steps after which the slip is also held relative to the step's own largest slip.
-FIRST_STEPS = 4
 #: Issue 18's targets at default settings.
 TARGETS = {"stick_a": 1e-3, "slip_history": 1e-3, "slip_step": 1e-3, "traction_fp0": 1e-3, "energy": 1e-4}
 #: Models scored: keywords of `fretting.simulate`.

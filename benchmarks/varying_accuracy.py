@@ -16,11 +16,13 @@ steps in `PARTS` parts and in twice as many (the table prints the change). Other
 the package itself on `FINE` cells with parts a quarter of the default's, shown converged by the run
 on `FINER` cells: the change between the two is printed, and must lie well below the targets.
 
-Figures, each the worst over the steps of a history (`compare`): stick ends [a of the step's contact];
+Figures, each the worst over the steps of a history (`compare`): stick ends [a of the step's contact],
+each end of the stick zone about the centre (with ``sigma`` it is not symmetric);
 the slip increment of the step at the nodes in contact at both of its ends, over its largest (over the
 history's largest where the step slips by less than `SLIVER` of that); the
-traction [f p0], leaving out `accuracy.BAND` a about the stick ends, the contact edges and the
-former edges and stick ends the memory keeps (where ``lambda`` jumps by more than `KINK` f); the
+traction [f p0], leaving out `accuracy.BAND` a about the contact edges, the reference's stick ends at
+their signed positions and the former edges and stick ends the memory keeps (exact: where ``lambda``
+jumps by more than `KINK` f; self-reference: every stick end and contact edge of the steps so far); the
 energy dissipated up to each step, over the reference's total for the history. Targets: `TARGETS`.
 
     python benchmarks/varying_accuracy.py [--scenes walk0,inphase,...] [--flat-scenes walk,...] [--cells 768]
@@ -156,8 +158,14 @@ class ExactRun:
     def traction(self, k, x):
         return self.memory[k].traction(x)
 
-    def kinks(self, k, f):
-        return self.memory[k].kinks(KINK * f)
+    def ends(self, k):
+        """The ends [m] of the stick zone about the centre at step `k` (symmetric: ``sigma = 0``)."""
+        return -self.stick[k], self.stick[k]
+
+    def avoid(self, k, f):
+        """Where the traction of step `k` may kink [m]: its stick ends and the band edges where ``lambda`` jumps."""
+        kinks = self.memory[k].kinks(KINK * f)
+        return np.concatenate([self.ends(k), kinks, -kinks])
 
 
 class PackageRun:
@@ -166,7 +174,8 @@ class PackageRun:
     def __init__(self, result):
         self.result = result
         self.energy = np.cumsum(result.dissipation.values)
-        self.stick = [central_end(result, k) for k in range(result.sizes["step"])]
+        self.central = [central_zone(result, k) for k in range(result.sizes["step"])]
+        self.stick = [(end - start) / 2 for start, end in self.central]
         self._x = result.x.values
 
     def slip(self, k, x):
@@ -176,21 +185,27 @@ class PackageRun:
     def traction(self, k, x):
         return np.interp(x, self._x, self.result.q.values[k])
 
-    def kinks(self, k, f):
-        """The stick ends of every earlier step and the edges of the contacts met: where the memory may kink."""
-        c = self.result.centre if "centre" in self.result else 0.0
-        ends = [self.stick[j] for j in range(k)] + list(self.result.a.values[:k])
-        return np.asarray(ends) - c
+    def ends(self, k):
+        return self.central[k]
+
+    def avoid(self, k, f):
+        """Where the traction of step `k` may kink [m]: the ends of its stick zones, and those of every earlier step
+        and the edges of the contacts met (where the memory may kink)."""
+        r = self.result
+        starts, ends = r.stick_start.values[: k + 1], r.stick_end.values[: k + 1]
+        zones = np.concatenate([starts[~np.isnan(starts)], ends[~np.isnan(ends)]])
+        return np.concatenate([zones, r.a.values[:k], -r.a.values[:k]])
 
 
-def central_end(result, k):
-    """Half-length [m] of the stick zone about the centre at step `k` (the mean of its two ends' distances)."""
+def central_zone(result, k):
+    """The ends [m] of the stick zone about the centre at step `k` (that whose middle is nearest the centre;
+    ``(0, 0)``: none)."""
     start, end = result.stick_start.values[k], result.stick_end.values[k]
     keep = ~np.isnan(start)
     if not keep.any():
-        return 0.0
+        return 0.0, 0.0
     i = int(np.argmin(np.abs((start[keep] + end[keep]) / 2)))
-    return (end[keep][i] - start[keep][i]) / 2
+    return float(start[keep][i]), float(end[keep][i])
 
 
 def compare(result, reference, contact):
@@ -204,7 +219,7 @@ def compare(result, reference, contact):
         for k in range(1, result.sizes["step"])
     )
     for k in range(1, result.sizes["step"]):
-        figures = {"stick": abs(own.stick[k] - reference.stick[k]) / a[k]}
+        figures = {"stick": max(abs(u - v) for u, v in zip(own.ends(k), reference.ends(k), strict=True)) / a[k]}
         both = np.abs(x) < min(a[k], a[k - 1])
         expected = reference.slip(k, x[both])
         largest = np.max(np.abs(expected), initial=0.0)
@@ -212,8 +227,8 @@ def compare(result, reference, contact):
         figures["slip"] = np.max(np.abs(found - expected)) / (
             largest if largest > SLIVER * history_slip else history_slip
         )
-        avoid = np.concatenate([[reference.stick[k], a[k]], reference.kinks(k, contact.f)])
-        band = (np.abs(x) < a[k]) & np.all(np.abs(np.abs(x)[:, None] - np.abs(avoid)) > BAND * a[k], axis=1)
+        avoid = np.concatenate([[-a[k], a[k]], reference.avoid(k, contact.f)])
+        band = (np.abs(x) < a[k]) & np.all(np.abs(x[:, None] - avoid) > BAND * a[k], axis=1)
         figures["traction"] = np.max(np.abs(q[k, band] - reference.traction(k, x[band])), initial=0.0) / fp0
         figures["energy"] = abs(own.energy[k] - reference.energy[k]) / reference.energy[-1]
         for name, value in figures.items():

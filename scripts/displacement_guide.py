@@ -101,9 +101,26 @@ the key.
 When `|Q|` reaches `f P` under displacement control the contact slides whole by whatever `delta` asks
 beyond that point, dissipating `f P` per unit slide, and the memory of the partial slip before is erased;
 on reversal the contact sticks and slips again from the edges, along Mindlin & Deresiewicz's branch from
-the sliding extreme. Under force control `|Q| >= f P` stays an error (`GrossSlipError`). Only the exact
-model of `Q` alone (a symmetric profile under a constant `P`, no bulk tension) follows gross slip; on any
-other model a history that reaches it stops with a one-line `GrossSlipError` that says so.
+the sliding extreme. Under force control `|Q| >= f P` stays an error (`GrossSlipError`). Under a constant
+`P` every model that runs a history of `delta` follows gross slip: the exact model of `Q` alone (a
+symmetric profile, no bulk tension) and method 4 with a bulk tension `sigma`, on the Chebyshev grid
+(`fr.models.Grid`), the Galerkin mesh with its nodes given (`fr.models.Mesh(theta=...)`) and the cells of
+`fr.models.Varying` (the default where `sigma` moves off the in-phase line). A varying `P` under `delta`
+is not followed yet (a one-line error).
+
+With `sigma` the contact slides with `q = +-f p` everywhere and each point slips by the step's `d delta`
+plus the strain mismatch of the change of `sigma`, `d sigma x / (2 E_star)`; a slide dissipates `f P |d delta|`.
+A change of `sigma` larger than the slide can carry (`|d sigma| a / (2 E_star) > |d delta|`) would take one
+edge against `Q`: that side sticks, `|Q|` falls below `f P` and the step is partial slip
+([theory](../theory/displacement.md#sliding-sigma)):
+
+```python
+from fretting.models.galerkin import uniform_theta
+
+history = fr.History.piecewise_linear(delta=[0, 0, 3e-6, 3.5e-6], sigma=[0, 50e6, 50e6, 80e6], steps_per_segment=16)
+result = fr.simulate(contact, history, fr.models.Mesh(theta=uniform_theta(128)))
+result.regime                            # 2 where the contact slides under the tension
+```
 
 ## A fretting-wear test that runs into gross slip and back
 

@@ -445,3 +445,17 @@ def test_resume_refuses_a_run_that_solved_its_steps_otherwise(workdir, capsys, m
     write(workdir / "shear.h5.checkpoint", "a result written by fretting 0.1")
     assert run("run", "shear.toml", "--nodes", NODES) == 2
     assert "found the checkpoint file of an earlier version of fretting: delete it" in capsys.readouterr().err
+
+
+def test_output_closed_by_its_reader_ends_quietly():
+    """``fretting examples | head -1``: when the reader has gone, the command stops with the shell's
+    SIGPIPE code and no error line (not "Broken pipe" as a bad input)."""
+    read, write = os.pipe()
+    os.close(read)
+    try:
+        done = subprocess.run(
+            [sys.executable, "-m", "fretting", "examples"], stdout=write, stderr=subprocess.PIPE, text=True, timeout=60
+        )
+    finally:
+        os.close(write)
+    assert (done.returncode, done.stderr) == (cli.EXIT_PIPE, "")

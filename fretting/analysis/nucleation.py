@@ -323,11 +323,14 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     (`elliptical_traction`), is integrated in closed form, exact at every node, stick ends included
     (`fretting.physics.surface.ellipse_stress`), as the engine's model integrates it.
     Otherwise the principal value is integrated exactly for ``sqrt(1 - t^2) q`` interpolated
-    linearly between the nodes (`fretting.physics.surface.hilbert_matrix`); for a result of a
-    varying ``P``, for ``q`` constant on each cell, with the pressure of each step
-    (`fretting.models.normal.CellSurfaceStress`). Next to a stick/slip boundary the stress has a
-    square-root profile with a vertical tangent that no interpolation between the nodes resolves,
-    so the error of these is largest there (tests/analysis/test_nucleation.py).
+    linearly between the nodes (`fretting.physics.surface.hilbert_matrix`), except next to a stick
+    end (a node that stuck in the increment beside one that slipped): there the stress has a
+    square-root profile with a vertical tangent that no interpolation of the nodal traction
+    resolves, and it is ``sigma / 2 - E_star ds/dx`` in body 1, from the slip fitted with its
+    ``|x - c|^(3/2)`` (`fretting.physics.surface.SurfaceStress.at_stick_ends`; accuracy:
+    tests/analysis/test_nucleation.py and benchmarks/surface_stress.py). For a result of a
+    varying ``P``, ``q`` constant on each cell, with the pressure of each step
+    (`fretting.models.normal.CellSurfaceStress`), and no stick end fitted.
 
     Parameters
     ----------
@@ -356,11 +359,11 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
         t = (result.x.values - result.attrs["centre"]) / result.attrs["a"]
         ellipses = elliptical_traction(result)
         if ellipses is None:
-            surface = SurfaceStress(t)
+            stress = _at_stick_ends(result, SurfaceStress(t), bulk, body)
         else:
             widths, centres, loads = ellipses
             surface = ClosedFormSurfaceStress(loads @ ellipse_stress(t, widths[:, None], centres[:, None]))
-        stress = surface(result.q.values, result.p.values, bulk, body)
+            stress = surface(result.q.values, result.p.values, bulk, body)
     definition = (
         f"sigma_xx = -(2/pi) PV int t_x(xi)/(x - xi) dxi - p(x) + sigma_b, t_x = {'+q' if body == 1 else '-q'} "
         f"(body {body}), sigma_b its bulk stress (half-plane surface stress, Johnson 1985 section 2.3; "
@@ -370,6 +373,21 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     return xr.DataArray(
         stress, coords={"step": result.step, "x": result.x}, name="sigma_xx", attrs=attrs | {"body": body, "role": role}
     )
+
+
+def _at_stick_ends(result: xr.Dataset, surface: SurfaceStress, bulk: np.ndarray, body: int) -> np.ndarray:
+    """`surface` at each recorded step with its stick ends from the slip (`SurfaceStress.at_stick_ends`, as the
+    engine tallies it); the steps of copied cycles, which repeat a slip and its stick, fitted once."""
+    q, slip, sigma = result.q.values, result.slip.values, result.sigma.values
+    stuck, modulus = result.stick.values.astype(bool), result.attrs["E_star"] / result.attrs["a"]
+    shear, fitted = surface.of_traction(q), {}
+    for k in range(q.shape[0]):
+        key = (slip[k].tobytes(), stuck[k].tobytes(), sigma[k])
+        if key not in fitted:
+            fitted[key] = surface.stick_ends(slip[k], stuck[k], sigma[k], modulus)
+        nodes, values = fitted[key]
+        shear[k, nodes] = values
+    return ClosedFormSurfaceStress(shear)(q, result.p.values, bulk, body)
 
 
 def _recorded_peaks(result: xr.Dataset, body: int, bulk: ArrayLike | None) -> dict[str, np.ndarray]:

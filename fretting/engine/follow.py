@@ -30,7 +30,7 @@ from fretting.errors import GrossSlipError, HistoryError, SolverError
 from fretting.loading.loads import Loads
 from fretting.models.base import UNFOLLOWED
 from fretting.models.state import State, Tally
-from fretting.physics.surface import bulk_stress
+from fretting.physics.surface import SurfaceStress, bulk_stress
 
 __all__ = ["BRACKET", "STRAIGHT", "advance", "displaced", "follow", "skippable", "slid"]
 
@@ -88,7 +88,7 @@ def displaced(model, state, loads, step=None):
     held = state.loads
     if (held.delta, held.sigma, held.P) == (loads.delta, loads.sigma, loads.P):
         return replace(loads, Q=held.Q)
-    sliding = min(model.friction_force, contact.f * contact.P)
+    sliding = model.sliding_force()
 
     def missed(Q):
         """``delta(Q) - delta`` [m] of the trial increment to `Q` [N/m]."""
@@ -135,7 +135,7 @@ def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=Tru
     are given no other.
     """
     Q, sigma = loads.Q, loads.sigma
-    sliding = min(model.friction_force, model.contact.f * loads.normal(model.contact))  # no stick zone from here on
+    sliding = model.sliding_force(loads.normal(model.contact))  # no stick zone from here on
     sliding_whole = loads.delta is not None and model.slides and abs(Q) == sliding
     if abs(Q) >= sliding and not sliding_whole:
         raise GrossSlipError(step, Q, sigma, sliding)
@@ -161,11 +161,14 @@ def specimen_surface(model, outcome, sigma):
 
     `sigma` [Pa] is the differential bulk tension after the increment; the specimen is the
     contact's (`Contact.specimen`). One product with the model's precomputed Hilbert matrix
-    (`Model.surface`), the formula `fretting.analysis.nucleation.surface_stress`
-    evaluates at the recorded steps.
+    (`Model.surface`) with the square-root profile at the stick ends fitted to the slip
+    (`fretting.physics.surface.SurfaceStress.at_stick_ends`), the formula
+    `fretting.analysis.nucleation.surface_stress` evaluates at the recorded steps.
     """
     surface, p = model.surface_at(outcome)
     body, q = model.contact.specimen, model.traction(outcome)
+    if isinstance(surface, SurfaceStress):  # nodal tractions' or closed form's: the stick ends from the slip
+        surface = surface.at_stick_ends(q, outcome.slip, outcome.ds == 0, sigma, model.contact.E_star / model.contact.a)
     return surface(q, p, bulk_stress(sigma, body, specimen=body), body), np.abs(q)
 
 
@@ -337,7 +340,7 @@ class _Run:
         if state.slid:  # the rows are the Masing sums alone: after gross slip, step by step
             return None
         ahead = self.solved[solved : solved + PREPARED_STEPS]
-        sliding = min(model.friction_force, model.contact.f * model.contact.P)
+        sliding = model.sliding_force()
         ahead = ahead[: _leading(self.windowed[ahead] & (np.abs(history.Q[ahead]) < sliding))]
         if ahead.size == 0:
             return None

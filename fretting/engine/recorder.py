@@ -372,7 +372,7 @@ def regime(model, outcome, state):
     slides, or is on the point of sliding), partial slip otherwise."""
     if not outcome.ds.any():
         return 0
-    return 2 if abs(state.Q) >= model.friction_force else 1
+    return 2 if abs(state.Q) >= model.sliding_force(state.P) else 1
 
 
 def recorded_spec(result: xr.Dataset) -> ModelSpec:

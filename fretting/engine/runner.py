@@ -34,6 +34,7 @@ from filelock import FileLock, Timeout
 
 from fretting.engine.choice import ModelFallbackWarning
 from fretting.engine.follow import skippable
+from fretting.engine.notes import UNRESOLVED, parts_note, varied_cycles
 from fretting.engine.recorder import (
     CYCLE_PEAKS_TALLIED,
     CycleFields,
@@ -331,9 +332,14 @@ def run_file(
             except GrossSlipError:
                 shutil.rmtree(checkpoint, ignore_errors=True)  # resuming would only reach it again
                 raise
+            varied = varied_cycles(history)
             del source, history  # the loads of every step: the result holds what it records
             if len(part):
                 _save_part(part, checkpoint, attributes)
+            note = parts_note(_parts(checkpoint), varied)
+            if note is not None:
+                notes.append(note)
+                attributes[UNRESOLVED] = note
             save_joined(_parts(checkpoint), output, attributes)
             shutil.rmtree(checkpoint)
     return Run(output, notes)

@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 from fretting._validate import positive
 from fretting.engine.choice import continued, spec_from
 from fretting.engine.follow import follow
+from fretting.engine.notes import noted
 from fretting.engine.recorder import Recorder, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.engine.threads import one_blas_thread
@@ -71,7 +72,9 @@ def simulate(
     -------
     xarray.Dataset
         Variables of `fretting.results.variables.VARIABLES`; attributes of the contact and the
-        model (``model``, its parameters, ``model_fallback`` where the default fell back).
+        model (``model``, its parameters, ``model_fallback`` where the default fell back,
+        ``model_unresolved`` where cycles whose ``Q`` varies dissipated nothing on its nodes:
+        `fretting.engine.notes`).
 
     Raises
     ------
@@ -98,7 +101,7 @@ def simulate(
     recorded = recorded_steps(record, len(history))
     stepper.resolve(history, recorded)
     recorder = Recorder(stepper.model, history, recorded)
-    return recorder.dataset(stepper.run(history, recorder))
+    return noted(recorder.dataset(stepper.run(history, recorder)), history)
 
 
 def adapted_mesh(

@@ -230,7 +230,10 @@ class ModelSpec(abc.ABC):
 
 #: What a `fretting.errors.GrossSlipError` of displacement control adds where the model does not
 #: slide (`Model.slides`).
-UNFOLLOWED = "under displacement control only fretting.models.Exact follows gross slip (Q alone, constant P)"
+UNFOLLOWED = (
+    "under displacement control fretting.models.Exact (Q alone), Grid, Mesh and Varying (Q and sigma) follow "
+    "gross slip under a constant P"
+)
 
 
 class Model(abc.ABC):
@@ -275,13 +278,19 @@ class Model(abc.ABC):
         """
 
     #: True if the model follows gross slip under displacement control (`slide`): its `increment`
-    #: reaches ``|Q| = friction_force`` exactly (the exact model of ``Q`` alone).
+    #: reaches ``|Q| = sliding_force`` exactly (the exact model of ``Q`` alone, method 4's models, the cells).
     slides: bool = False
 
+    def sliding_force(self, P: float | None = None) -> float:
+        """The ``|Q|`` [N/m] at which no stick zone is left under the normal load `P` [N/m] (None: the
+        contact's): the smaller of `friction_force` and ``f P``, which differ by the rounding of a
+        quadrature of the pressure."""
+        return min(self.friction_force, self.contact.f * (self.contact.P if P is None else P))
+
     def slide(self, state: State, loads: Loads, du: float) -> Outcome:
-        """`Outcome` of the increment to ``loads.Q = +-friction_force`` and a uniform slide `du` [m] of the
+        """`Outcome` of the increment to ``loads.Q = +-sliding_force`` and a uniform slide `du` [m] of the
         whole contact (`slides`). By default the contact's gross slip, which the model does not follow:
-        a `fretting.errors.GrossSlipError` naming the model that does (`UNFOLLOWED`)."""
+        a `fretting.errors.GrossSlipError` naming the models that do (`UNFOLLOWED`)."""
         raise GrossSlipError(None, loads.Q, loads.sigma, self.friction_force, UNFOLLOWED)
 
     #: True if `window` steps a run of increments for less than `increment` one at a time does (the

@@ -17,7 +17,7 @@ import numpy as np
 from fretting.models.base import Model, Outcome
 from fretting.models.solver import Stiffness, solve_increment
 
-__all__ = ["Method4Model", "stick_zones"]
+__all__ = ["Method4Model", "on_the_point", "stick_zones"]
 
 
 class Method4Model(Model):
@@ -42,13 +42,37 @@ class Method4Model(Model):
 
     def at_rest(self, state):
         ds = np.zeros(state.slip.size)
-        return Outcome(self.g_stuck(state.Q, state.sigma) - self.G @ state.slip, ds, state.slip, 0.0)
+        return Outcome(self.g_stuck(state.Q, state.sigma) - self.G @ state.slip, ds, state.slip, 0.0, slid=state.slid)
+
+    #: Method 4 follows gross slip under displacement control (`slide`, docs/theory/displacement.md#sliding-sigma).
+    slides = True
 
     def increment(self, state, loads, guess=None):
+        """`Model.increment`; at ``|Q| = sliding_force``, the contact on the point of sliding (`on_the_point`)."""
+        if abs(loads.Q) >= self.sliding_force():
+            return self._sliding(state, loads, 0.0)
         if guess is None:  # the directions of the increment before
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
         solved = solve_increment(self.stiffness, self.g_stuck(loads.Q, loads.sigma), self.limit, state.slip, guess)
-        return Outcome(solved.g, solved.ds, solved.slip, self.dissipation(solved.ds))
+        return Outcome(solved.g, solved.ds, solved.slip, self.dissipation(solved.ds), slid=state.slid)
+
+    def slide(self, state, loads, du):
+        """`Outcome` of gross slip: the increment to ``loads.Q = +-sliding_force`` (`on_the_point`), then the
+        uniform slide `du` [m] (the sign of ``Q``) of every node under ``g = +-limit``; its energy
+        ``int f p |ds| dx`` (`dissipation`) holds ``friction_force |du|``."""
+        return self._sliding(state, loads, du)
+
+    def _sliding(self, state, loads, du):
+        """`Outcome` of the increment from `state` to the contact on the point of sliding in the direction
+        of ``loads.Q`` under ``loads.sigma`` (`on_the_point`), then slid by `du` [m], every node at its limit."""
+        sign = np.sign(loads.Q)
+        if (loads.Q, loads.sigma) == (state.Q, state.sigma):  # on the point of sliding already
+            slip = state.slip + du
+        else:
+            load = self.g_stuck(sign * self.friction_force, loads.sigma) - sign * self.limit
+            slip = on_the_point(self.stiffness, load, state.slip, sign) + du
+        ds = slip - state.slip
+        return Outcome(sign * self.limit, ds, slip, self.dissipation(ds), slid=state.slid + du)
 
     def stick_zones(self, outcome, state):
         return stick_zones(self.t, state.slip - state.episode_start, self.locate_end)
@@ -56,6 +80,29 @@ class Method4Model(Model):
     def locate_end(self, position, d, slipping, beyond):
         """Where the slip `d` of a slip zone reaches zero between the nodes (`extrapolated_end`)."""
         return extrapolated_end(position, d, slipping, beyond)
+
+
+def on_the_point(stiffness, load, slip, sign):
+    """Slip [m] after the increment from `slip` [m] to the loads at which the contact is on the point of
+    sliding whole, every node at its limit in the direction `sign` (+1, -1) of ``Q``
+    (docs/theory/displacement.md#sliding-sigma).
+
+    `load` is ``g_stuck - sign limit`` at ``Q = sign friction_force``, in the model's measure: its sum is
+    zero (to rounding), and a slip ``s`` with ``G s = load`` leaves ``g = sign limit`` at every node,
+    whatever its uniform part (``G 1 = 0``). Of those, the increment keeps the one of least uniform part
+    whose slip increment never goes against ``Q``: the limit of the increments to ``|Q|`` below the
+    friction force, whose functional differs from this one by ``F - |Q|`` times the mean of the slip
+    increment, which selects the least. The node where the slip lags most behind the sliding field
+    sticks (``ds = 0`` exactly there), every other one slips with ``Q`` and none against it: a node that
+    a change of ``sigma`` would reverse sticks instead. ``s`` is ``B load``, ``B`` the inverse of ``G``
+    made regular (`fretting.models.solver.Stiffness.regularised_inverse`), which solves ``G s = load``
+    for a load of zero sum.
+    """
+    sliding = stiffness.regularised_inverse[1] @ load
+    lag = sign * (slip - sliding)
+    shift = lag.max()
+    ahead = sign * np.maximum(sign * sliding + shift, sign * slip)  # never against Q, also by rounding
+    return np.where(lag == shift, slip, ahead)
 
 
 def stick_zones(t, ds, end=None):

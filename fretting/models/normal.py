@@ -54,7 +54,9 @@ just before (continuity) under a traction that starts from zero; a node that lea
 traction and forgets its slip. Everything depends on the loads and the slip alone, so a periodic
 history that shakes down repeats its cycles bit for bit.
 
-Stick ends. An end between a stuck and a slipping node is placed by the square-root kink of the
+Stick ends. A node at the limit that does not slip (a band that entered at the limit ratio ``f``) is moved by
+the solver's rounding only, and counts as stuck (`ROUNDING`). An end between a stuck and a slipping node is placed
+by the square-root kink of the
 traction, from the friction deficit of the one and the slip of the other (`kink_end`); slip zones one
 cell wide are common here, as an edge recedes. The deficit is taken against the limit of the slip
 zone's direction, ``f p - s q`` with ``s f p`` the slip zone's traction: a receding edge often slips
@@ -77,7 +79,7 @@ import numpy as np
 from scipy import linalg, optimize
 
 from fretting.models.base import Model, ModelSpec, Outcome
-from fretting.models.method4 import extrapolated_end, stick_zones
+from fretting.models.method4 import extrapolated_end, on_the_point, stick_zones
 from fretting.models.solver import Stiffness, solve_increment
 
 if TYPE_CHECKING:
@@ -111,6 +113,12 @@ DEFAULT_LOAD_PART = 1 / 400
 #: `NormalModel` keeps: consecutive parts of an increment mostly share a contact, and one not kept costs
 #: ``O(m^2)`` to form again (`slip_to_traction`), less than keeping many costs in memory traffic.
 CACHED_CONTACTS = 8
+
+#: Episode slip [of the largest at the step's nodes in contact] at or below which a node counts as stuck when its
+#: stick zones are read (`NormalModel.stick_zones`): nodes at the limit that do not slip (bands that entered at the
+#: limit ratio ``f`` and stay there, Jaeger 1998) take slips of the size of the solver's rounding, far below this,
+#: and would otherwise split a stick zone into pieces a node wide.
+ROUNDING = 1e-9
 
 
 @dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
@@ -320,7 +328,8 @@ class NormalModel(Model):
     def at_rest(self, state):
         P = self.load(state)
         g = self.forces(state.slip, state.Q, state.sigma, P)
-        return NormalOutcome(g, np.zeros(self.x.size), state.slip, 0.0, P=P, density=np.zeros(self.x.size), locked=g)
+        zero = np.zeros(self.x.size)
+        return NormalOutcome(g, zero, state.slip, 0.0, slid=state.slid, P=P, density=zero, locked=g)
 
     def increment(self, state, loads, guess=None):
         """The increment to the loads ``Q``, ``sigma``, ``P`` [N/m], solved in parts at the loads where cells enter
@@ -328,6 +337,8 @@ class NormalModel(Model):
         ``(f p_start h + f p_end h) |ds| / 2`` summed over its nodes (`slip_start`), the trapezoidal rule in ``P``
         (module docstring)."""
         after = (loads.Q, loads.sigma, loads.normal(self.contact))
+        if abs(after[0]) >= self.sliding_force(after[2]):  # on the point of sliding
+            return self.slide(state, loads, 0.0)
         if guess is None:
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
         before = (state.Q, state.sigma, self.load(state))
@@ -352,7 +363,38 @@ class NormalModel(Model):
             P_begin = P_
             slip = self.free_surface(slip, g, sigma_, m)
         edges = self.edges_slip(before, after)
-        return NormalOutcome(g, ds, slip, dissipation, P=after[2], density=density, edges=edges, locked=locked)
+        return NormalOutcome(
+            g, ds, slip, dissipation, slid=state.slid, P=after[2], density=density, edges=edges, locked=locked
+        )
+
+    #: The cells follow gross slip under a constant ``P`` (`slide`); the engine prescribes no displacement
+    #: under a varying one (docs/theory/displacement.md#sliding-sigma).
+    slides = True
+
+    def slide(self, state, loads, du):
+        """`Outcome` of gross slip under the contact's ``P``: the cells in contact on the point of sliding in the
+        direction of ``loads.Q`` under ``loads.sigma`` (`fretting.models.method4.on_the_point`), slid by the
+        uniform `du` [m], the free surface outside them carried as by `increment`."""
+        P = loads.normal(self.contact)
+        m, sign = self.pairs(P), np.sign(loads.Q)
+        nodes, limit = self.cells(m), self.contact.f * self.force(P, m)
+        slip = state.slip.copy()
+        if (loads.Q, loads.sigma) == (state.Q, state.sigma):  # on the point of sliding already
+            slip[nodes] += du
+        else:
+            stiffness = self.stiffness(m)
+            G_sigma = stiffness.G @ self.bulk_slip(loads.sigma)[nodes]
+            load = sign * limit[nodes].sum() * self.punch(m) + G_sigma - sign * limit[nodes]
+            slip[nodes] = on_the_point(stiffness, load, state.slip[nodes], sign) + du
+        g, ds = np.zeros(self.x.size), np.zeros(self.x.size)
+        g[nodes], ds[nodes] = sign * limit[nodes], slip[nodes] - state.slip[nodes]
+        locked = self.forces(state.slip, state.Q, state.sigma, self.load(state))
+        density = limit / self.h * np.abs(ds)
+        slip = self.free_surface(slip, g, loads.sigma, m)
+        dissipation = float(np.dot(limit, np.abs(ds)))
+        return NormalOutcome(
+            g, ds, slip, dissipation, slid=state.slid + du, P=P, density=density, edges=(True, True), locked=locked
+        )
 
     def edges_slip(self, before, after):
         """Whether each edge of the contact (``x = -a``, ``x = a``) slips in the increment from the loads
@@ -384,7 +426,8 @@ class NormalModel(Model):
 
     def stick_zones(self, outcome, state):
         """Stick intervals in ``t = (x - centre) / a`` of the contact formed, within the contact of the
-        increment's load. An end between a stuck and a slipping node is `kink_end`, from the traction
+        increment's load. A node whose episode slip is within `ROUNDING` of the largest is stuck. An end between a
+        stuck and a slipping node is `kink_end`, from the traction
         deficit of one and the slip of the other, unless the slip zone has reached a former edge
         (`pinned`): there it is extrapolated from the slip of two slipping nodes
         (`fretting.models.method4.extrapolated_end`). An end at the outermost node in contact is `edge_end`."""
@@ -406,7 +449,9 @@ class NormalModel(Model):
                     return end
             return kink_end(position * a, d, deficit(slipping), stuck, slipping, self.contact.E_star) / a
 
-        zones = stick_zones(t, (outcome.slip - state.episode_start)[nodes], located)
+        episode = (outcome.slip - state.episode_start)[nodes]
+        episode = np.where(np.abs(episode) > ROUNDING * np.max(np.abs(episode), initial=0.0), episode, 0.0)
+        zones = stick_zones(t, episode, located)
         outer = (0, t.size - 1)
         zones = [
             tuple(

@@ -328,6 +328,17 @@ TABLE_RESOLUTION = 1e-2
 #: Points, in theta, where `Gap.check` looks for a negative pressure.
 CHECK_POINTS = 4096
 
+#: `Gap.check` looks for an undeclared cusp (`Gap.undeclared_cusp`) by halving each interval between the
+#: `Gap.ORDER` Chebyshev points of the contact toward its steeper half, down to this share of ``a``: the slope's
+#: difference quotient converges to the curvature where it is bounded (a jump of it included) and grows like
+#: ``2^(k (2 - n))`` after ``k`` halvings at a cusp ``|x|^n``, like ``2^k`` at a corner. Rounding moves the
+#: quotient of a slope by central differences (step ``1e-6 |x|``) by ~1e-2 of the curvature at this width.
+CUSP_WIDTH = 1e-8
+#: A quotient that ends above this many times the largest over the unhalved intervals is unbounded: a
+#: bounded curvature ends at most at its largest there (a little above, where it peaks inside an interval),
+#: ``|x|^1.5`` at ``2^10``, ``|x|^1.8`` at ``2^4`` times its interval's.
+CUSP_GROWTH = 4.0
+
 #: Gauss-Legendre points on each piece of the pressure's integral of a `Gap` with breakpoints in its contact
 #: (`Gap.pressure`), and the points evaluated at once (a chunk's integrands take ~25 MB per three pieces).
 PRESSURE_GAUSS = 16
@@ -354,9 +365,10 @@ class Gap(Profile):
         singular there; the pressure of a contact that holds one is integrated about it (`pressure`),
         and the Galerkin mesh resolves the traction about them
         (tests/models/test_galerkin.py::test_rounded_flat). Neither is done for a point it is not told
-        of: at an undeclared cusp the pressure comes out low, by about a percent at ``|x|^(3/2)``
-        (tests/physics/test_profiles.py::test_the_pressure_at_a_cusp_is_the_closed_form). A table finds its own
-        (`from_table`).
+        of: an undeclared cusp in the contact, where the pressure would come out low (by about a percent
+        at ``|x|^(3/2)``), is refused with its position when the `Contact` is built (`undeclared_cusp`;
+        tests/physics/test_profiles.py::test_the_pressure_at_a_cusp_is_the_closed_form); an undeclared
+        jump of the curvature is not found. A table finds its own (`from_table`).
 
     Notes
     -----
@@ -433,7 +445,7 @@ class Gap(Profile):
 
     def check(self, a: float, centre: float, P: float, E_star: float) -> None:  # noqa: B027 (a default: closed-form profiles pass)
         """Raise ValueError naming where the contact fails: outside the table, too narrow for its rows
-        (`TABLE_RESOLUTION`), or a negative pressure.
+        (`TABLE_RESOLUTION`), an undeclared cusp (`undeclared_cusp`), or a negative pressure.
 
         The pressure is sampled at `CHECK_POINTS` Chebyshev angles; one below `NEGATIVE_PRESSURE`
         of the largest is negative. For a table, the message starts with the first knot in the
@@ -454,6 +466,13 @@ class Gap(Profile):
                     f"{spacing:.6g} m of the table's rows there, where the spline's slope is lost to rounding: "
                     "tabulate the gap finer where the bodies touch"
                 )
+        cusp = self.undeclared_cusp(a, centre)
+        if cusp is not None:
+            raise ValueError(
+                f"the gap's curvature is unbounded at x = {cusp:.6g} m in the contact [{low:.6g}, {high:.6g}] m "
+                f"(a cusp or a corner), where the pressure would come out low: declare it, Gap(h0, slope, "
+                f"breakpoints=[{cusp:.6g}])"
+            )
         t = np.cos((np.arange(CHECK_POINTS) + 0.5) * np.pi / CHECK_POINTS)[::-1]
         p = self.pressure(t, a, centre, P, E_star)
         negative = np.flatnonzero(p < -NEGATIVE_PRESSURE * p.max())
@@ -461,6 +480,40 @@ class Gap(Profile):
             k = negative[0]
             where = f"the pressure is negative at x = {centre + a * t[k]:.6g} m ({p[k]:.4g} Pa) in the contact"
             self._refuse(low, high, f"{where} [{low:.6g}, {high:.6g}] m")
+
+    def undeclared_cusp(self, a: float, centre: float) -> float | None:
+        """Position [m] in the contact ``centre +- a`` [m] where the curvature of ``h0`` is unbounded (a cusp
+        such as ``|x|^(3/2)``, or a corner) and no breakpoint is declared within a spacing of the
+        contact's Chebyshev points; None where there is none.
+
+        Each interval between the `ORDER` Chebyshev points of the contact is halved toward its half of
+        the larger slope difference quotient, down to `CUSP_WIDTH` ``a``; a final quotient above
+        `CUSP_GROWTH` times the largest of the unhalved intervals is unbounded. The position is the
+        shortest decimal in the final interval. The sine series of
+        `pressure` converges slowly at such a point and leaves the pressure there low (by about a
+        percent at ``|x|^(3/2)``), which its declared breakpoint avoids.
+        """
+        x = centre + a * np.cos((np.arange(self.ORDER) + 0.5) * np.pi / self.ORDER)[::-1]
+        low, high = x[:-1], x[1:]
+        slope_low, slope_high = self.slope(low), self.slope(high)
+        start = np.abs(slope_high - slope_low) / (high - low)
+        for _ in range(int(np.log2(np.diff(x).max() / (CUSP_WIDTH * a)))):
+            middle = (low + high) / 2
+            slope_middle = self.slope(middle)
+            halve = high - low >= 2 * CUSP_WIDTH * a
+            left = np.abs(slope_middle - slope_low) >= np.abs(slope_high - slope_middle)
+            low, slope_low = np.where(halve & ~left, middle, low), np.where(halve & ~left, slope_middle, slope_low)
+            high, slope_high = np.where(halve & left, middle, high), np.where(halve & left, slope_middle, slope_high)
+        quotient = np.abs(slope_high - slope_low) / (high - low)
+        spacing = np.diff(x).max()
+        declared = np.asarray(self.breakpoints, dtype=float)
+        near = np.abs((low + high)[:, None] / 2 - declared).min(axis=1, initial=np.inf) <= spacing
+        cusps = np.flatnonzero((quotient > CUSP_GROWTH * start.max()) & ~near)
+        if not cusps.size:
+            return None
+        k = cusps[np.argmax(quotient[cusps])]
+        digits = range(int(np.floor(-np.log10(a))) - 1, 340)
+        return next(float(np.round(low[k], d)) + 0.0 for d in digits if low[k] <= np.round(low[k], d) <= high[k])
 
     def _refuse(self, low: float, high: float, problem: str) -> NoReturn:
         """Raise ValueError with `problem`, after the first knot of a table in [low, high] where it is concave."""

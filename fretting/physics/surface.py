@@ -20,7 +20,22 @@ import numpy as np
 
 from fretting.physics.contact import SPECIMEN
 
-__all__ = ["ClosedFormSurfaceStress", "SurfaceStress", "bulk_stress", "ellipse_stress", "hilbert_matrix"]
+__all__ = [
+    "ClosedFormSurfaceStress",
+    "SurfaceStress",
+    "bulk_stress",
+    "ellipse_stress",
+    "hilbert_matrix",
+    "slip_gradient_at_end",
+]
+
+#: Nodes on either side of a stick end whose stress `SurfaceStress.at_stick_ends` takes from the slip's gradient.
+END_NODES = 4
+#: Nodes on either side of a stick end that the fit of the slip spans (`slip_gradient_at_end`).
+FIT_NODES = 6
+#: Positions of the stick end that `slip_gradient_at_end` fits the slip with at once, over one and a half of the
+#: nodes' spacings; the vertex of the parabola through the least residual and its neighbours is the end.
+END_CANDIDATES = 48
 
 
 def bulk_stress(sigma, body, bulk=None, specimen=SPECIMEN):
@@ -54,6 +69,7 @@ class SurfaceStress:
     """
 
     def __init__(self, t):
+        self._t = np.asarray(t)
         self._root = np.sqrt(1 - np.asarray(t) ** 2)
         self._kernel = 2 * hilbert_matrix(np.asarray(t)).T  # (g @ kernel)_j = (2/pi) PV int ... at t_j
 
@@ -78,6 +94,43 @@ class SurfaceStress:
         """``-(2/pi) PV int q(xi) / (x - xi) dxi`` [Pa] at the nodes, of `q` [Pa] there (shape (N,) or (steps, N))."""
         return (q * self._root) @ self._kernel
 
+    def at_stick_ends(self, q, slip, stuck, sigma, modulus):
+        """This stress of one step with the square-root profile at its stick ends, as `ClosedFormSurfaceStress`.
+
+        A traction ``q = q_st + q_d`` of method 4 (eqs 9, 20 and A.4) gives ``-(2/pi) PV int q / (x - xi) dxi
+        = sigma / 2 - E_star ds/dx`` (docs/theory/method4.md#chebyshev: the Hilbert transform of ``sqrt(1 -
+        t^2) q_d = -(E_star / 2) sum n c_n T_n`` is ``-(E_star / 2) ds/dx``, and that of ``q_st`` is ``sigma /
+        4``): the surface strain mismatch of the two bodies is the slip's gradient. Next to a stick end the
+        traction's slope is unbounded and its nodal values miss it, while the slip there goes as ``|x -
+        c|^(3/2)`` into the slip zone, which `slip_gradient_at_end` fits. The nodes within `END_NODES` of each
+        stick end (between a node that stuck in the increment and one that slipped) take ``sigma / 2 -
+        modulus ds/dt``, the others `of_traction` of `q`.
+
+        Parameters
+        ----------
+        q, slip : ndarray, shape (N,)
+            Shear traction on body 1 [Pa] and slip [m] at the nodes.
+        stuck : ndarray of bool, shape (N,)
+            Nodes that did not slip in the increment.
+        sigma : float
+            Differential bulk tension [Pa].
+        modulus : float
+            ``E_star / a`` [Pa/m].
+        """
+        stress = self.of_traction(q)
+        nodes, values = self.stick_ends(slip, stuck, sigma, modulus)
+        stress[nodes] = values
+        return ClosedFormSurfaceStress(stress)
+
+    def stick_ends(self, slip, stuck, sigma, modulus):
+        """The nodes next to the stick ends of one step and their ``sigma / 2 - modulus ds/dt`` [Pa]
+        (`at_stick_ends`)."""
+        ends = np.flatnonzero(stuck[1:] != stuck[:-1]) + 1  # node above each stick end
+        fitted = [slip_gradient_at_end(self._t, slip, stuck, end, ends) for end in ends]
+        nodes = np.concatenate([np.zeros(0, dtype=int)] + [nodes for nodes, _ in fitted])
+        gradient = np.concatenate([np.zeros(0)] + [gradient for _, gradient in fitted])
+        return nodes, sigma / 2 - modulus * gradient
+
 
 class ClosedFormSurfaceStress(SurfaceStress):
     """`SurfaceStress` of a traction whose part ``-(2/pi) PV int q(xi) / (x - xi) dxi`` is known in closed form.
@@ -100,6 +153,72 @@ class ClosedFormSurfaceStress(SurfaceStress):
     def of_traction(self, q):
         """The stress known in closed form [Pa]; `q`, the same traction at the nodes, is not read."""
         return self._stress
+
+    def at_stick_ends(self, *step):
+        """This stress itself: exact at the stick ends already."""
+        return self
+
+
+def slip_gradient_at_end(t, slip, stuck, end, ends):
+    """``ds/dt`` [m] at the nodes next to the stick end below node `end`, fitting the slip with ``|t - c|^(3/2)``.
+
+    About a stick end ``c`` the slip is the slip locked in before, smooth, plus ``A w^(3/2) + B w^(5/2)``
+    with ``w`` the distance into the slip zone (eq 19; Masing's rule for reversed zones). The slip of the
+    `FIT_NODES` nodes on either side of the end (those nearer to it than to the other `ends`, node indices
+    like `end`) is fitted by least squares with ``1, u, u^2, w^(3/2), w^(5/2)``, ``u = t - c``, with ``c``
+    the one of least residual from the stuck node half a spacing inward to the slipping node (the model's
+    ends are within that: `END_CANDIDATES`), and differentiated at the `END_NODES` nodes nearest on either side.
+
+    Returns
+    -------
+    tuple
+        Node indices (K,) and ``ds/dt`` [m] there; none where fewer than two nodes stick or three slip, or six
+        in all (a zone narrower than that is left to the nodal traction).
+    """
+    nodes = np.arange(max(end - FIT_NODES, 0), min(end + FIT_NODES, t.size))
+    others = ends[ends != end]
+    if others.size:
+        nodes = nodes[np.abs(nodes - end + 0.5) < np.abs(nodes[:, None] - others + 0.5).min(axis=1)]
+    side, h = (1.0 if stuck[end - 1] else -1.0), t[end] - t[end - 1]
+    slipping = np.count_nonzero(side * (nodes - end + 0.5) > 0)
+    if slipping < 3 or nodes.size - slipping < 2 or nodes.size < 6:
+        return np.zeros(0, dtype=int), np.zeros(0)
+    inner = end - 1 if side > 0 else end  # the stuck node
+    inward = t[min(max(inner - int(side), 0), t.size - 1)] - t[inner]
+    scale = np.abs(slip[nodes]).max() or 1.0  # [m]
+    y = slip[nodes] / scale
+    low, high = sorted((t[inner] + inward / 2, t[end] if side > 0 else t[end - 1]))
+    c = np.linspace(low, high, END_CANDIDATES)
+    residual = _fit(t[nodes], y, c, side, h)[3]
+    best = int(np.clip(np.argmin(residual), 1, END_CANDIDATES - 2))
+    r0, r1, r2 = residual[best - 1 : best + 2]
+    curvature = r0 - 2 * r1 + r2  # the vertex of the parabola through the least residual and its neighbours
+    shift = np.clip(0.5 * (r0 - r2) / curvature, -1.0, 1.0) if curvature > 0 else 0.0
+    coefficients, u, w, _ = _fit(t[nodes], y, c[best : best + 1] + shift * (c[1] - c[0]), side, h)
+    coefficients, u, w = coefficients[0] * scale, u[0], w[0]
+    near = np.abs(nodes - end + 0.5) < END_NODES
+    u, w = u[near], w[near]
+    gradient = (
+        coefficients[1]
+        + 2 * coefficients[2] * u
+        + side * (1.5 * coefficients[3] * np.sqrt(w) + 2.5 * coefficients[4] * w**1.5)
+    )
+    return nodes[near], gradient / h
+
+
+def _fit(t, y, c, side, h):
+    """Least squares of `y` at `t` by ``1, u, u^2, w^(3/2), w^(5/2)`` with ``u = (t - c) / h``, ``w = max(side u, 0)``,
+    for each end ``c`` of `c` (C,): coefficients (C, 5), ``u`` and ``w`` (C, n), residuals (C,)."""
+    u = (t - c[:, None]) / h
+    w = np.maximum(side * u, 0.0)
+    basis = np.stack([np.ones_like(u), u, u**2, w**1.5, w**2.5], axis=-1)
+    transposed = basis.transpose(0, 2, 1)  # normal equations, of columns of order 1 over the fitted nodes
+    try:
+        coefficients = np.linalg.solve(transposed @ basis, transposed @ y[:, None])[..., 0]
+    except np.linalg.LinAlgError:  # columns dependent at some end (a slip zone of three nodes): least norm
+        coefficients = (np.linalg.pinv(basis) @ y[:, None])[..., 0]
+    residual = np.sum(((basis @ coefficients[..., None])[..., 0] - y) ** 2, axis=1)
+    return coefficients, u, w, residual
 
 
 def ellipse_stress(t, half_width, centre=0.0):

@@ -588,7 +588,7 @@ def test_one_registry_declares_every_criterion():
     stress = next(action for action in cli._parser()._actions if isinstance(action, argparse._SubParsersAction))
     options = {action.dest: action.choices for action in stress.choices["stress"]._actions}
     assert list(options["criterion"]) == list(CRITERIA) and set(CRITERIA) <= set(options["figure"])
-    assert cli.DEFAULT_CRITERION in CRITERIA
+    assert cli.stress.DEFAULT_CRITERION in CRITERIA
     tension = 100e6 * np.sin(COARSE)[:, None, None] * np.ones((1, 2, 3))
     field = xr.Dataset(
         {name: (("step", "z", "x"), tension * (name == "sigma_xx")) for name in ("sigma_xx", "sigma_zz", "tau_xz")}

@@ -147,8 +147,13 @@ def test_stepper_steps_a_displacement(contact):
 
 
 def test_beyond_sliding_is_gross_slip(contact):
+    """Method 4's grid slides from step 2 on; fed to force control, that step is an error."""
+    history = fr.History.piecewise_linear(delta=[0, 4e-6], steps_per_segment=4)
+    slid = fr.simulate(contact, history, fr.models.Grid(32))
+    assert slid.regime.values.tolist() == [0, 1, 2, 2, 2]
+    assert np.all(slid.Q.values[2:] == fr.models.Grid(32).build(contact).sliding_force())
     with pytest.raises(fr.GrossSlipError, match="gross slip at step 2: Q = 60000"):
-        fr.simulate(contact, fr.History.piecewise_linear(delta=[0, 4e-6], steps_per_segment=4), fr.models.Grid(32))
+        fr.simulate(contact, fr.History(slid.Q.values, np.zeros(5), [0, 4]), fr.models.Grid(32))
 
 
 def test_bad_input_is_one_line_error(contact):

@@ -120,8 +120,14 @@ def test_force_control_still_refuses_gross_slip(contact):
 
 
 def test_a_model_that_does_not_slide_says_so(contact):
-    with pytest.raises(fr.GrossSlipError, match=r"only fretting\.models\.Exact follows gross slip") as caught:
-        fr.simulate(contact, sliding_cycles(1.5 * transition(contact), 1, 4), fr.models.Grid(32))
+    """A model whose `slides` is False: a user's (the package's models that run delta slide under a constant P)."""
+    model = fr.models.Grid(32).build(contact)
+    model.slides = False
+    stepper = fr.Stepper(contact, model)
+    with pytest.raises(
+        fr.GrossSlipError, match=r"fretting\.models\.Exact \(Q alone\), Grid, Mesh and Varying"
+    ) as caught:
+        stepper.step(delta=1.5 * transition(contact))
     assert "\n" not in str(caught.value)
 
 
@@ -207,6 +213,6 @@ def test_a_model_that_does_not_slide_refuses_a_slide_with_the_contract_error():
     """`Model.slide`'s default is the gross-slip error naming the model that follows it, not a stub."""
     contact = fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e5)
     model = fr.models.Grid(32).build(contact)
-    assert not model.slides
-    with pytest.raises(fr.GrossSlipError, match="only fretting.models.Exact follows gross slip"):
-        model.slide(fr.State.virgin(model), fr.Loads(contact.f * contact.P), 1e-6)
+    assert not fr.models.Model.slides
+    with pytest.raises(fr.GrossSlipError, match="Mesh and Varying .Q and sigma. follow gross slip"):
+        fr.models.Model.slide(model, fr.State.virgin(model), fr.Loads(contact.f * contact.P), 1e-6)

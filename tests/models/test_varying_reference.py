@@ -3,7 +3,9 @@ and the varying-load model's energy on a history that slips nowhere, whatever ``
 
 import numpy as np
 import pytest
+from harness import hertz_contact
 from jaeger import Jaeger
+from varying_accuracy import ExactRun, PackageRun, boundary
 
 import fretting as fr
 from fretting.analysis.accuracy import monotonic_dissipation
@@ -74,3 +76,18 @@ def test_energy_of_a_history_that_slips_nowhere_does_not_grow_with_f():
     _, high = dovetail(1e10)
     assert high == pytest.approx(low, rel=1e-6, abs=1e-300)
     assert high < 1e-15 * np.pi * (contact.p0 * contact.a) ** 2 / (4 * contact.E_star)
+
+
+def test_stick_zone_at_the_limit_ratio_is_one_zone_with_jaeger_s_ends():
+    """In-phase loops at ``|dQ/dP| = 0.98 f`` then 1.02 f about a mean shear (benchmarks/varying_accuracy.py,
+    ``boundary``): the bands that entered at the limit ratio ``f`` stay at the limit without slipping, and the
+    solver moves them by its rounding only; read as slip, those nodes split the stick zone (one step's end was
+    off by 2.5e-2 a). Every step has one stick zone, its ends within the promised 1e-3 a of Jaeger's."""
+    contact = hertz_contact()
+    history = boundary(contact, cycles=1)
+    result = fr.simulate(contact, history, model=Varying())
+    assert np.all(np.sum(~np.isnan(result.stick_start.values), axis=1) == 1)
+    own, exact = PackageRun(result), ExactRun(contact, history, 64)
+    for k in range(1, len(history)):
+        for found, expected in zip(own.ends(k), exact.ends(k), strict=True):
+            assert abs(found - expected) < 1e-3 * result.a.values[k]

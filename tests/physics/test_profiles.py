@@ -315,8 +315,8 @@ def test_the_pressure_at_a_cusp_is_the_closed_form(n, rtol):
     """``|x|^n`` with its cusp as a breakpoint: ``a``, the centre pressure and ``p0`` (the peak, at the cusp)
     against the closed form within `rtol` (measured 6e-9 at n = 1.5, 1e-14 at 1.8, 3.9e-4 at 1.2, whose
     integrand ``|u|^(n - 2)`` is the least smooth), and the pressure elsewhere against scipy's quadrature of
-    eq (1) within 1e-7 p0 (measured 2.6e-8 at n = 1.2, 3.5e-10 at 1.8, 5e-16 at 1.5). The sine series,
-    without the breakpoint, is 1.28 % low at the cusp (n = 1.5)."""
+    eq (1) within 1e-7 p0 (measured 2.6e-8 at n = 1.2, 3.5e-10 at 1.8, 5e-16 at 1.5). Without the breakpoint
+    the sine series would be 1.28 % low at the cusp (n = 1.5): the contact is refused, naming it."""
     a, p_centre = power_law_closed_form(n)
     contact = fr.Contact(power_law(n), E_STAR, 0.5, P)
     assert contact.a == pytest.approx(a, rel=1e-7) and abs(contact.centre) < 1e-12 * a  # b_0, b_1 by the DCT
@@ -325,9 +325,37 @@ def test_the_pressure_at_a_cusp_is_the_closed_form(n, rtol):
     t = np.array([-0.9, -0.3, 1e-4, 0.05, 0.6])
     expected = [pressure_by_quad(contact.profile._slope, contact.a, contact.centre, u) for u in t]
     np.testing.assert_allclose(contact.pressure(contact.a * t), expected, rtol=0, atol=1e-7 * p_centre)
-    if n == 1.5:
-        series = fr.Contact(fr.Gap(contact.profile.h0, contact.profile._slope), E_STAR, 0.5, P)
-        assert series.pressure(0.0) / p_centre - 1 < -0.01
+    undeclared = fr.Gap(contact.profile.h0, contact.profile._slope)
+    with pytest.raises(ValueError, match=r"unbounded at x = 0 m .*declare it, Gap\(h0, slope, breakpoints=\[0\]\)"):
+        fr.Contact(undeclared, E_STAR, 0.5, P)
+
+
+def test_an_undeclared_cusp_off_the_centre_is_found_and_smooth_gaps_pass():
+    """A weak cusp at 10 um on a Hertz gap, and a cusp by central differences (no slope given), are refused
+    naming their position; Hertz's gap with its slope or by central differences, a quartic, and the shipped
+    asymmetric pad table (curvature jumps, declared by the table) pass, and the curvature of each stays bounded."""
+    R, where = 0.05, 1e-5
+    weak = fr.Gap(
+        lambda x: x**2 / (2 * R) + 1e-3 * np.abs(x - where) ** 1.5,
+        lambda x: x / R + 1.5e-3 * np.sqrt(np.abs(x - where)) * np.sign(x - where),
+    )
+    for gap in (weak, fr.Gap(lambda x: 2 * np.abs(x - 3 * where) ** 1.5)):
+        with pytest.raises(ValueError, match=r"unbounded at x = ([13])e-05 m .*breakpoints=\[\1e-05\]"):
+            fr.Contact(gap, E_STAR, 0.5, P)
+    declared = fr.Gap(weak.h0, weak._slope, [where])
+    assert fr.Contact(declared, E_STAR, 0.5, P).a > 0
+    from fretting.loading.examples import EXAMPLES
+
+    pad = np.loadtxt(EXAMPLES / "asymmetric_pad_gap.csv", delimiter=",", skiprows=3)
+    smooth = (
+        fr.Gap(lambda x: x**2 / (2 * R), lambda x: x / R),
+        fr.Gap(lambda x: x**2 / (2 * R)),
+        fr.Gap(lambda x: 1e6 * x**4 + x**2 / 10, lambda x: 4e6 * x**3 + x / 5),
+        fr.Gap.from_table(*pad.T),
+    )
+    for gap in smooth:
+        contact = fr.Contact(gap, E_STAR, 0.5, P)
+        assert gap.undeclared_cusp(contact.a, contact.centre) is None
 
 
 def asymmetric_flat_table(rows=121, span=3e-3, breakpoints=None, seed=None):

@@ -132,7 +132,7 @@ def test_a_scheduler_file_that_does_not_appear_is_a_one_line_error(folder, capsy
 
 
 def test_progress_on_stderr_when_it_is_a_terminal(inside, capsys, monkeypatch, no_dask):
-    monkeypatch.setattr(cli, "PROGRESS_DELAY", 0.0)
+    monkeypatch.setattr(cli.common, "PROGRESS_DELAY", 0.0)
     monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
     assert cli.main(["sweep", "map.toml"]) == 0
     assert "4/4" in capsys.readouterr().err
