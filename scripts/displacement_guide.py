@@ -142,6 +142,13 @@ The last block stays on the branch from the last slide at `+f P`, so its loops d
 their opening and `B` are not defined (-). Its first cycle dissipates more than the next: its first
 fall to `-0.25` um goes on down that branch, and only then do the small loops close on themselves.
 
+The run writes these numbers into its result, per cycle (`Q_amplitude`, `delta_amplitude`, `loop_opening`,
+`energy_ratio`, `sliding_ratio` and `cycle_regime` beside `cycle_dissipation`), from the steps it records:
+a cycle whose steps are not all recorded (`record=`, or the first and last steps only of a history of
+over 20 000 steps) has NaN and regime -1, and a run cut into parts, resumed or in chunks writes the
+numbers of the run in one piece, bit for bit. `loop_cycles` reads them, and computes them from the
+steps of a result written by an earlier version.
+
 Which of these depend on the datum: `delta*`, `A` and `B` do (they carry the stuck contact's `K Q`); for a
 given history of `Q`, `Q*`, the opening and `E_d` do not
 ([what depends on the datum](../theory/displacement.md#datum-dependence)).
@@ -149,7 +156,8 @@ given history of `Q`, `Q*`, the opening and `E_d` do not
 ## A running-condition map
 
 `fretting.studies.running.running_map(contact, P, delta_amplitude)` runs {CYCLES} cycles of `+-delta*`
-from rest at each normal load and amplitude with the exact model and keeps the last cycle's numbers;
+from rest at each normal load and amplitude with the exact model, in this process, as the cases of a
+sweep (`fretting.studies.sweeps.run_cases`), and keeps the last cycle's numbers;
 `fretting.plots.running_condition_map` draws a variable of it over `(delta*, P)`, with the boundary
 `delta_t(P)`. The contact above over {LOADS.size} loads and {AMPLITUDES.size} amplitudes took
 {map_seconds:.0f} s:
@@ -163,6 +171,31 @@ The boundary, `delta_t = (C_L + C) f P + delta_Q(f P)` (eq D6), grows with `P` t
 Points left of it run in partial slip, points right of it in gross slip. `A` jumps at the boundary and
 grows toward 1 as sliding takes over the cycle; its value at the transition depends on the datum, so
 read the regime from `cycle_regime` (or from `delta_t`) rather than from a threshold on `A`.
+
+## A running-condition map from a sweep file
+
+A [sweep](sweeps.md) over the normal load `contact.P` and the amplitude `delta_amplitude` of a `sine`
+block of `delta` makes the same map with the sweep machinery: cases run on dask (a local cluster, a
+scheduler, or a job array), each kept in its file so that an interrupted sweep resumes. The shipped
+`histories/sweeps/hertz_running_map.toml` holds its base history (the contact above, three sine cycles
+of `delta` from rest) and the grid:
+
+```toml
+[grid]
+"contact.P" = [25e3, 50e3, 100e3, 150e3, 200e3]                             # [N/m]
+"loading[1].delta_amplitude" = [0.25e-6, 0.5e-6, 1e-6, 1.5e-6, 2.5e-6, 4e-6]  # [m]
+```
+
+```
+fretting sweep hertz_running_map                 # results/hertz_running_map.h5
+fretting plot results/hertz_running_map.h5       # ..._running_cycle_regime.png, ..._running_energy_ratio.png
+```
+
+Each case of the file keeps its last cycle's loop (`cycle_regime`, `Q_amplitude`, `loop_opening`,
+`energy_ratio`, `sliding_ratio`, with `energy_per_cycle`) and its contact's boundary `transition`;
+`fretting plot` draws the regime and `A` over `(delta*, P)` with the boundary, as above, and
+`fretting.studies.running.running_cases(fretting.studies.sweeps.load_sweep(path))` gives the map on
+`(P, delta_amplitude)` as `running_map` does.
 
 ## The datum of a rig, from a measured loop
 

@@ -50,6 +50,7 @@ from fretting.physics.closed_forms import masing_increment, masing_origin
 from fretting.physics.contact import SPECIMEN
 from fretting.physics.profiles import profile_class, recorded_profile
 from fretting.physics.surface import ClosedFormSurfaceStress, SurfaceStress, bulk_stress, ellipse_stress
+from fretting.results.loops import complete_cycles
 from fretting.results.variables import CYCLE_PEAKS
 
 __all__ = [
@@ -119,48 +120,6 @@ def _refuse_varying_P(result: xr.Dataset, what: str) -> None:
     """Refuse `what` for a result of a varying ``P`` (it has ``p_step``): it would assume the contact formed."""
     if "p_step" in result:
         raise ValueError(f"{what} assumes the contact formed at the constant P; this result varies P (it has p_step)")
-
-
-def _last_step(result: xr.Dataset) -> int:
-    """Last step of the run (recorded or not)."""
-    if "steps" in result.attrs:
-        return int(result.attrs["steps"]) - 1
-    return int(result.vertex_step.max())
-
-
-def _recorded_rows(result: xr.Dataset) -> dict[int, tuple[int, int]]:
-    """Recorded rows of each cycle: ``{number: (first row, last row)}`` for the cycles with a recorded step."""
-    cycle = result.cycle.values
-    inside = np.flatnonzero(cycle > 0)
-    numbers, first = np.unique(cycle[inside], return_index=True)  # non-zero cycle numbers never decrease
-    last = np.append(first[1:], inside.size) - 1
-    return {int(n): (int(i), int(j)) for n, i, j in zip(numbers, inside[first], inside[last], strict=True)}
-
-
-def complete_cycles(result: xr.Dataset) -> list[slice | None]:
-    """Rows of the recorded steps that cover each load cycle whole.
-
-    Parameters
-    ----------
-    result : xarray.Dataset
-        A result of `fretting.engine.simulation` with load cycles.
-
-    Returns
-    -------
-    list of slice or None
-        One entry per cycle (in `cycle_number` order): the rows of the recorded steps from the
-        step before the cycle's first increment (its starting state) to its last step, when
-        all of them are recorded; None when some are not.
-    """
-    _require_cycles(result)
-    steps, last = result.step.values, _last_step(result)
-    rows = {}
-    for number, (i, j) in _recorded_rows(result).items():
-        contiguous = steps[j] - steps[i] == j - i and i > 0 and steps[i - 1] == steps[i] - 1
-        closed = steps[j] == last or (j + 1 < steps.size and steps[j + 1] == steps[j] + 1)
-        if contiguous and closed:
-            rows[number] = slice(i - 1, j + 1)
-    return [rows.get(int(number)) for number in result.cycle_number.values]
 
 
 def dissipation_density(result: xr.Dataset) -> xr.DataArray:

@@ -7,6 +7,7 @@ import numpy as np
 
 from fretting.cli.common import figure_class, progress_bar, saved
 from fretting.loading.history_file import HistoryFileError
+from fretting.studies import running
 from fretting.studies.sweeps import (
     REGIMES,
     case_file,
@@ -19,6 +20,9 @@ from fretting.studies.sweeps import (
     run_sweep,
     value_text,
 )
+
+#: The variables of a running-condition sweep that `fretting plot` maps over (delta*, P), with the boundary.
+RUNNING_MAPS = ("cycle_regime", "energy_ratio")
 
 
 def add_parser(commands, common):
@@ -114,3 +118,11 @@ def sweep_plot(args):
         figure = Figure(figsize=args.size, layout="constrained")
         draw(cases, ax=figure.subplots())
         saved(figure, directory / f"{Path(args.file).stem}_{name}", args)
+    if running.running_dims(cases) is not None:  # a sweep over P and a displacement amplitude
+        from fretting import plots
+
+        mapped = running.running_cases(cases)
+        for name in RUNNING_MAPS:
+            figure = Figure(figsize=args.size, layout="constrained")
+            plots.running_condition_map(mapped, name, ax=figure.subplots())
+            saved(figure, directory / f"{Path(args.file).stem}_running_{name}", args)

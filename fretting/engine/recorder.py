@@ -18,6 +18,7 @@ import xarray as xr
 from fretting.loading.loads import Loads
 from fretting.models.base import ModelSpec
 from fretting.models.state import State, Tally
+from fretting.results.loops import with_loops
 from fretting.results.variables import ACCUMULATED, CYCLE_FIELDS, CYCLE_PEAKS, build_dataset, variable
 
 __all__ = [
@@ -323,7 +324,7 @@ class Recorder:
             "steps": len(self.history),
             "cycle_peaks": CYCLE_PEAKS_TALLIED[self.skipping],
         }
-        return build_dataset(self.data(state), attributes | spec.attributes())
+        return with_loops(build_dataset(self.data(state), attributes | spec.attributes()))
 
 
 def final_state(result: xr.Dataset) -> State:

@@ -40,7 +40,7 @@ UNIT_KINDS = {"length": "m", "stress": "Pa", "line_load": "N/m", "compliance": "
 #: The kind (`UNIT_KINDS`) of each key of a history file that holds a dimensional quantity, and of
 #: each column of the tables it names; angles are in degrees (``*_deg``), other keys are unit-free.
 KEY_KINDS = {
-    **dict.fromkeys(("R", "b", "a", "datum", "delta", "x", "h0"), "length"),
+    **dict.fromkeys(("R", "b", "a", "datum", "delta", "delta_amplitude", "delta_mean", "x", "h0"), "length"),
     **dict.fromkeys(("E", "E_star", "sigma", "sigma_amplitude", "sigma_mean"), "stress"),
     **dict.fromkeys(("P", "Q", "Q_amplitude", "Q_mean", "P_amplitude", "P_mean"), "line_load"),
     "compliance": "compliance",

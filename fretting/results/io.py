@@ -29,6 +29,7 @@ from xarray.backends import H5NetCDFStore
 
 from fretting._version import __version__
 from fretting.errors import FrettingError
+from fretting.results.loops import recorded_loops, with_loops
 from fretting.results.variables import AXES, VARIABLES
 
 try:
@@ -173,8 +174,9 @@ def save_joined(parts: Sequence[str | os.PathLike], path: str | os.PathLike, att
         Attributes added to the first part's.
     """
     head = joined_steps(parts).assign_attrs(attributes | provenance())
+    loops = recorded_loops(head)
     with _replacing(path) as temporary:
-        rows = (found for found in map(_rows, parts) if found.variables)
+        rows = (with_loops(found, loops) for found in map(_rows, parts) if found.variables)
         first = next(rows, None)
         wrote = f"fretting.results.io.save_joined of {len(parts)} part{'s' * (len(parts) != 1)}"
         _write(head if first is None else head.assign(first.variables), temporary, path, wrote, fsync=False)
@@ -454,7 +456,7 @@ def join_results(parts: Sequence[xr.Dataset]) -> xr.Dataset:
     joiner = Joiner()
     for part in parts:
         joiner.add(part)
-    return joiner.result()
+    return with_loops(joiner.result())
 
 
 class Joiner:

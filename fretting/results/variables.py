@@ -84,6 +84,9 @@ ACCUMULATED = {"w_total": "w"} | {f"{name}_max": name for name in CYCLE_FIELDS[1
 #: are the CF ``flag_meanings`` of ``regime``, as those of a sweep's (`fretting.studies.sweeps`).
 REGIMES = ("stuck", "partial_slip", "gross_slip")
 
+#: What the long names of the loop's per-cycle variables add (`fretting.results.loops`).
+_LOOP = ", from the recorded steps where the contact has a datum (NaN: the cycle's steps not all recorded)"
+
 #: name -> (dims, units, long_name) of the variables that follow from no other.
 _DECLARED = {
     "Q": (("step",), "N/m", "shear force per unit length (prescribed, or found for the prescribed delta)"),
@@ -131,34 +134,38 @@ _DECLARED = {
         "cycle copied, not solved: its loads and starting state repeat those of the cycle before bit for bit "
         "(which cycles a run copies depends on where it was cut into parts; the values do not)",
     ),
-    "Q_amplitude": (("cycle_number",), "N/m", "half the range of Q over each load cycle (Q*)"),
+    "Q_amplitude": (
+        ("cycle_number",),
+        "N/m",
+        "half the range of Q over each load cycle (Q*; for a given history of Q independent of the datum)" + _LOOP,
+    ),
     "delta_amplitude": (
         ("cycle_number",),
         "m",
-        "half the range of delta over each load cycle (delta*; depends on the datum and the rig compliance)",
+        "half the range of delta over each load cycle (delta*; depends on the datum and the rig compliance)" + _LOOP,
     ),
     "loop_opening": (
         ("cycle_number",),
         "m",
         "distance between the two crossings of Q = 0 of each cycle's loop of delta (2 delta_0; for a given "
-        "history of Q independent of the datum)",
+        "history of Q independent of the datum)" + _LOOP,
     ),
     "energy_ratio": (
         ("cycle_number",),
         "1",
-        "Fouvry's energy ratio A = cycle_dissipation / (4 Q* delta*) of each cycle (depends on the datum)",
+        "Fouvry's energy ratio A = cycle_dissipation / (4 Q* delta*) of each cycle (depends on the datum)" + _LOOP,
     ),
     "sliding_ratio": (
         ("cycle_number",),
         "1",
         "Fouvry's sliding ratio B = delta_0 / delta* of each cycle, delta_0 half the loop opening (depends on "
-        "the datum)",
+        "the datum)" + _LOOP,
     ),
     "cycle_regime": (
         ("cycle_number",),
         "1",
         "largest regime of the increments of each cycle: 0 stuck, 1 partial slip, 2 gross slip (-1: not recorded "
-        "whole)",
+        "whole), where the contact has a datum",
     ),
     "transition": (
         ("P",),

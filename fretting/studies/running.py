@@ -1,12 +1,14 @@
 """Fretting loops and running-condition maps under displacement control (docs/guide/displacement.md).
 
 A rig that imposes ``+-delta*`` records, cycle by cycle, the loop of ``Q`` against ``delta``;
-`loop_cycles` reduces each loop to the numbers of Fouvry, Kapsa & Vincent (1995): the amplitudes
-``Q*`` and ``delta*``, the opening ``2 delta_0`` at ``Q = 0``, the energy ``E_d``, the energy ratio
-``A = E_d / (4 Q* delta*)``, the sliding ratio ``B = delta_0 / delta*`` and the regime of the cycle.
-`running_map` runs the exact model over a grid of normal loads and displacement amplitudes and
-maps them, with the partial-slip / gross-slip boundary ``delta_t(P)`` (`transition_displacement`,
-eq D6 of docs/theory/displacement.md). `fit_datum` finds the datum of a rig from a measured loop.
+`loop_cycles` gives the numbers of Fouvry, Kapsa & Vincent (1995) that the run wrote for each loop
+(`fretting.results.loops`): the amplitudes ``Q*`` and ``delta*``, the opening ``2 delta_0`` at
+``Q = 0``, the energy ``E_d``, the energy ratio ``A = E_d / (4 Q* delta*)``, the sliding ratio
+``B = delta_0 / delta*`` and the regime of the cycle. `running_map` runs the exact model over a grid
+of normal loads and displacement amplitudes as the cases of a sweep, and `running_cases` maps a
+sweep dataset over them, with the partial-slip / gross-slip boundary ``delta_t(P)``
+(`transition_displacement`, eq D6 of docs/theory/displacement.md). `fit_datum` finds the datum of a
+rig from a measured loop.
 
 Which numbers depend on the datum ``L`` and the rig compliance ``C``: ``delta*``, ``A`` and ``B``
 do; for a given history of ``Q``, ``Q*``, the opening and ``E_d`` do not (docs/theory/displacement.md#datum-dependence).
@@ -15,25 +17,28 @@ do; for a given history of ``Q``, ``Q*``, the opening and ``E_d`` do not (docs/t
 from __future__ import annotations
 
 import csv
+import itertools
 import math
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from fretting.analysis.nucleation import complete_cycles
 from fretting.engine.simulation import simulate
 from fretting.loading.history import History
 from fretting.loading.loads import Loads
 from fretting.models.exact import Exact
 from fretting.models.state import State
 from fretting.physics.contact import Contact
+from fretting.results.loops import LOOP_VARIABLES, with_loops
 from fretting.results.variables import REGIMES, variable
 
 __all__ = [
     "fit_datum",
     "loop_cycles",
     "read_loop",
+    "running_cases",
+    "running_dims",
     "running_map",
     "sliding_cycles",
     "transition_displacement",
@@ -69,15 +74,12 @@ def sliding_cycles(delta_star: float, cycles: int, steps: int = QUARTER_STEPS) -
 
 
 def loop_cycles(result: xr.Dataset) -> xr.Dataset:
-    """The fretting loop of each load cycle of a displacement-controlled `result`, recorded whole.
+    """The fretting loop of each load cycle of a displacement-controlled `result`.
 
-    Variables on ``cycle_number`` (NaN, and regime -1, for a cycle not recorded whole):
-    ``Q_amplitude`` half the range of ``Q`` [N/m]; ``delta_amplitude`` half the range of
-    ``delta`` [m]; ``loop_opening`` the distance between the loop's two crossings of ``Q = 0``
-    [m], each interpolated by a cubic in ``Q`` through the steps of its branch (at most four,
-    where ``Q`` is strictly monotonic); ``cycle_dissipation`` [J/m]; ``energy_ratio`` and
-    ``sliding_ratio`` (Fouvry's ``A`` and ``B``); ``cycle_regime`` the largest regime of its
-    increments (`fretting.results.variables.REGIMES`).
+    The variables on ``cycle_number`` that the run wrote (`fretting.results.loops.LOOP_VARIABLES`:
+    ``Q_amplitude``, ``delta_amplitude``, ``loop_opening``, ``energy_ratio``, ``sliding_ratio``,
+    ``cycle_regime``; NaN, and regime -1, for a cycle not recorded whole), with
+    ``cycle_dissipation``; computed from the recorded steps of a result written without them.
 
     Raises
     ------
@@ -86,55 +88,10 @@ def loop_cycles(result: xr.Dataset) -> xr.Dataset:
     """
     if "delta" not in result or "cycle_number" not in result.dims:
         raise ValueError("the result has no delta or no load cycles: run a history of delta cycles on a datum")
-    Q, delta, regime = result.Q.values, result.delta.values, result.regime.values
-    rows = complete_cycles(result)
-    n = len(rows)
-    out = {name: np.full(n, np.nan) for name in ("Q_amplitude", "delta_amplitude", "loop_opening")}
-    cycle_regime = np.full(n, -1, dtype=np.int8)
-    for k, row in enumerate(rows):
-        if row is None:
-            continue
-        out["Q_amplitude"][k] = np.ptp(Q[row]) / 2
-        out["delta_amplitude"][k] = np.ptp(delta[row]) / 2
-        out["loop_opening"][k] = _opening(Q[row], delta[row])
-        cycle_regime[k] = regime[row][1:].max()
-    energy = result.cycle_dissipation.values
-    work = 4 * out["Q_amplitude"] * out["delta_amplitude"]
-    data = {name: variable(name, values) for name, values in out.items()}
-    data |= {
-        "cycle_dissipation": variable("cycle_dissipation", energy),
-        "energy_ratio": variable("energy_ratio", energy / work),
-        "sliding_ratio": variable("sliding_ratio", out["loop_opening"] / 2 / out["delta_amplitude"]),
-        "cycle_regime": variable("cycle_regime", cycle_regime),
-    }
-    return xr.Dataset(data, coords={"cycle_number": result.cycle_number.values}, attrs=_datum(result.attrs))
-
-
-def _opening(Q, delta):
-    """Distance [m] between the ``delta`` of the falling and of the rising crossing of ``Q = 0`` of
-    one loop (NaN where it does not cross both ways)."""
-    at = {}
-    for i in np.flatnonzero((Q[:-1] > 0) & (Q[1:] <= 0) | (Q[:-1] < 0) & (Q[1:] >= 0)):
-        way = int(np.sign(Q[i + 1] - Q[i]))
-        if way not in at:
-            at[way] = _crossing(Q, delta, i, way)
-    return abs(at[-1] - at[1]) if len(at) == 2 else np.nan
-
-
-def _crossing(Q, delta, i, way):
-    """``delta`` [m] at ``Q = 0`` between steps `i` and ``i + 1``, where ``Q`` moves `way` (+-1): a
-    cubic in ``Q`` through up to four steps around them along which ``Q`` moves strictly that way."""
-    lo, hi = i, i + 1
-    while hi - lo < 3:
-        if lo > 0 and (Q[lo] - Q[lo - 1]) * way > 0:
-            lo -= 1
-        elif hi + 1 < Q.size and (Q[hi + 1] - Q[hi]) * way > 0:
-            hi += 1
-        else:
-            break
-    scale = np.abs(Q[lo : hi + 1]).max()
-    fit = np.polyfit(Q[lo : hi + 1] / scale, delta[lo : hi + 1], hi - lo)
-    return float(np.polyval(fit, 0.0))
+    if not all(name in result for name in LOOP_VARIABLES):  # written before the run wrote them
+        result = with_loops(result)
+    data = {name: result[name].variable for name in ("cycle_dissipation", *LOOP_VARIABLES)}
+    return xr.Dataset(data, coords={"cycle_number": result.cycle_number.variable}, attrs=_datum(result.attrs))
 
 
 def _datum(attrs):
@@ -143,36 +100,78 @@ def _datum(attrs):
 
 def running_map(contact: Contact, P, delta_amplitude, cycles: int = 2, steps: int = QUARTER_STEPS) -> xr.Dataset:
     """Running-condition map of `contact` over the normal loads `P` [N/m] and displacement amplitudes
-    `delta_amplitude` [m]: each point runs the exact model over `sliding_cycles` and keeps the
-    last cycle's `loop_cycles` numbers.
+    `delta_amplitude` [m]: each point runs the exact model over `sliding_cycles`, in this process, as a
+    case of a sweep (`fretting.studies.sweeps.run_cases`), and keeps its last cycle's loop.
 
     Returns a dataset on ``(P, delta_amplitude)`` of ``Q_amplitude``, ``cycle_dissipation``,
     ``loop_opening``, ``energy_ratio``, ``sliding_ratio`` and ``cycle_regime``, with the boundary
-    ``transition`` (`transition_displacement`) on ``P``. The contact's profile, moduli, ``f``,
-    datum and compliance are kept; its ``P`` is replaced by each of `P`.
+    ``transition`` (`transition_displacement`) on ``P`` (`running_cases`). The contact's profile,
+    moduli, ``f``, datum and compliance are kept; its ``P`` is replaced by each of `P`.
     """
-    P, amplitudes = np.asarray(P, dtype=float), np.asarray(delta_amplitude, dtype=float)
-    names = ("Q_amplitude", "cycle_dissipation", "loop_opening", "energy_ratio", "sliding_ratio", "cycle_regime")
-    values = {name: np.empty((P.size, amplitudes.size)) for name in names}
-    boundary = np.empty(P.size)
-    for i, load in enumerate(P):
-        loaded = _at_load(contact, load)
-        boundary[i] = transition_displacement(loaded)
-        for j, amplitude in enumerate(amplitudes):
-            result = simulate(loaded, sliding_cycles(amplitude, cycles, steps), Exact())
-            last = loop_cycles(result).isel(cycle_number=-1)
-            for name in names:
-                values[name][i, j] = last[name].values
-    dims = ("P", "delta_amplitude")
-    data = {name: variable(name, values[name], dims) for name in names}
-    data["cycle_regime"] = variable("cycle_regime", values["cycle_regime"].astype(np.int8), dims)
-    data["transition"] = variable("transition", boundary)
+    from fretting.studies import sweeps  # which runs cases of this module's transition_displacement
+
+    grid = {"contact.P": [float(load) for load in P], "delta_amplitude": [float(value) for value in delta_amplitude]}
+    cases = [
+        sweeps.Case(values, _at_load(contact, values["contact.P"]), _run_by(values, cycles, steps), ())
+        for values in (dict(zip(grid, point, strict=True)) for point in itertools.product(*grid.values()))
+    ]
+    mapped = running_cases(sweeps.gathered(grid, sweeps.run_cases(cases, None, in_process=True)))
+    return mapped.assign_attrs({"cycles": cycles} | _datum(vars(contact)))
+
+
+def _run_by(values, cycles, steps):
+    """`sliding_cycles` of the amplitude of `values` on the exact model, as a case of a sweep runs it."""
+    return sliding_cycles(values["delta_amplitude"], cycles, steps)
+
+
+#: The variables of a running-condition map (`running_cases`) -> those of a sweep's that they are.
+MAPPED = {
+    "Q_amplitude": "Q_amplitude",
+    "cycle_dissipation": "energy_per_cycle",
+    "loop_opening": "loop_opening",
+    "energy_ratio": "energy_ratio",
+    "sliding_ratio": "sliding_ratio",
+    "cycle_regime": "cycle_regime",
+}
+
+
+def running_dims(cases: xr.Dataset) -> tuple[str, str] | None:
+    """The dimensions ``(of P, of delta_amplitude)`` of a sweep dataset over the normal load (a key
+    ``contact.P``) and the displacement amplitude (a key ending in ``delta_amplitude``), and no other;
+    None for any other sweep."""
+    ends = {dim: cases[dim].attrs.get("key", dim).rsplit(".", 1)[-1] for dim in cases.regime.dims}
+    found = [next((dim for dim, end in ends.items() if end == name), None) for name in ("P", "delta_amplitude")]
+    if len(ends) != 2 or None in found or any(cases[dim].dtype.kind not in "iuf" for dim in found):
+        return None
+    return tuple(found)
+
+
+def running_cases(cases: xr.Dataset) -> xr.Dataset:
+    """The running-condition map (as `running_map` gives it) of a sweep dataset over the normal load and
+    the displacement amplitude (`running_dims`): the last cycle's loop of each case, and the boundary
+    ``transition`` on ``P``.
+
+    Raises
+    ------
+    ValueError
+        Where `cases` is not such a sweep.
+    """
+    dims = running_dims(cases)
+    if dims is None:
+        raise ValueError("a running-condition map needs a sweep over contact.P and a delta_amplitude, and no other key")
+    order = ("P", "delta_amplitude")
+    data = {name: variable(name, cases[swept].transpose(*dims).values, order) for name, swept in MAPPED.items()}
+    data["transition"] = variable("transition", cases.transition.transpose(*dims).values[:, 0])
     coords = {
-        "P": xr.Variable("P", P, {"units": "N/m", "long_name": "normal load per unit length of each row of the map"}),
-        "delta_amplitude": variable("delta_amplitude", amplitudes, ("delta_amplitude",)),
+        "P": xr.Variable(
+            "P",
+            cases[dims[0]].values,
+            {"units": "N/m", "long_name": "normal load per unit length of each row of the map"},
+        ),
+        "delta_amplitude": variable("delta_amplitude", cases[dims[1]].values, ("delta_amplitude",)),
     }
-    attrs = {"regimes": ", ".join(f"{k} {name}" for k, name in enumerate(REGIMES)), "cycles": cycles}
-    return xr.Dataset(data, coords=coords, attrs=attrs | _datum(vars(contact)))
+    attrs = {"regimes": ", ".join(f"{k} {name}" for k, name in enumerate(REGIMES))}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def _at_load(contact, P):

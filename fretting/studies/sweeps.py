@@ -45,7 +45,7 @@ import xarray as xr
 from fretting._version import __version__
 from fretting.analysis import nucleation
 from fretting.engine.simulation import simulate
-from fretting.errors import GrossSlipError, MissingDependencyError
+from fretting.errors import FrettingError, GrossSlipError, MissingDependencyError
 from fretting.loading.examples import EXAMPLES
 from fretting.loading.history import History
 from fretting.loading.history_file import (
@@ -59,6 +59,7 @@ from fretting.loading.history_file import (
 from fretting.physics.contact import Contact
 from fretting.results.io import ENGINE, ResultError, recorded_path, save, with_current_units
 from fretting.results.variables import REGIMES
+from fretting.studies.running import transition_displacement
 
 __all__ = [
     "KEY",
@@ -67,12 +68,14 @@ __all__ = [
     "VARIABLES",
     "Base",
     "Case",
+    "NoWorkersError",
     "Sweep",
     "case_file",
     "curves",
     "dimension",
     "figures_for",
     "fretting_map",
+    "gathered",
     "is_sweep_file",
     "keys",
     "load_sweep",
@@ -80,6 +83,7 @@ __all__ = [
     "read_sweep",
     "resolve_sweep",
     "run_case",
+    "run_cases",
     "run_one",
     "run_sweep",
     "save_map",
@@ -96,6 +100,10 @@ STUCK, PARTIAL_SLIP, GROSS_SLIP = range(len(REGIMES))
 
 #: Variables of a case that follow from its last load cycle (NaN without cycles).
 LAST_CYCLE = ("energy_per_cycle", "w_max", "slip_amplitude_max")
+
+#: Variables of a case that follow from its last load cycle's fretting loop (`fretting.results.loops`):
+#: NaN (regime -1) without ``delta`` recorded.
+LAST_LOOP = ("cycle_regime", "Q_amplitude", "loop_opening", "energy_ratio", "sliding_ratio")
 
 #: Contact quantities of a case, from the contact alone (gross-slip cases have them too).
 CONTACT = ("a", "p0", "f", "P")
@@ -133,6 +141,38 @@ VARIABLES = {
         "(fretting.analysis.nucleation.slip_amplitude; NaN: no load cycles, or gross slip)",
     ),
     "gross_slip_step": ("1", "step that reached gross slip", "first step whose loads leave no stick zone (-1: none)"),
+    "cycle_regime": (
+        "1",
+        "contact regime of the last load cycle",
+        "cycle_regime of the last cycle: the largest regime of its increments (-1: no delta recorded, as without "
+        "a datum, no load cycles, or force control that reached gross slip)",
+    ),
+    "Q_amplitude": (
+        "N/m",
+        "shear force amplitude Q* of the last load cycle",
+        "Q_amplitude of the last cycle, half the range of Q over it (NaN where cycle_regime is -1)",
+    ),
+    "loop_opening": (
+        "m",
+        "opening of the fretting loop of the last load cycle at Q = 0",
+        "loop_opening of the last cycle, 2 delta_0 (NaN where cycle_regime is -1 or the loop does not cross Q = 0)",
+    ),
+    "energy_ratio": (
+        "1",
+        "Fouvry's energy ratio A of the last load cycle",
+        "energy_ratio of the last cycle, E_d / (4 Q* delta*) (depends on the datum; NaN where cycle_regime is -1)",
+    ),
+    "sliding_ratio": (
+        "1",
+        "Fouvry's sliding ratio B of the last load cycle",
+        "sliding_ratio of the last cycle, delta_0 / delta* (depends on the datum; NaN where cycle_regime is -1)",
+    ),
+    "transition": (
+        "m",
+        "displacement amplitude at the partial-slip / gross-slip boundary",
+        "delta_t of the case's contact (fretting.studies.running.transition_displacement, eq D6 of "
+        "docs/theory/displacement.md; NaN without a datum)",
+    ),
     "a": ("m", "contact half-width", "a of the case's contact"),
     "p0": ("Pa", "peak pressure", "p0 of the case's contact"),
     "f": ("1", "coefficient of friction", "f of the case's contact"),
@@ -151,6 +191,13 @@ REGIME_COLOURS = ("#eeeeee", "#cfe2f3", "#f4c7c3")
 
 #: Resolution of the map that `save_map` writes, as `fretting plot`'s figures.
 MAP_DPI = 100
+
+#: Seconds between two questions to the scheduler, while no case completes, of whether it has workers.
+WORKER_POLL_SECONDS = 1.0
+
+#: Seconds a sweep waits on a scheduler without workers (every one killed) before it stops: longer
+#: than a local cluster's nanny takes to restart a killed worker, or a batch system to start one.
+NO_WORKERS_SECONDS = 60.0
 
 #: Seconds a sweep waits for the file of its scheduler to appear (`sweep`'s `scheduler_file`).
 SCHEDULER_FILE_SECONDS = 60.0
@@ -478,23 +525,36 @@ def run_case(contact, history):
         Scalars; a gross-slip case has regime 2, the step that slid and NaN energies.
     """
     try:
-        return summarize(simulate(contact, history))
+        return summarize(simulate(contact, history), _transition(contact))
     except GrossSlipError as error:
-        nan = dict.fromkeys(("total_dissipation", *LAST_CYCLE), math.nan)
-        return _summary({name: getattr(contact, name) for name in CONTACT}, GROSS_SLIP, error.step, nan)
+        nan = dict.fromkeys(("total_dissipation", *LAST_CYCLE, *LAST_LOOP[1:]), math.nan)
+        contact_values = {name: getattr(contact, name) for name in CONTACT}
+        return _summary(contact_values, GROSS_SLIP, error.step, nan | _NO_LOOP | {"transition": _transition(contact)})
 
 
-def summarize(result):
-    """The variables of `VARIABLES` of a result of `fretting.engine.simulation`, as a Dataset of scalars."""
+def summarize(result, transition=math.nan):
+    """The variables of `VARIABLES` of a result of `fretting.engine.simulation`, as a Dataset of scalars;
+    `transition` [m] that of its contact (`fretting.studies.running.transition_displacement`)."""
     total = float(result.total_dissipation)
-    energies = {"total_dissipation": total} | dict.fromkeys(LAST_CYCLE, math.nan)
+    energies = {"total_dissipation": total, "transition": transition} | dict.fromkeys(LAST_CYCLE, math.nan)
+    energies |= _NO_LOOP
     if "cycle_number" in result.dims and result.sizes["cycle_number"]:
         energies |= {
             "energy_per_cycle": float(result.cycle_dissipation[-1]),
             "w_max": float(nucleation.peak_dissipation_density(result).w_max[-1]),
             "slip_amplitude_max": float(nucleation.slip_amplitude(result)[-1].max()),
         }
+        energies |= {name: result[name].values[-1] for name in LAST_LOOP if name in result}
     return _summary(result.attrs, *_regime(result, total), energies)
+
+
+#: The `LAST_LOOP` variables of a case without a loop.
+_NO_LOOP = {"cycle_regime": np.int8(-1)} | dict.fromkeys(LAST_LOOP[1:], math.nan)
+
+
+def _transition(contact):
+    """``delta_t`` [m] of `contact` (`transition_displacement`), NaN without a datum."""
+    return math.nan if contact.datum is None else transition_displacement(contact)
 
 
 def _regime(result, total):
@@ -512,13 +572,14 @@ def _summary(contact, regime, step, energies):
     """Dataset of the case variables from the contact's `a`, `p0`, `f`, `P` (a mapping) and the rest."""
     values = {"regime": np.int8(regime), "gross_slip_step": np.int64(step)} | energies
     values |= {name: float(contact[name]) for name in CONTACT}
+    values["cycle_regime"] = np.int8(values["cycle_regime"])
     return xr.Dataset({name: ((), values[name], _attrs(name)) for name in VARIABLES})
 
 
 def _attrs(name):
     units, long_name, definition = VARIABLES[name]
     attrs = {"units": units, "long_name": long_name, "definition": definition}
-    if name == "regime":  # CF flags
+    if name in ("regime", "cycle_regime"):  # CF flags
         attrs |= {"flag_values": np.arange(len(REGIMES), dtype=np.int8), "flag_meanings": " ".join(REGIMES)}
     return attrs
 
@@ -530,24 +591,89 @@ def run_sweep(plan, scheduler=None, output=None, *, scheduler_file=None, progres
     have a file first, and after each case that finishes.
     """
     cases = [plan.case(values) for values in plan.cases()]
-    files = [None] * len(cases) if output is None else [case_file(output, plan.base, case) for case in cases]
-    summaries = [_finished(file, plan.base, case) for file, case in zip(files, cases, strict=True)]
-    todo = [k for k, summary in enumerate(summaries) if summary is None]
-    progress = progress or (lambda done, total: None)
-    progress(len(cases) - len(todo), len(cases))
-    if todo:
-        distributed = _distributed()
-        with _client(distributed, scheduler, scheduler_file, len(todo)) as client:
-            futures = {client.submit(run_case, cases[k].contact, cases[k].history, pure=False): k for k in todo}
-            for done, future in enumerate(distributed.as_completed(futures), start=len(cases) - len(todo) + 1):
-                k = futures[future]
-                summaries[k] = future.result()
-                _keep(summaries[k], files[k], plan.base, cases[k])
-                progress(done, len(cases))
+    summaries = run_cases(cases, plan.base, scheduler, output, scheduler_file=scheduler_file, progress=progress)
     dataset = _combine(plan, summaries)
     if output is not None:
         save(dataset, output)
     return dataset
+
+
+def run_cases(cases, base, scheduler=None, output=None, *, scheduler_file=None, progress=None, in_process=False):
+    """The variables (`run_case`) of each `Case` of `cases`, in order: read from its file where a sweep of
+    `base` written to `output` has one (`case_file`), else run on dask.distributed (see `sweep`) and
+    kept in its file; with `in_process`, run one after another in this process, without dask.
+
+    `progress` as in `run_sweep`. Raises NoWorkersError, saying what is kept, where the scheduler
+    has had no worker for `NO_WORKERS_SECONDS`.
+    """
+    files = [None] * len(cases) if output is None else [case_file(output, base, case) for case in cases]
+    summaries = [_finished(file, base, case) for file, case in zip(files, cases, strict=True)]
+    todo = [k for k, summary in enumerate(summaries) if summary is None]
+    progress = progress or (lambda done, total: None)
+    finished = len(cases) - len(todo)
+    progress(finished, len(cases))
+    ran = _in_process(cases, todo) if in_process else _on_dask(cases, todo, scheduler, scheduler_file)
+    try:
+        with contextlib.closing(ran):  # a client and its cluster closed on an interrupt too
+            for k, summary in ran:
+                summaries[k] = summary
+                _keep(summary, files[k], base, cases[k])
+                finished += 1
+                progress(finished, len(cases))
+    except NoWorkersError as error:
+        raise NoWorkersError(f"{error}; {_kept_cases(finished, len(cases), output)}") from None
+    return summaries
+
+
+def _in_process(cases, todo):
+    """``(k, variables)`` of the cases numbered `todo` of `cases`, run here one after another."""
+    for k in todo:
+        yield k, run_case(cases[k].contact, cases[k].history)
+
+
+def _on_dask(cases, todo, scheduler, scheduler_file):
+    """``(k, variables)`` of the cases numbered `todo` of `cases`, run on dask.distributed, as each finishes."""
+    if not todo:
+        return
+    distributed = _distributed()
+    with _client(distributed, scheduler, scheduler_file, len(todo)) as client:
+        futures = {client.submit(run_case, cases[k].contact, cases[k].history, pure=False): k for k in todo}
+        for future in _completed(distributed, client, futures):
+            yield futures[future], future.result()
+
+
+class NoWorkersError(FrettingError, RuntimeError):
+    """The scheduler of a sweep has had no worker for `NO_WORKERS_SECONDS`: its cases would wait forever."""
+
+
+def _completed(distributed, client, futures):
+    """The futures `futures` of `client` as each completes, while the scheduler has workers.
+
+    Every `WORKER_POLL_SECONDS` without a future completed, asks the scheduler for its workers;
+    raises NoWorkersError once it has had none for `NO_WORKERS_SECONDS` (each worker killed, and
+    none restarted or added: a future would wait forever).
+    """
+    pending, alone = set(futures), None
+    while pending:
+        try:
+            done, pending = distributed.wait(pending, timeout=WORKER_POLL_SECONDS, return_when="FIRST_COMPLETED")
+        except TimeoutError:
+            done = ()
+        yield from done
+        if client.scheduler_info()["workers"]:
+            alone = None
+        elif alone is None:
+            alone = time.monotonic()
+        elif time.monotonic() - alone > NO_WORKERS_SECONDS:
+            raise NoWorkersError(f"the dask scheduler has had no workers for {NO_WORKERS_SECONDS:g} s")
+
+
+def _kept_cases(finished, total, output):
+    """What became of the cases of a sweep stopped with `finished` of `total` done: where they are, how to go on."""
+    if output is None:
+        return f"{finished} of {total} cases finished, none kept (no output file)"
+    folder = Path(output).with_suffix(".cases")
+    return f"{finished} of {total} cases finished, kept in {folder}; run the sweep again with workers to run the rest"
 
 
 def run_one(plan, k, output):
@@ -593,7 +719,8 @@ def _finished(file, base, case):
         return None
     summary = with_current_units(xr.load_dataset(file, engine=ENGINE))  # a case file of fretting 0.1.0 too
     identity = case.identity(base)
-    return summary if all(summary.attrs.get(name) == value for name, value in identity.items()) else None
+    same = all(summary.attrs.get(name) == value for name, value in identity.items())
+    return summary if same and all(name in summary for name in VARIABLES) else None  # else of fewer variables
 
 
 def _distributed():
@@ -661,9 +788,10 @@ def _wait_for(scheduler_file):
         time.sleep(0.1)
 
 
-def _combine(plan, summaries):
-    """One dataset of the case datasets `summaries` (in the order of `Sweep.cases`), one dim per key."""
-    dims, shape = tuple(dimension(key) for key in plan.grid), tuple(len(values) for values in plan.grid.values())
+def gathered(grid, summaries):
+    """One dataset of the case datasets `summaries` (in the order of `Sweep.cases`) of the grid `grid`
+    (key -> values), one dim per key (`dimension`)."""
+    dims, shape = tuple(dimension(key) for key in grid), tuple(len(values) for values in grid.values())
     first = summaries[0]
     data = {
         name: (dims, np.array([summary[name].values for summary in summaries]).reshape(shape), first[name].attrs)
@@ -671,8 +799,13 @@ def _combine(plan, summaries):
     }
     coords = {
         dim: (dim, _coordinate(values), _key_attrs(key, values))
-        for dim, (key, values) in zip(dims, plan.grid.items(), strict=True)
+        for dim, (key, values) in zip(dims, grid.items(), strict=True)
     }
+    return xr.Dataset(data, coords=coords)
+
+
+def _combine(plan, summaries):
+    """`gathered` of the case datasets `summaries` of `plan`, with what the sweep ran from."""
     attrs = {
         "title": f"fretting sweep of {plan.base.path.name} over {' x '.join(plan.grid)}",
         "history_file": recorded_path(plan.base.path),
@@ -680,7 +813,7 @@ def _combine(plan, summaries):
         "base_sha256": plan.base.sha256,
         "grid": json.dumps(plan.grid),
     }
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    return gathered(plan.grid, summaries).assign_attrs(attrs)
 
 
 def dimension(key):

@@ -1,12 +1,14 @@
 """A sweep whose dask worker is killed in the middle (issue 38), on a real scheduler and workers started
 as `dask scheduler` and `dask worker` processes on loopback: the scheduler gives the killed worker's
 case to the other worker, the sweep completes, and its dataset and case files are those of a sweep run
-without a kill: none lost, none twice."""
+without a kill: none lost, none twice. A sweep whose every worker dies stops, and resumes."""
 
 import json
+import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 
 import pytest
@@ -15,8 +17,9 @@ from conftest import HERTZ_TOML
 
 from fretting import cli
 from fretting.results.io import WRITTEN_ATTRIBUTES
+from fretting.studies import sweeps
 
-pytest.importorskip("distributed")
+distributed = pytest.importorskip("distributed")
 
 #: A cyclic history of a second or so a case.
 BASE = HERTZ_TOML + (
@@ -107,3 +110,51 @@ def test_a_killed_worker_leaves_a_sweep_that_completes_with_every_case_once(tmp_
     xr.testing.assert_identical(data_of(killed), data_of(whole))
     names = sorted(path.name for path in cases.iterdir())
     assert len(names) == 6 and names == sorted(path.name for path in (tmp_path / "whole.cases").iterdir())
+
+
+def killed_for_good(cluster):
+    """Kill every worker process of the `distributed.LocalCluster` `cluster` with SIGKILL, its nanny told
+    not to start another (as a batch system that ends the workers' jobs)."""
+    from distributed.core import Status
+
+    for nanny in list(cluster.workers.values()):
+        nanny.status = Status.closing_gracefully  # the nanny closes once its worker is gone
+        os.kill(nanny.process.process.pid, signal.SIGKILL)
+
+
+@pytest.mark.slow
+def test_a_sweep_whose_every_worker_dies_stops_and_resumes(tmp_path, monkeypatch, capsys):
+    """On a real local cluster whose only worker is killed for good after the first case: the sweep stops
+    after `NO_WORKERS_SECONDS` with a one-line error that counts the cases kept and says how to go on;
+    run again, it runs only the others."""
+    monkeypatch.setattr(sweeps, "NO_WORKERS_SECONDS", 1.0)
+    monkeypatch.setattr(sweeps, "WORKER_POLL_SECONDS", 0.1)
+    (tmp_path / "base.toml").write_text(BASE)
+    (tmp_path / "map.toml").write_text(SWEEP)
+    cases = tmp_path / "dead.cases"
+    command = ["sweep", str(tmp_path / "map.toml"), "-o", str(tmp_path / "dead.h5")]
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=":0"
+    ) as cluster:
+
+        def kill():
+            waited(lambda: cases.is_dir() and any(cases.glob("*.h5")), 60, "case file")
+            killed_for_good(cluster)
+
+        killer = threading.Thread(target=kill, daemon=True)
+        killer.start()
+        began = time.monotonic()
+        code = cli.main([*command, "--scheduler", cluster.scheduler_address])
+        killer.join()
+        assert time.monotonic() - began < 60
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    kept = {path.name: path.stat().st_mtime_ns for path in cases.iterdir()}
+    assert code == cli.EXIT_FAILURE and not (tmp_path / "dead.h5").exists()
+    assert err.startswith("fretting: error: ") and "no workers for 1 s" in err, err
+    assert f"{len(kept)} of 6 cases finished, kept in {cases}; run the sweep again" in err, err
+    assert 1 <= len(kept) < 6
+
+    assert cli.main(command) == 0  # a local cluster of its own
+    again = {path.name: path.stat().st_mtime_ns for path in cases.iterdir()}
+    assert len(again) == 6 and all(again[name] == written for name, written in kept.items())
+    assert xr.load_dataset(tmp_path / "dead.h5", engine="h5netcdf").regime.size == 6

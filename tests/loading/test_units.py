@@ -141,6 +141,15 @@ def test_a_file_in_mm_mpa_and_n_per_mm_reads_as_the_file_in_si(tmp_path):
     _same(history, expected)
 
 
+def test_the_units_of_length_hold_for_a_displacement_amplitude_and_mean(tmp_path):
+    """``delta_amplitude`` and ``delta_mean`` of a sine block are lengths: in um where the file says so."""
+    sine = '[[loading]]\nkind = "sine"\ndelta_amplitude = {}\ndelta_mean = {}\ncycles = 1\nsteps_per_cycle = 8\n'
+    in_um = '[units]\nlength = "um"\n' + HERTZ_TOML.replace("R = 0.05", "R = 5e4") + "datum = 5e3\n" + sine.format(2, 1)
+    _, history = _read(tmp_path, in_um)
+    _, expected = _read(tmp_path, HERTZ_TOML + "datum = 5e-3\n" + sine.format(2e-6, 1e-6), "si.toml")
+    np.testing.assert_allclose(history.delta, expected.delta, rtol=1e-15, atol=1e-21)
+
+
 def test_the_units_table_holds_for_the_tables_a_file_names(tmp_path):
     (tmp_path / "loads.csv").write_text("Q,sigma\n20,10\n-20,5\n")
     csv = '[[loading]]\nkind = "csv"\nfile = "loads.csv"\n'

@@ -285,5 +285,5 @@ def test_an_unknown_sweep_name_lists_the_shipped_ones(tmp_path, monkeypatch, cap
     assert cli.main(["sweep", "no_such_sweep"]) == cli.EXIT_INPUT
     assert capsys.readouterr().err == (
         "fretting: error: no_such_sweep: No such file or directory, nor a shipped sweep: "
-        "expected a sweep file or one of: hertz_fretting_map\n"
+        "expected a sweep file or one of: hertz_fretting_map, hertz_running_map\n"
     )
