@@ -235,7 +235,7 @@ def drivers(names):
         print(f"{name:30} {nodes['all']:5d} nodes; without " + ", ".join(shares), flush=True)
 
 
-def _energy_spans(steps, recorded, straight):
+def _energy_spans(steps, recorded):
     """`adaptation._spans` with every span `ENERGY_SPAN`: no refinement for the stick ends."""
     return np.full((steps.size, 2), mesh_module.ENERGY_SPAN)
 

@@ -597,19 +597,3 @@ def test_adaptation_started_from_the_pass_before_settles_on_the_same_mesh(monkey
     warm = fr.adapted_mesh(contact, history)
     monkeypatch.setattr(gk.adaptation, "_interpolated_directions", lambda *args: None)
     np.testing.assert_array_equal(warm, fr.adapted_mesh(contact, history))
-
-
-def test_the_slip_zones_of_straight_stretches_after_the_first_vertex_are_coarser():
-    """Each increment's slip zones and ends (`_spans`: swept, end) get `SWEPT_SPAN` on a straight
-    stretch after the history's first vertex (`_straight`), `BOUNDARY_SPAN` before it and on a
-    curved stretch (a cut between vertices), `ENERGY_SPAN` where none of its steps is recorded."""
-    history = fr.History.piecewise_linear([0.0, 1e4, -1e4, 2e4], [0.0, 0.0, 1e6, 0.0], 8)
-    steps = np.array([0, 8, 12, 16, 24])  # 12: a cut inside the second stretch
-    np.testing.assert_array_equal(gk.adaptation._straight(history, steps), [False, False, False, False, True])
-    coarse, fine, energy = gk.SWEPT_SPAN, gk.BOUNDARY_SPAN, gk.ENERGY_SPAN
-    straight = np.array([False, False, False, True])
-    every = gk.adaptation._spans(steps[[0, 1, 3, 4]], None, straight)
-    np.testing.assert_array_equal(every, [[fine, fine], [fine, fine], [fine, fine], [coarse, coarse]])
-    some = gk.adaptation._spans(steps[[0, 1, 3, 4]], [3, 20], straight)  # inside the first and the last
-    np.testing.assert_array_equal(some, [[energy, energy], [fine, energy], [energy, energy], [coarse, energy]])
-    assert fine < coarse < energy

@@ -38,7 +38,6 @@ from fretting.models.galerkin.mesh import (
     ENERGY_SPAN,
     LEVELS_PER_PASS,
     MIN_SIZE,
-    SWEPT_SPAN,
     boundaries,
     element_targets,
     initial_theta,
@@ -121,11 +120,10 @@ def adapted_model(spec, contact, history, run, max_nodes=None, recorded=None, ma
     Two stages. The energy: passes over the turning points (`MAX_TURN`) refine every element
     that `fretting.models.galerkin.element_targets` finds too coarse, with elements of
     ``ENERGY_SPAN rtol a`` in the slip zones, until none is or a refinement adds fewer than
-    `SETTLED` of the nodes. The ends (`_located`): one pass on that mesh over the turning points
-    cut finer (`END_TURN`) refines, in one go, the elements that hold the stick ends of the steps
-    in `recorded` (step numbers; None: every step), or that those ends sweep, to
-    ``SWEPT_SPAN rtol a`` on the straight stretches after the history's first vertex and to
-    ``BOUNDARY_SPAN rtol a`` elsewhere (`_spans`); the zones are already located, so no pass on
+    `SETTLED` of the nodes. The ends (`_located`): one pass on
+    that mesh over the turning points cut finer (`END_TURN`) refines, in one go, the elements
+    that hold the stick ends of the steps in `recorded` (step numbers; None: every step), or that
+    those ends sweep, to ``BOUNDARY_SPAN rtol a``; the zones are already located, so no pass on
     the finer mesh is needed, except where an increment slips again by less than ``RESLIP rtol``
     of the slip locked in: passes on the finer meshes then refine until each cycle's energy
     settles to `rtol` (`_energy_checked`).
@@ -228,7 +226,7 @@ def _located(model, adapt, history, recorded, by_step):
     units = _units(model.contact)
     steps = history.turning_steps(END_TURN, units)
     turning = history.turning_points(END_TURN, units)
-    spans = _spans(steps, recorded, _straight(history, steps))
+    spans = _spans(steps, recorded)
     targets = np.full(model.theta.size - 1, np.inf)
 
     def observe(step, outcome):
@@ -249,23 +247,6 @@ def _located(model, adapt, history, recorded, by_step):
         error.model = _below_floor_said(error.model, before, adapt.rtol)
         raise
     return _below_floor_said(model, before, adapt.rtol)
-
-
-def _straight(history, steps):
-    """Which increments between the turning points at `history`'s `steps` [bool] may have their slip
-    zones at `SWEPT_SPAN`: those after the history's first vertex that run from one vertex to the
-    next, straight in the plane of Q and sigma.
-
-    Up to the first vertex the zones grow from the edges with no slip locked in, so that a step's
-    slip is as small as its zones are narrow; along a curved stretch the zones of the steps
-    between grow into slip locked in before, where `located_end` can leave an end about an
-    element off (benchmarks/trajectories.py: the ``ellipse_*`` histories).
-    """
-    vertices = history.vertex_step
-    starts = np.concatenate([[0], steps[:-1]])
-    later = vertices[vertices > 0]
-    first = later[0] if later.size else len(history) - 1
-    return np.isin(steps, vertices) & np.isin(starts, vertices) & (starts >= first)
 
 
 def _finer(model, theta):
@@ -555,24 +536,21 @@ def remapped(state, theta, finer):
     return replace(state, slip=onto(state.slip), episode_start=onto(state.episode_start), tally=tally, model=model)
 
 
-def _spans(steps, recorded, straight):
+def _spans(steps, recorded):
     """The spans (``swept``, ``end`` of `element_targets`) of each increment between the turning
-    points at the history's `steps`, shape (len(steps), 2): where a step strictly inside the
-    increment (``swept``), or its last step (``end``), is in `recorded` (None: all are),
-    `SWEPT_SPAN` where the increment is one of those `straight` (`_straight`), else
-    `BOUNDARY_SPAN`; `ENERGY_SPAN` where none is recorded. Row 0, the starting state, is never
-    solved."""
-    located = np.where(straight, SWEPT_SPAN, BOUNDARY_SPAN)[:, None]
+    points at the history's `steps`, shape (len(steps), 2): `BOUNDARY_SPAN` where a step strictly
+    inside the increment (``swept``), or its last step (``end``), is in `recorded` (None: all are),
+    else `ENERGY_SPAN`. Row 0, the starting state, is never solved."""
     if recorded is None:
-        return np.broadcast_to(located, (steps.size, 2))
+        return np.full((steps.size, 2), BOUNDARY_SPAN)
     recorded = np.asarray(recorded, dtype=np.int64)
     marks = np.zeros(int(steps[-1]) + 2, dtype=np.int64)
     marks[recorded[recorded <= steps[-1]] + 1] = 1  # a run stopped by gross slip records no later step
     counted = np.cumsum(marks)  # counted[s + 1]: recorded steps up to s
-    first_inside = np.concatenate([[0], steps[:-1] + 1])  # one past the turning point before
-    inside = counted[steps] - counted[first_inside]  # steps first_inside .. steps - 1
+    first = np.concatenate([[0], steps[:-1] + 1])  # one past the turning point before
+    inside = counted[steps] - counted[first]  # steps first .. steps - 1
     last = counted[steps + 1] - counted[steps]
-    return np.where(np.stack([inside, last], axis=1) > 0, located, ENERGY_SPAN)
+    return np.where(np.stack([inside, last], axis=1) > 0, BOUNDARY_SPAN, ENERGY_SPAN)
 
 
 def _bisected_size(theta, targets):

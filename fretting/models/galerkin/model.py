@@ -37,7 +37,7 @@ __all__ = ["CAPPED", "MAX_DEFAULT_MESH", "MAX_DEFAULT_WORK", "GalerkinModel", "M
 MAX_DEFAULT_MESH = 4 * DEFAULT_NODES
 
 #: The default's bound of ``N^2 x increments`` of a run on the mesh of ``N`` nodes that locates the
-#: recorded steps' stick ends (`fretting.models.galerkin.mesh.BOUNDARY_SPAN`, `SWEPT_SPAN`): an increment costs about
+#: recorded steps' stick ends (`fretting.models.galerkin.mesh.BOUNDARY_SPAN`): an increment costs about
 #: ``N^2`` (products with the stiffness), and those meshes reach a few thousand nodes on general
 #: Q/sigma histories (benchmarks/trajectories.py prints each with its nodes and run time). The bound
 #: takes in every history of that benchmark; past it (long histories) the mesh adapted to the energy
