@@ -37,9 +37,11 @@ from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
 import numpy as np
 
+from fretting.loading.loads import Loads
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.solver import chebyshev_angles
+from fretting.models.state import State
 from fretting.physics.closed_forms import (
     cattaneo_mindlin_compliance,
     cattaneo_mindlin_dissipation,
@@ -54,7 +56,7 @@ if TYPE_CHECKING:
     from fretting.loading.history import History
     from fretting.physics.contact import Contact
 
-__all__ = ["Exact", "ExactModel", "ExactOutcome", "gap", "nodes_theta"]
+__all__ = ["Exact", "ExactModel", "ExactOutcome", "gap", "nodes_theta", "transition_displacement"]
 
 #: Gauss-Legendre points of each quadrature (the gap along ``c'``, the energy and ``delta_Q``
 #: along ``X``): on Hertz the slip meets the closed form to rounding
@@ -611,3 +613,19 @@ def gap(profile, E_star, c, X):
     jacobian = 2 * tau * 2 * span * (1 - sigma) / 2  # dc'/dsigma times d(sigma)/du
     integrand = profile.load_slope(c_, E_star) * arccosh * jacobian
     return (2 / (np.pi * E_star)) * (integrand @ _WEIGHTS)
+
+
+def transition_displacement(contact: Contact) -> float:
+    """Displacement ``delta_t`` [m] at which `contact` (a `fretting.Contact` with a datum), loaded from rest,
+    starts to slide whole (docs/theory/displacement.md).
+
+    ``delta_t = (C_L + C) f P + delta_Q(f P)`` (eq D6), ``delta_Q`` that of the exact model at the
+    onset of sliding (Hertz: ``f p0 a / (2 E_star)``). It is also the amplitude of ``+-delta*``
+    cycles beyond which each cycle slides both ways: Masing's branch from ``+f P`` reaches ``-f P``
+    after a change of ``2 delta_t`` (eq D7). Depends on the datum.
+    """
+    if contact.datum is None:
+        raise ValueError("the contact has no datum: give fretting.Contact(..., datum=L)")
+    model = Exact().resolved_for(contact, None).build(contact)
+    fP = contact.f * contact.P
+    return contact.displacement(fP, model.delta_Q(model.increment(State.virgin(model), Loads(fP))))

@@ -26,12 +26,11 @@ import xarray as xr
 
 from fretting.engine.simulation import simulate
 from fretting.loading.history import History
-from fretting.loading.loads import Loads
-from fretting.models.exact import Exact
-from fretting.models.state import State
+from fretting.models.exact import Exact, transition_displacement
 from fretting.physics.contact import Contact
 from fretting.results.loops import LOOP_VARIABLES, with_loops
 from fretting.results.variables import REGIMES, variable
+from fretting.studies import sweeps
 
 __all__ = [
     "fit_datum",
@@ -48,21 +47,6 @@ __all__ = [
 #: ``Q = 0`` by a cubic through four steps, is then within 1e-6 of its closed form on Hertz
 #: (tests/studies/test_running.py).
 QUARTER_STEPS = 16
-
-
-def transition_displacement(contact: Contact) -> float:
-    """Displacement ``delta_t`` [m] at which `contact`, loaded from rest, starts to slide whole.
-
-    ``delta_t = (C_L + C) f P + delta_Q(f P)`` (eq D6), ``delta_Q`` that of the exact model at the
-    onset of sliding (Hertz: ``f p0 a / (2 E_star)``). It is also the amplitude of ``+-delta*``
-    cycles beyond which each cycle slides both ways: Masing's branch from ``+f P`` reaches ``-f P``
-    after a change of ``2 delta_t`` (eq D7). Depends on the datum.
-    """
-    if contact.datum is None:
-        raise ValueError("the contact has no datum: give fretting.Contact(..., datum=L)")
-    model = Exact().resolved_for(contact, None).build(contact)
-    fP = contact.f * contact.P
-    return contact.displacement(fP, model.delta_Q(model.increment(State.virgin(model), Loads(fP))))
 
 
 def sliding_cycles(delta_star: float, cycles: int, steps: int = QUARTER_STEPS) -> History:
@@ -108,8 +92,6 @@ def running_map(contact: Contact, P, delta_amplitude, cycles: int = 2, steps: in
     ``transition`` (`transition_displacement`) on ``P`` (`running_cases`). The contact's profile,
     moduli, ``f``, datum and compliance are kept; its ``P`` is replaced by each of `P`.
     """
-    from fretting.studies import sweeps  # which runs cases of this module's transition_displacement
-
     grid = {"contact.P": [float(load) for load in P], "delta_amplitude": [float(value) for value in delta_amplitude]}
     cases = [
         sweeps.Case(values, _at_load(contact, values["contact.P"]), _run_by(values, cycles, steps), ())

@@ -56,10 +56,10 @@ from fretting.loading.history_file import (
     read_history_data,
     read_history_source,
 )
+from fretting.models.exact import transition_displacement
 from fretting.physics.contact import Contact
 from fretting.results.io import ENGINE, ResultError, recorded_path, save, with_current_units
 from fretting.results.variables import REGIMES
-from fretting.studies.running import transition_displacement
 
 __all__ = [
     "KEY",
@@ -170,7 +170,7 @@ VARIABLES = {
     "transition": (
         "m",
         "displacement amplitude at the partial-slip / gross-slip boundary",
-        "delta_t of the case's contact (fretting.studies.running.transition_displacement, eq D6 of "
+        "delta_t of the case's contact (fretting.models.exact.transition_displacement, eq D6 of "
         "docs/theory/displacement.md; NaN without a datum)",
     ),
     "a": ("m", "contact half-width", "a of the case's contact"),
@@ -534,7 +534,7 @@ def run_case(contact, history):
 
 def summarize(result, transition=math.nan):
     """The variables of `VARIABLES` of a result of `fretting.engine.simulation`, as a Dataset of scalars;
-    `transition` [m] that of its contact (`fretting.studies.running.transition_displacement`)."""
+    `transition` [m] that of its contact (`fretting.models.exact.transition_displacement`)."""
     total = float(result.total_dissipation)
     energies = {"total_dissipation": total, "transition": transition} | dict.fromkeys(LAST_CYCLE, math.nan)
     energies |= _NO_LOOP
