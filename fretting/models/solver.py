@@ -27,12 +27,9 @@ repeats and the method ends, exactly, in finitely many steps.
 
 The releases of one increment grow the slip zones a few nodes at a time, one solve after
 another, so the Cholesky factor of the slipping nodes' block of ``G`` is kept through an
-increment and bordered by the nodes released (`_Factor`); a working set that loses nodes keeps
-the blocks of the factor before the first that holds one of them. The releases at a slip front
-shrink about geometrically from one solve to the next, so from the second on the tail they
-predict is released with them (`_ahead`): a start, which the answer does not depend on, that
-saves solves. Each increment starts a new factor, so what it computes depends on its loads and
-starting state alone, and a repeating state repeats bit for bit. The products with ``G``
+increment and bordered by the nodes released (`_Factor`); a working set that loses nodes is
+factored anew. Each increment starts a new factor, so what it computes depends on its loads
+and starting state alone, and a repeating state repeats bit for bit. The products with ``G``
 take only the rows a step needs (the slipping nodes' for a solve, the stuck nodes' for the
 releases). The stuck nodes' traction ``G held`` is multiplied anew at every solve, not updated
 by the rows of the nodes that join or leave the stuck ones: an update's rounding would depend on
@@ -67,10 +64,6 @@ MAX_RUNS = 16
 #: this fraction of the slipping ones: ``|K|^3 / 3`` and a few ``N^2`` products against the
 #: ``|S|^3 / 3`` of a Cholesky factor of the slipping block.
 COMPLEMENT = 0.25
-
-#: Largest ratio of the geometric tail of releases at a slip front that `_ahead` predicts from the
-#: last two releases of an increment: one near 1 would release nodes far beyond the front.
-TAIL_RATIO = 0.6
 
 #: Rounds of iterative refinement of a solve through the stuck nodes, against ``G_SS`` itself: the
 #: inverse ``B`` carries rounding of the size of its condition number, and one round brings the
@@ -219,60 +212,25 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
             direction[:] = 0
         new = _minimise(factor, g_stuck, limit, slip, new, direction)
         g = g_stuck - G @ new
-    single, iteration, last, ahead, predicting = False, 0, 0, np.zeros(0, dtype=np.int64), True
+    single, iteration = False, 0
     while (released := _over(stiffness, np.flatnonzero(direction == 0), g, g_stuck, limit, new)).size:
         iteration += 1
         if iteration > 4 * g_stuck.size:
             raise SolverError("the active set did not settle: the increment has no solution on this grid")
         if single or released.size == np.count_nonzero(direction == 0):
             released = released[[np.argmax(np.abs(g[released]) - limit[released])]]
-        elif predicting and last > released.size:
-            ahead = _ahead(released, direction, g, min(released.size / last, TAIL_RATIO))
-        last = released.size
         direction[released] = np.sign(g[released])
-        direction[ahead] = np.sign(g[ahead])
         before, new = new, _minimise(factor, g_stuck, limit, slip, new, direction)
-        if ahead.size:  # one released ahead that stuck again may have stopped those released with it
-            predicting, ahead = bool(direction[ahead].all()), ahead[:0]
-        else:
-            single = not direction[released].all()  # a node just released stuck again on the way
-            if not direction[released].any() and np.array_equal(new, before):
-                # All stuck again where they were: J could not fall, and the same release would
-                # follow. Their excess is rounding of the equilibrium they close (the stuck nodes'
-                # traction takes the sum of the slipping ones' residuals, near sliding).
-                break
+        single = not direction[released].all()  # a node just released stuck again on the way
+        if not direction[released].any() and np.array_equal(new, before):
+            # All stuck again where they were: J could not fall, and the same release would
+            # follow. Their excess is rounding of the equilibrium they close (the stuck nodes'
+            # traction takes the sum of the slipping ones' residuals, near sliding).
+            break
         stuck = np.flatnonzero(direction == 0)
         g[stuck] = _rows_product(G, stuck, new, g_stuck)
     g[direction != 0] = _rows_product(G, np.flatnonzero(direction), new, g_stuck)
     return Increment(new, new - slip, g, iteration)
-
-
-def _ahead(released, direction, g, ratio):
-    """Stuck nodes ahead of the slip fronts that the nodes `released` advance, released with them.
-
-    A run of released nodes (consecutive, their tractions of one sign) that a slip zone of that
-    direction borders on one side moves that zone's front; the releases that follow it at a front
-    shrink about geometrically, each about `ratio` times the one before, so the stuck nodes
-    ``run.size * ratio / (1 - ratio)`` beyond it, as far as their traction has the run's sign, are
-    released now. A start only, as the guess is: one that sticks again leaves the factor's last
-    block (`_Factor._truncate`).
-    """
-    N, extra = direction.size, []
-    breaks = np.flatnonzero((np.diff(released) != 1) | (np.diff(np.sign(g[released])) != 0)) + 1
-    for run in np.split(released, breaks):
-        sign = np.sign(g[run[0]])
-        reach = int(run.size * ratio / (1 - ratio))
-        low = run[0] > 0 and direction[run[0] - 1] == sign
-        high = run[-1] < N - 1 and direction[run[-1] + 1] == sign
-        if low == high:
-            continue
-        step = 1 if low else -1
-        node = run[-1] + 1 if low else run[0] - 1
-        while reach > 0 and 0 <= node < N and direction[node] == 0 and np.sign(g[node]) == sign:
-            extra.append(node)
-            node += step
-            reach -= 1
-    return np.array(sorted(extra), dtype=np.int64)
 
 
 def _minimise(factor, g_stuck, limit, slip, new, direction):
@@ -416,8 +374,9 @@ class _Factor:
         nodes where they are few (`Stiffness.by_complement`)."""
         if self.stiffness.by_complement(slipping):
             return self.stiffness.solve_slipping(slipping, rhs)
-        if np.count_nonzero(self.factored[slipping]) < self.order.size:  # nodes left the set
-            self._truncate(slipping)
+        if np.count_nonzero(self.factored[slipping]) < self.order.size:  # nodes left the set: factor anew
+            self.order, self.blocks = self.order[:0], []
+            self.factored[:] = False
         new = slipping[~self.factored[slipping]]
         if new.size:
             self._border(new)
@@ -425,20 +384,6 @@ class _Factor:
         solution = np.empty_like(rhs)
         solution[position] = self._back(self._forward(rhs[position]))
         return solution
-
-    def _truncate(self, slipping):
-        """Drop the blocks from the first that holds a node not in `slipping` on: the blocks before it
-        are the factor of their nodes whatever comes after, and the nodes dropped with it that still
-        slip are bordered again. A node that leaves is most often one just released that stuck again
-        on the way, in the last block."""
-        is_slipping = np.zeros(self.factored.size, dtype=bool)
-        is_slipping[slipping] = True
-        left = np.flatnonzero(~is_slipping[self.order])[0]  # the first node of `order` that left
-        ends = np.cumsum([L.shape[0] for _, L in self.blocks])
-        kept = int(np.searchsorted(ends, left, side="right"))
-        start = int(ends[kept - 1]) if kept else 0
-        self.factored[self.order[start:]] = False
-        self.order, self.blocks = self.order[:start], self.blocks[:kept]
 
     def _forward(self, b):
         """``L^-1 b``, block row by block row (`b`: a vector or the columns of a matrix)."""

@@ -99,35 +99,3 @@ def test_small_cycles_on_a_large_locked_in_slip_keep_their_law(moving, power):
         warnings.simplefilter("ignore", fr.ModelFallbackWarning)
         W = {A: small_loops.second_cycle(contact, A, moving)[0] / A**power for A in (1e-5, 1e-7)}
     assert W[1e-7] == pytest.approx(W[1e-5], rel=1e-4)
-
-
-def test_the_predicted_starts_change_the_solves_not_the_answer(model, monkeypatch):
-    """Out of phase (Q 0.7 f P, sigma 1.2 f p0), each increment from the directions of the one
-    before: with the releases ahead of the slip fronts (`solver.TAIL_RATIO`) and without them, every
-    step has the same stick set and slip to rounding and no stuck node over its limit."""
-    contact = model.contact
-    history = fr.History.sinusoidal(0.7 * contact.f * contact.P, 1.2 * contact.f * contact.p0, 90, 2, 24)
-    ahead = []
-    found = solver._ahead
-    monkeypatch.setattr(solver, "_ahead", lambda *args: ahead.append(found(*args)) or ahead[-1])
-
-    def run():
-        slip, start, steps = np.zeros(model.limit.size), np.zeros(model.limit.size), []
-        for Q, sigma in zip(history.Q[1:], history.sigma[1:], strict=True):
-            guess = np.sign(slip - start).astype(np.int8)
-            stiffness = solver.Stiffness(model.G, kept=False)
-            solved = solver.solve_increment(stiffness, model.g_stuck(Q, sigma), model.limit, slip, guess)
-            start = np.where((solved.ds == 0) | (np.sign(solved.ds) != guess), slip, start)
-            slip = solved.slip
-            steps.append(solved)
-        return steps
-
-    predicted = run()
-    assert sum(nodes.size for nodes in ahead) > 0  # the predictions were taken
-    monkeypatch.setattr(solver, "TAIL_RATIO", 0.0)
-    plain = run()
-    for a, b in zip(predicted, plain, strict=True):
-        np.testing.assert_array_equal(a.ds == 0, b.ds == 0)
-        assert np.abs(a.slip - b.slip).max() <= 1e-11 * np.abs(b.slip).max()
-        stuck = a.ds == 0
-        assert np.all(np.abs(a.g[stuck]) - model.limit[stuck] <= 1e-12 * model.limit.max())
