@@ -4,7 +4,11 @@ load cycles tallied and repeating cycles copied.
 A cycle whose loads repeat those of the cycle just completed, from a state that repeats the
 state before that cycle bit for bit, would repeat its increments bit for bit (the increment
 depends on the loads and the state only); such cycles are copied instead of solved, and the
-recorder is told so (`Recorder.copied`).
+recorder is told so (`Recorder.copied`). Rounding can leave the state periodic over a few cycles
+rather than one (a state that comes back bit for bit every third cycle, with rounding-level
+differences in between, depending on the CPU's BLAS kernels): where the state before a cycle
+repeats the state before one of the last `PERIOD_CYCLES` cycles, those cycles are solved once more
+as a block and the blocks that follow are copied.
 
 A recorder that skips (`Recorder.skipping`) has the steps inside straight stretches of the load
 path solved only where they are recorded (`skippable`): along a straight (proportional) stretch
@@ -21,6 +25,7 @@ bit (tests/engine/test_window.py).
 """
 
 import math
+from collections import deque
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -42,6 +47,10 @@ STRAIGHT = 1e-9
 #: Solved steps whose loads a model that prepares (``model.prepare(state, Q)``, the exact model)
 #: is given at once, ahead of solving them: its branches are then solved together.
 PREPARED_STEPS = 512
+
+
+#: Most cycles over which a state that repeats bit for bit is looked for (`_Run.follow`).
+PERIOD_CYCLES = 8
 
 
 #: Relative distance below the friction force at which `displaced` brackets ``Q``: a trial increment
@@ -222,12 +231,13 @@ def engine_loads(loads, contact):
 
 @dataclass(frozen=True, eq=False)
 class _Cycle:
-    """A complete cycle: its first step, the state before it and each increment's (outcome, state
-    after), None for a step skipped."""
+    """Complete cycles solved in a row, one or a period of them: the first step, the state before
+    them, each increment's (outcome, state after), None for a step skipped, and each cycle's tally."""
 
     first: int
     before: State
     steps: list
+    tallies: list
 
 
 class _Run:
@@ -256,8 +266,11 @@ class _Run:
 
     def follow(self, state):
         """Run from `state`; return the state at the end."""
-        previous = None  # the last cycle solved whole in this run: the one a repeating cycle copies
-        before, steps = None, []  # state before the cycle in progress (if it began here), its increments
+        previous = None  # the last cycles solved whole in this run: the block a repeating block copies
+        # the state before the block in progress (if it began here), its increments, its closed cycles' tallies
+        before, steps, tallies = None, [], []
+        period = 1  # cycles in the block in progress
+        starts = deque(maxlen=PERIOD_CYCLES)  # the states before the last cycles solved here, in order
         repeated = False  # the cycle in progress is a copy
         step, solved = 0, 0  # solved: index in self.solved of the first solved step from `step`
         history, cycle, skip, recorder = self.history, self.cycle, self.skip, self.recorder
@@ -267,16 +280,28 @@ class _Run:
                 if state.tally.number:
                     self._cycle(state.tally.number, state.tally, repeated)
                     if before is not None and not repeated:
-                        previous = _Cycle(step - len(steps), before, steps)
+                        tallies.append(state.tally)
+                else:  # steps outside the cycles: nothing to copy
+                    before = None
+                    starts.clear()
                 state = replace(state, tally=Tally.begin(number, state.slip))
-                before, steps, repeated = state, [], False
-                copies = self._repeats(previous, state, step) if number else 0
+                if before is not None and len(tallies) == period:
+                    previous = _Cycle(step - len(steps), before, steps, tallies)
+                    before = None
+                repeated = False
+                copies = self._repeats(previous, state, step) if number and before is None else 0
                 if copies:
                     state = self._copy(previous, step, copies)
                     step += copies * len(previous.steps)
                     solved = int(np.searchsorted(self.solved, step))
-                    repeated = True
+                    repeated, before = True, None
+                    starts.clear()
                     continue
+                if before is None:
+                    period = _period(starts, state)
+                    before, steps, tallies = state, [], []
+                if number:
+                    starts.append(state)
             if skip[step]:  # a straight stretch: on to its next solved step, in the same cycle
                 after = int(self.solved[solved])
                 steps.extend([None] * (after - step))
@@ -288,6 +313,7 @@ class _Run:
                     state, solved = windowed
                     step = int(self.solved[solved - 1]) + 1
                     before = previous = None  # no copies of cycles solved in a window (`_copyable`)
+                    starts.clear()
                     continue
             if step >= self.prepared:
                 ahead = self.solved[solved : solved + PREPARED_STEPS]
@@ -389,7 +415,8 @@ class _Run:
             self.recorder.cycle(number, tally, repeated)
 
     def _repeats(self, previous, state, step):
-        """Number of whole cycles from `step` that repeat the complete cycle `previous` bit for bit.
+        """Number of whole blocks of cycles from `step` that repeat the complete block `previous` (one
+        cycle or a period of them) bit for bit.
 
         They must follow `previous` directly, start from its starting state, have its loads,
         its number of steps and its skipped steps, and the last of them must end where a new
@@ -406,7 +433,7 @@ class _Run:
             (self.history.Q[later] == self.history.Q[earlier])
             & (self.history.sigma[later] == self.history.sigma[earlier])
             & (True if self.history.P is None else self.history.P[later] == self.history.P[earlier])
-            & (cycle[later] == cycle[earlier] + 1)
+            & (cycle[later] == cycle[earlier] + len(previous.tallies))
             & (self.skip[later] == self.skip[earlier])
         )
         copies = (same.size if same.all() else int(np.argmin(same))) // length
@@ -416,20 +443,31 @@ class _Run:
         return copies
 
     def _copy(self, previous, step, copies):
-        """Copy the cycle `previous` over `copies` cycles from `step`; the state after the last copy.
+        """Copy the block of cycles `previous` `copies` times from `step`; the state after the last copy.
 
-        The last copy is left to be closed as the cycle in progress.
+        The last cycle copied is left to be closed as the cycle in progress.
         """
-        last = previous.steps[-1][1]
+        last, period = previous.steps[-1][1], len(previous.tallies)
         first = int(self.cycle[step])
-        for number in range(first, first + copies - 1):
-            self._cycle(number, last.tally, True)  # one tally object: the recorder stores its rows once
+        for k in range(copies * period - 1):  # the block's tally objects: the recorder stores their rows once
+            self._cycle(first + k, previous.tallies[k % period], True)
         if self.recorder is not None:
             self.recorder.copied(step, copies, previous.steps)
         per_step = np.array([solved[0].dissipation for solved in previous.steps if solved is not None])
         # summed step by step, in order, as solving the cycles would: np.cumsum adds sequentially
         dissipated = np.cumsum(np.concatenate([[last.dissipated], np.tile(per_step, copies)]))[-1]
-        return replace(last, tally=replace(last.tally, number=first + copies - 1), dissipated=float(dissipated))
+        number = first + copies * period - 1
+        return replace(last, tally=replace(last.tally, number=number), dissipated=float(dissipated))
+
+
+def _period(starts, state):
+    """The fewest cycles, at least 2 and at most ``len(starts)``, after which `state` repeats the
+    state before a cycle bit for bit (`starts`: the states before the last cycles, in order); 1 if
+    none."""
+    for k in range(2, len(starts) + 1):
+        if state.repeats(starts[-k]):
+            return k
+    return 1
 
 
 def _leading(mask):

@@ -8,7 +8,6 @@ per load cycle, and turns them into the variables of `fretting.results.variables
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass
 
@@ -391,18 +390,17 @@ def _cycle_rows(cycles, N, left_out):
     """Per-cycle variables from the ``(number, tally, copied)`` of every cycle of a run, but the
     peaks `left_out`.
 
-    Copied cycles share their tally, so each distinct tally is turned into rows once.
+    Copied cycles share the tallies of the cycles they copy, so each distinct tally object is turned
+    into rows once.
     """
     numbers = np.array([number for number, _, _ in cycles], dtype=np.int64)
     repeated = np.array([copy for _, _, copy in cycles], dtype=bool)
-    tallies = [tally for _, tally, _ in cycles]
-    new = np.ones(len(tallies), dtype=bool)
-    new[1:] = [later is not earlier for earlier, later in itertools.pairwise(tallies)]
-    distinct = [tally for tally, first in zip(tallies, new, strict=True) if first]
-    copies = np.diff(np.append(np.flatnonzero(new), len(tallies)))
+    index = {}  # id of each distinct tally (all alive in `cycles`) -> its row
+    which = np.array([index.setdefault(id(tally), len(index)) for _, tally, _ in cycles], dtype=np.int64)
+    distinct = list({id(tally): tally for _, tally, _ in cycles}.values())
 
     def rows(values, dtype, width):
-        return np.repeat(np.array(values, dtype=dtype).reshape(len(distinct), width), copies, axis=0)
+        return np.array(values, dtype=dtype).reshape(len(distinct), width)[which]
 
     return {
         "cycle_number": numbers,
