@@ -1,0 +1,86 @@
+"""Displacement control under a varying normal load P(t) (docs/theory/displacement.md#varying-load): eq D4
+at each instant with the half-width of the step's load, force and displacement control step by step on the
+cells of `fretting.models.Varying`, and a datum that the contact reaches."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+import fretting as fr
+from fretting.physics.contact import stuck_compliance
+
+#: Datum [m] of the tests: about 21 half-widths from the middle of the Hertz contact below at P0.
+L = 5e-3
+
+#: Cells of the tests: few, since the checks compare two runs on the same cells.
+SPEC = fr.models.Varying(64)
+
+
+@pytest.fixture(scope="module")
+def contact():
+    return fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5, datum=L)
+
+
+def prescribed(history, delta):
+    """`history` with the displacements `delta` [m] prescribed at its steps instead of its Q."""
+    return fr.History(
+        np.full(len(history), np.nan), history.sigma, history.vertex_step, history.cycle, history.P, delta
+    )
+
+
+def test_the_compliance_is_that_of_the_half_width_under_the_load(contact):
+    """``C_L`` of ``a(P)`` (eq D3), the contact's own under its own load, and an error once ``a(P)`` reaches L."""
+    for P in (0.5e5, 1e5, 2e5):
+        a = float(contact.profile.half_width(P, contact.E_star)[0])
+        assert contact.compliance_under(P) == stuck_compliance(L, a, contact.E_star)
+    assert contact.compliance_under(None) == contact.displacement_compliance
+    assert contact.displacement(2.0, 1e-9, 0.5e5) == contact.compliance_under(0.5e5) * 2.0 + 1e-9
+    with pytest.raises(ValueError, match="not within the datum L = 0.005 m"):
+        contact.compliance_under(1e9)
+
+
+def test_proportional_loading_superposes_the_compliance_of_each_half_width(contact):
+    """Jaeger: ``Q = lambda (P - P0)``, ``lambda < f``, slips nowhere and each ``dQ = lambda dP`` is a flat punch
+    of the half-width ``a(P)`` then, so ``delta = lambda int_P0^P C_L(a(P')) dP'`` (eq D4, the cells that
+    entered carrying their displacement at entry in ``delta_Q``): to 1e-3 on 256 cells (the half-width of
+    the cells in contact moves by pairs; 2e-4 on 1024), where ``C_L(a(P)) Q`` alone is 2.5 % short."""
+    lam = 0.4
+    P = np.linspace(1e5, 1.5e5, 6)
+    history = fr.History(lam * (P - P[0]), np.zeros(P.size), [0, P.size - 1], None, P)
+    result = fr.simulate(contact, history, fr.models.Varying(256))
+    assert result.regime.values.tolist() == [0] * P.size
+    superposed = [lam * quad(contact.compliance_under, P[0], p, epsrel=1e-12)[0] for p in P[1:]]
+    assert np.allclose(result.delta.values[1:], superposed, rtol=1e-3, atol=0)
+
+
+@pytest.mark.parametrize("phase", [None, 0.0, np.pi / 2], ids=["no-sigma", "sigma-in-phase", "sigma-out-of-phase"])
+def test_force_and_displacement_control_agree_under_a_varying_load(contact, phase):
+    """Run ``P = P0 (1 + 0.3 sin)``, ``Q = 0.5 f P0 sin`` (with ``sigma = 0.2 f p0 sin(. + phase)``) under force
+    control, prescribe its recorded delta with the same P: the Q found at every step is the history's to 1e-14
+    of ``f P0`` (Brent's bracket closes to ``5 eps f P``), the slip and each step's energy the same to 1e-12."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    t = np.linspace(0.0, 2 * np.pi, 25)
+    sigma = np.zeros(t.size) if phase is None else 0.2 * fp0 * np.sin(t + phase)
+    history = fr.History(0.5 * fP * np.sin(t), sigma, [0, t.size - 1], None, contact.P * (1 + 0.3 * np.sin(t)))
+    forced = fr.simulate(contact, history, SPEC)
+    assert 1 in forced.regime.values  # partial slip somewhere
+    moved = fr.simulate(contact, prescribed(history, forced.delta.values), SPEC)
+    assert np.max(np.abs(moved.Q.values - forced.Q.values)) < 1e-14 * fP
+    assert np.max(np.abs(moved.slip.values - forced.slip.values)) < 1e-12 * np.abs(forced.slip.values).max()
+    energy = forced.dissipation.values
+    assert np.max(np.abs(moved.dissipation.values - energy)) < 1e-12 * energy.max()
+    assert np.array_equal(moved.regime.values, forced.regime.values)
+
+
+def test_a_datum_the_contact_reaches_is_a_one_line_error(contact):
+    near = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5, datum=3e-4)  # a = 2.35e-4 m at P0
+    history = fr.History([np.nan] * 3, [0.0] * 3, [0, 2], None, [1e5, 2e5, 3e5], [0.0, 1e-7, 2e-7])
+    with pytest.raises(fr.HistoryError, match=r"^step 1: the normal load P = 200000.0 N/m forms a contact"):
+        fr.simulate(near, history, SPEC)
+
+
+def test_gross_slip_under_a_varying_load_is_a_one_line_error(contact):
+    """A displacement beyond that of ``f P`` under a varying P: the cells do not slide yet."""
+    history = fr.History([np.nan] * 3, [0.0] * 3, [0, 2], None, [1e5, 1.1e5, 1.2e5], [0.0, 1e-6, 1e-5])
+    with pytest.raises(fr.GrossSlipError, match=r"at step 2: .*follows partial slip under a varying normal load P"):
+        fr.simulate(contact, history, SPEC)
