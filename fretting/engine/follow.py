@@ -59,13 +59,6 @@ PERIOD_CYCLES = 8
 BRACKET = 1e-9
 
 
-#: What a `GrossSlipError` of `displaced` says where the normal load varies.
-UNFOLLOWED_VARYING = (
-    "displacement control follows partial slip under a varying normal load P, not gross slip: "
-    "give a displacement that keeps |Q| below f P, or a constant P"
-)
-
-
 def displaced(model, state, loads, step=None):
     """`loads` (`Loads`) with the ``Q`` [N/m] that meets their prescribed displacement ``delta`` [m]
     from `state`; `loads` as they are where ``delta`` is None.
@@ -90,8 +83,7 @@ def displaced(model, state, loads, step=None):
     HistoryError
         Where the contact has no datum, or its contact under the step's ``P`` reaches the datum.
     GrossSlipError
-        Where ``delta`` is not reached below the friction force by a model that does not slide, or
-        under a varying normal load (`UNFOLLOWED_VARYING`).
+        Where ``delta`` is not reached below the friction force by a model that does not slide.
     """
     if loads.delta is None:
         return loads
@@ -115,21 +107,20 @@ def displaced(model, state, loads, step=None):
         trial = model.increment(state, Loads(Q, loads.sigma, loads.P))
         return contact.displacement(Q, model.delta_Q(trial), loads.P) - loads.delta
 
-    start = missed(held.Q)
+    begin = min(max(held.Q, -sliding), sliding)  # the state's Q, or the step's friction force where P fell
+    start = missed(begin)
     if start == 0:
-        return replace(loads, Q=held.Q)
+        return replace(loads, Q=begin)
     end = math.copysign(sliding * (1 - BRACKET), -start)
     eps = np.finfo(float).eps
     if missed(end) * start > 0:
         if not model.slides:
             raise GrossSlipError(step, math.copysign(sliding, end), loads.sigma, sliding, UNFOLLOWED)
-        if loads.P is not None or state.P is not None:
-            raise GrossSlipError(step, math.copysign(sliding, end), loads.sigma, sliding, UNFOLLOWED_VARYING)
         limit = math.copysign(sliding, end)
         if missed(limit) * start > 0:
             return replace(loads, Q=limit)  # gross slip
-        held, end = replace(held, Q=end), limit
-    Q = brentq(missed, held.Q, end, xtol=eps * sliding, rtol=4 * eps)
+        begin, end = end, limit
+    Q = brentq(missed, begin, end, xtol=eps * sliding, rtol=4 * eps)
     return replace(loads, Q=float(Q))
 
 
@@ -140,7 +131,7 @@ def slid(model, state, loads):
     within its tolerance, or the step holds the state's delta."""
     contact, force = model.contact, loads.force()
     reached = model.increment(state, force)
-    du = loads.delta - contact.displacement(loads.Q, model.delta_Q(reached))
+    du = loads.delta - contact.displacement(loads.Q, model.delta_Q(reached), loads.P)
     return model.slide(state, force, du if du * loads.Q > 0 else 0.0)
 
 

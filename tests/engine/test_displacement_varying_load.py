@@ -1,12 +1,14 @@
 """Displacement control under a varying normal load P(t) (docs/theory/displacement.md#varying-load): eq D4
 at each instant with the half-width of the step's load, force and displacement control step by step on the
-cells of `fretting.models.Varying`, and a datum that the contact reaches."""
+cells of `fretting.models.Varying`, a datum that the contact reaches, and gross slip under P(t): Q = +-f P,
+each slide's energy by the trapezoidal rule in P, split runs resumed bit for bit."""
 
 import numpy as np
 import pytest
 from scipy.integrate import quad
 
 import fretting as fr
+from fretting.engine.recorder import final_state
 from fretting.physics.contact import stuck_compliance
 
 #: Datum [m] of the tests: about 21 half-widths from the middle of the Hertz contact below at P0.
@@ -79,8 +81,57 @@ def test_a_datum_the_contact_reaches_is_a_one_line_error(contact):
         fr.simulate(near, history, SPEC)
 
 
-def test_gross_slip_under_a_varying_load_is_a_one_line_error(contact):
-    """A displacement beyond that of ``f P`` under a varying P: the cells do not slide yet."""
-    history = fr.History([np.nan] * 3, [0.0] * 3, [0, 2], None, [1e5, 1.1e5, 1.2e5], [0.0, 1e-6, 1e-5])
-    with pytest.raises(fr.GrossSlipError, match=r"at step 2: .*follows partial slip under a varying normal load P"):
-        fr.simulate(contact, history, SPEC)
+def sliding_cycle(contact, steps=48):
+    """A cycle ``delta = 2 delta_t sin(t)`` under ``P = P0 (1 + 0.3 sin(1.5 t))``, ``delta_t`` the transition
+    displacement at ``P0`` (eq D6): it slides both ways, under a rising and a falling P, and sticks again."""
+    t = np.linspace(0.0, 2 * np.pi, steps + 1)
+    fP = contact.f * contact.P
+    transition = contact.displacement_compliance * fP + contact.f * contact.p0 * contact.a / (2 * contact.E_star)
+    P = contact.P * (1 + 0.3 * np.sin(1.5 * t))
+    return fr.History(np.full(t.size, np.nan), np.zeros(t.size), [0, steps], None, P, 2 * transition * np.sin(t))
+
+
+@pytest.fixture(scope="module")
+def slid(contact):
+    return fr.simulate(contact, sliding_cycle(contact), SPEC)
+
+
+def whole_cells(contact):
+    """`SPEC` over the largest contact of the whole `sliding_cycle`, which its parts are run on."""
+    return SPEC.resolved_for(contact, sliding_cycle(contact))
+
+
+def test_gross_slip_under_a_varying_load_slides_at_f_P(contact, slid):
+    """In and out of gross slip both ways: ``Q = +-f P`` of the step's load at every sliding step, and each
+    step that slides from a sliding state dissipates ``f (P_begin + P_end) |du| / 2`` (``du`` the uniform slip
+    increment, taken at the middle node; the trapezoidal rule in P of ``int f p |ds| dx``) to 1e-12."""
+    P, Q, regime = slid.P.values, slid.Q.values, slid.regime.values
+    sliding = regime == 2
+    assert {0, 1, 2} <= set(regime.tolist()) and (Q[sliding] > 0).any() and (Q[sliding] < 0).any()
+    assert np.diff(P[sliding]).min() < 0 < np.diff(P[sliding]).max()  # under a falling and a rising P
+    assert np.array_equal(np.abs(Q[sliding]), contact.f * P[sliding])
+    slip = slid.slip.values
+    du = np.diff(slip[:, slip.shape[1] // 2])
+    both = sliding[1:] & sliding[:-1]
+    assert both.sum() >= 10
+    trapezoidal = contact.f * (P[1:] + P[:-1]) / 2 * np.abs(du)
+    assert np.allclose(slid.dissipation.values[1:][both], trapezoidal[both], rtol=1e-12, atol=0)
+
+
+def test_gross_slip_under_a_varying_load_split_anywhere_resumes_bit_for_bit(contact, slid):
+    history = sliding_cycle(contact)
+    for k in (6, 14, 30):  # at the first slide, at the first step stuck again, in the middle of a slide
+        first = fr.simulate(contact, history[: k + 1], whole_cells(contact))
+        later = fr.simulate(contact, history[k:], state=final_state(first))
+        for name in ("Q", "delta", "slip"):
+            assert np.array_equal(later[name].values, slid[name].values[k:]), (k, name)
+        for name in ("dissipation", "regime"):  # of the increments: the resumed run's step 0 is at rest
+            assert np.array_equal(later[name].values[1:], slid[name].values[k + 1 :]), (k, name)
+
+
+def test_force_control_still_refuses_f_P_under_a_varying_load(contact, slid):
+    """The Q of the first sliding step, fed to force control with the same P: a `GrossSlipError` at that step."""
+    first = int(np.argmax(slid.regime.values == 2))
+    history = fr.History(slid.Q.values[: first + 1], np.zeros(first + 1), [0, first], None, slid.P.values[: first + 1])
+    with pytest.raises(fr.GrossSlipError, match=f"gross slip at step {first}: "):
+        fr.simulate(contact, history, whole_cells(contact))
