@@ -118,6 +118,25 @@ def test_gross_slip_under_a_varying_load_slides_at_f_P(contact, slid):
     assert np.allclose(slid.dissipation.values[1:][both], trapezoidal[both], rtol=1e-12, atol=0)
 
 
+def test_a_slide_under_a_varying_load_meets_eq_D4(contact):
+    """While the Hertz contact slides, ``s = sign(Q) f x^2 / (2R) + u`` (eq D10) over the current contact, whose
+    flat punch weighs ``x^2`` by ``a^2 / 2``, so by eq D4 a sliding step moves delta by
+    ``d(C_L(a(P)) Q) + du + sign(Q) f d(a(P)^2) / (4R)`` (eq D13): to 1e-2 of the largest such step's change on
+    256 cells (2.5e-2, 6.2e-3, 1.4e-3 on 64, 256, 1024: first order in the cell width, the cells in contact
+    moving by pairs about ``a(P)``), where the last term alone is 2.6e-2 of it."""
+    result = fr.simulate(contact, sliding_cycle(contact), fr.models.Varying(256))
+    P, Q, delta, slip = result.P.values, result.Q.values, result.delta.values, result.slip.values
+    both = (result.regime.values[1:] == 2) & (result.regime.values[:-1] == 2)
+    elastic = np.array([contact.compliance_under(p) for p in P]) * Q
+    a_squared = contact.profile.half_width(P, contact.E_star)[0] ** 2
+    du = np.diff(slip[:, slip.shape[1] // 2])
+    R = contact.profile.R
+    moved = np.diff(elastic) + du + np.sign(Q[1:]) * contact.f * np.diff(a_squared) / (4 * R)
+    scale = np.abs(np.diff(delta)[both]).max()
+    assert np.abs(np.diff(delta) - moved)[both].max() < 1e-2 * scale
+    assert np.abs(contact.f * np.diff(a_squared) / (4 * R))[both].max() > 2e-2 * scale
+
+
 def test_gross_slip_under_a_varying_load_split_anywhere_resumes_bit_for_bit(contact, slid):
     history = sliding_cycle(contact)
     for k in (6, 14, 30):  # at the first slide, at the first step stuck again, in the middle of a slide
