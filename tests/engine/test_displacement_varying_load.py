@@ -1,5 +1,5 @@
-"""Displacement control under a varying normal load P(t) (docs/theory/displacement.md#varying-load): eq D4
-at each instant with the half-width of the step's load, force and displacement control step by step on the
+"""Displacement control under a varying normal load P(t) (docs/theory/displacement.md#varying-load): eq D13
+(eq D4 at each instant with the half-width of the step's load), force and displacement control step by step on the
 cells of `fretting.models.Varying`, a datum that the contact reaches, and gross slip under P(t): Q = +-f P,
 each slide's energy by the trapezoidal rule in P, split runs resumed bit for bit."""
 
@@ -43,9 +43,9 @@ def test_the_compliance_is_that_of_the_half_width_under_the_load(contact):
 
 def test_proportional_loading_superposes_the_compliance_of_each_half_width(contact):
     """Jaeger: ``Q = lambda (P - P0)``, ``lambda < f``, slips nowhere and each ``dQ = lambda dP`` is a flat punch
-    of the half-width ``a(P)`` then, so ``delta = lambda int_P0^P C_L(a(P')) dP'`` (eq D4, the cells that
+    of the half-width ``a(P)`` then, so ``delta = lambda int_P0^P C_L(a(P')) dP'`` (eq D13, the cells that
     entered carrying their displacement at entry in ``delta_Q``): to 1e-3 on 256 cells (the half-width of
-    the cells in contact moves by pairs; 2e-4 on 1024), where ``C_L(a(P)) Q`` alone is 2.5 % short."""
+    the cells in contact moves by pairs; 2e-4 on 1024), where ``C_L(a(P)) Q`` alone is 2.6 % short (eq D14)."""
     lam = 0.4
     P = np.linspace(1e5, 1.5e5, 6)
     history = fr.History(lam * (P - P[0]), np.zeros(P.size), [0, P.size - 1], None, P)
@@ -118,10 +118,10 @@ def test_gross_slip_under_a_varying_load_slides_at_f_P(contact, slid):
     assert np.allclose(slid.dissipation.values[1:][both], trapezoidal[both], rtol=1e-12, atol=0)
 
 
-def test_a_slide_under_a_varying_load_meets_eq_D4(contact):
+def test_a_slide_under_a_varying_load_moves_delta_by_eq_D16(contact):
     """While the Hertz contact slides, ``s = sign(Q) f x^2 / (2R) + u`` (eq D10) over the current contact, whose
-    flat punch weighs ``x^2`` by ``a^2 / 2``, so by eq D4 a sliding step moves delta by
-    ``d(C_L(a(P)) Q) + du + sign(Q) f d(a(P)^2) / (4R)`` (eq D13): to 1e-2 of the largest such step's change on
+    flat punch weighs ``x^2`` by ``a^2 / 2``, so by eq D13 a sliding step moves delta by
+    ``d(C_L(a(P)) Q) + du + sign(Q) f d(a(P)^2) / (4R)`` (eq D16): to 1e-2 of the largest such step's change on
     256 cells (2.5e-2, 6.2e-3, 1.4e-3 on 64, 256, 1024: first order in the cell width, the cells in contact
     moving by pairs about ``a(P)``), where the last term alone is 2.6e-2 of it."""
     result = fr.simulate(contact, sliding_cycle(contact), fr.models.Varying(256))
