@@ -352,7 +352,7 @@ class NormalModel(Model):
         before = (state.Q, state.sigma, self.load(state))
         locked = self.forces(state.slip, *before)
         slip, ds, density = state.slip, np.zeros(self.x.size), np.zeros(self.x.size)
-        g, dissipation, P_begin, begin = locked, 0.0, before[2], 0.0
+        g, dissipation, P_begin, done = locked, 0.0, before[2], 0.0  # done: the fraction of the increment solved
         sign = np.sign(after[0])
         sliding = du is not None and sign * before[0] >= self.sliding_force(before[2])  # every part slides
         for fraction, m in self.parts(before[2], after[2]):
@@ -362,7 +362,7 @@ class NormalModel(Model):
             )
             nodes, limit = self.cells(m), self.contact.f * self.force(P_, m)
             if du is not None and (sliding or fraction == 1):
-                share = du * (fraction - begin) if sliding else du
+                share = du * (fraction - done) if sliding else du
                 solved = self._on_the_point(slip, sign, sigma_, m, limit, share)
             else:
                 g_stuck = Q_ * self.punch(m) + self.stiffness(m).G @ self.bulk_slip(sigma_)[nodes]
@@ -374,7 +374,7 @@ class NormalModel(Model):
             mean = (start + limit[nodes]) / 2  # trapezoidal rule in P
             density[nodes] += mean / self.h * np.abs(solved.ds)
             dissipation += float(np.dot(mean, np.abs(solved.ds)))
-            P_begin, begin = P_, fraction
+            P_begin, done = P_, fraction
             slip = self.free_surface(slip, g, sigma_, m)
         edges = (True, True) if du is not None else self.edges_slip(before, after)
         slid = state.slid if du is None else state.slid + du

@@ -43,9 +43,9 @@ def test_the_compliance_is_that_of_the_half_width_under_the_load(contact):
 
 def test_proportional_loading_superposes_the_compliance_of_each_half_width(contact):
     """Jaeger: ``Q = lambda (P - P0)``, ``lambda < f``, slips nowhere and each ``dQ = lambda dP`` is a flat punch
-    of the half-width ``a(P)`` then, so ``delta = lambda int_P0^P C_L(a(P')) dP'`` (eq D13, the cells that
-    entered carrying their displacement at entry in ``delta_Q``): to 1e-3 on 256 cells (the half-width of
-    the cells in contact moves by pairs; 2e-4 on 1024), where ``C_L(a(P)) Q`` alone is 2.6 % short (eq D14)."""
+    of the half-width ``a(P)`` then, so ``delta = lambda int_P0^P C_L(a(P')) dP'`` (eq D14; eq D13 counts the
+    displacement at entry of the cells that entered in ``delta_Q``): to 1e-3 on 256 cells (the half-width of
+    the cells in contact moves by pairs; 2e-4 on 1024), where ``C_L(a(P)) Q`` alone is 2.6 % short."""
     lam = 0.4
     P = np.linspace(1e5, 1.5e5, 6)
     history = fr.History(lam * (P - P[0]), np.zeros(P.size), [0, P.size - 1], None, P)
