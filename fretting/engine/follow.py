@@ -64,13 +64,14 @@ def displaced(model, state, loads, step=None):
     from `state`; `loads` as they are where ``delta`` is None.
 
     ``delta(Q) = (C_L + C) Q + delta_Q(Q)`` (`fretting.physics.contact.Contact.displacement`, eq D4
-    of docs/theory/displacement.md), ``delta_Q(Q)`` that of the model's increment from `state` to
-    ``Q`` with the loads' ``sigma``: a trial increment, which leaves `state` as it is (models are
-    pure). ``delta(Q)`` increases with ``Q``, so ``Q`` is bracketed between the state's ``Q`` and
-    ``+-(1 - BRACKET)`` times the friction force and found by Brent's method to the precision of a
-    float. Loads that hold the state's ``delta``, ``sigma`` and ``P`` hold its ``Q``. The increment
-    to the loads returned is the force-controlled one (`advance`), so the memory is carried as
-    under force control. `step` names the step in an error.
+    of docs/theory/displacement.md), ``C_L`` of the half-width under the step's ``P`` and
+    ``delta_Q(Q)`` that of the model's increment from `state` to ``Q`` with the loads' ``sigma`` and
+    ``P``: a trial increment, which leaves `state` as it is (models are pure). ``delta(Q)`` increases
+    with ``Q``, so ``Q`` is bracketed between the state's ``Q`` and ``+-(1 - BRACKET)`` times the
+    friction force of the step's ``P`` and found by Brent's method to the precision of a float.
+    Loads that hold the state's ``delta``, ``sigma`` and ``P`` hold its ``Q``. The increment to the
+    loads returned is the force-controlled one (`advance`), so the memory is carried as under force
+    control. `step` names the step in an error.
 
     A model that slides (`Model.slides`, the exact model) is tried at ``+-f P`` itself where the
     bracket holds no root: ``Q`` is found between the bracket's end and ``+-f P``, or, beyond
@@ -80,7 +81,7 @@ def displaced(model, state, loads, step=None):
     Raises
     ------
     HistoryError
-        Where the contact has no datum, or the normal load varies (not yet followed).
+        Where the contact has no datum, or its contact under the step's ``P`` reaches the datum.
     GrossSlipError
         Where ``delta`` is not reached below the friction force by a model that does not slide.
     """
@@ -92,21 +93,24 @@ def displaced(model, state, loads, step=None):
         raise HistoryError(
             f"{where}the history prescribes delta, but the contact has no datum: give fretting.Contact(..., datum=L)"
         )
-    if loads.P is not None:
-        raise HistoryError(f"{where}delta under a varying normal load P is not followed yet: give Q")
+    try:
+        contact.compliance_under(loads.P)
+    except ValueError as error:
+        raise HistoryError(f"{where}{error}") from None
     held = state.loads
     if (held.delta, held.sigma, held.P) == (loads.delta, loads.sigma, loads.P):
         return replace(loads, Q=held.Q)
-    sliding = model.sliding_force()
+    sliding = model.sliding_force(loads.normal(contact))
 
     def missed(Q):
-        """``delta(Q) - delta`` [m] of the trial increment to `Q` [N/m]."""
-        trial = model.increment(state, Loads(Q, loads.sigma))
-        return contact.displacement(Q, model.delta_Q(trial)) - loads.delta
+        """``delta(Q) - delta`` [m] of the trial increment to `Q` [N/m] under the step's ``sigma`` and ``P``."""
+        trial = model.increment(state, Loads(Q, loads.sigma, loads.P))
+        return contact.displacement(Q, model.delta_Q(trial), loads.P) - loads.delta
 
-    start = missed(held.Q)
+    begin = min(max(held.Q, -sliding), sliding)  # the state's Q, or the step's friction force where P fell
+    start = missed(begin)
     if start == 0:
-        return replace(loads, Q=held.Q)
+        return replace(loads, Q=begin)
     end = math.copysign(sliding * (1 - BRACKET), -start)
     eps = np.finfo(float).eps
     if missed(end) * start > 0:
@@ -115,8 +119,8 @@ def displaced(model, state, loads, step=None):
         limit = math.copysign(sliding, end)
         if missed(limit) * start > 0:
             return replace(loads, Q=limit)  # gross slip
-        held, end = replace(held, Q=end), limit
-    Q = brentq(missed, held.Q, end, xtol=eps * sliding, rtol=4 * eps)
+        begin, end = end, limit
+    Q = brentq(missed, begin, end, xtol=eps * sliding, rtol=4 * eps)
     return replace(loads, Q=float(Q))
 
 
@@ -127,7 +131,7 @@ def slid(model, state, loads):
     within its tolerance, or the step holds the state's delta."""
     contact, force = model.contact, loads.force()
     reached = model.increment(state, force)
-    du = loads.delta - contact.displacement(loads.Q, model.delta_Q(reached))
+    du = loads.delta - contact.displacement(loads.Q, model.delta_Q(reached), loads.P)
     return model.slide(state, force, du if du * loads.Q > 0 else 0.0)
 
 

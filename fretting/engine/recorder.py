@@ -248,7 +248,7 @@ class Recorder:
         self.fields["Q"][k] = state.Q  # the history's, or the Q found for its delta
         self.fields["delta_Q"][k] = delta_Q = model.delta_Q(outcome)
         if "delta" in self.fields:
-            self.fields["delta"][k] = model.contact.displacement(state.Q, delta_Q)
+            self.fields["delta"][k] = model.contact.displacement(state.Q, delta_Q, state.P)
             self.fields["regime"][k] = regime(model, outcome, state)
         self.fields["delta_sigma"][k] = model.delta_sigma(outcome)
         self.zones[k] = model.stick_zones(outcome, state)

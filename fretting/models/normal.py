@@ -80,7 +80,7 @@ from scipy import linalg, optimize
 
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.method4 import extrapolated_end, on_the_point, stick_zones
-from fretting.models.solver import Stiffness, solve_increment
+from fretting.models.solver import Increment, Stiffness, solve_increment
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
@@ -339,20 +339,34 @@ class NormalModel(Model):
         after = (loads.Q, loads.sigma, loads.normal(self.contact))
         if abs(after[0]) >= self.sliding_force(after[2]):  # on the point of sliding
             return self.slide(state, loads, 0.0)
+        return self._in_parts(state, after, guess)
+
+    def _in_parts(self, state, after, guess=None, du=None):
+        """The increment from `state` to the loads `after`, ``(Q, sigma, P)``, in parts (`increment`). `du`
+        [m]: the loads are on the point of sliding (`slide`), and so is every part from the first that ends
+        there, on the point of sliding under its own loads (`on_the_point`), then slid by its share of the
+        uniform `du`, in proportion to its change of the loads: all of it in the last part where `state`
+        does not slide in the direction of ``Q``."""
         if guess is None:
             guess = np.sign(state.slip - state.episode_start).astype(np.int8)
         before = (state.Q, state.sigma, self.load(state))
         locked = self.forces(state.slip, *before)
         slip, ds, density = state.slip, np.zeros(self.x.size), np.zeros(self.x.size)
-        g, dissipation, P_begin = locked, 0.0, before[2]
+        g, dissipation, P_begin, done = locked, 0.0, before[2], 0.0  # done: the fraction of the increment solved
+        sign = np.sign(after[0])
+        sliding = du is not None and sign * before[0] >= self.sliding_force(before[2])  # every part slides
         for fraction, m in self.parts(before[2], after[2]):
             Q_, sigma_, P_ = (
                 end if fraction == 1 else begin + fraction * (end - begin)
                 for begin, end in zip(before, after, strict=True)
             )
             nodes, limit = self.cells(m), self.contact.f * self.force(P_, m)
-            g_stuck = Q_ * self.punch(m) + self.stiffness(m).G @ self.bulk_slip(sigma_)[nodes]
-            solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes])
+            if du is not None and (sliding or fraction == 1):
+                share = du * (fraction - done) if sliding else du
+                solved = self._on_the_point(slip, sign, sigma_, m, limit, share)
+            else:
+                g_stuck = Q_ * self.punch(m) + self.stiffness(m).G @ self.bulk_slip(sigma_)[nodes]
+                solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes])
             g_begin, slip, g = g, slip.copy(), np.zeros(self.x.size)
             slip[nodes], g[nodes] = solved.slip, solved.g
             ds[nodes] += solved.ds
@@ -360,32 +374,33 @@ class NormalModel(Model):
             mean = (start + limit[nodes]) / 2  # trapezoidal rule in P
             density[nodes] += mean / self.h * np.abs(solved.ds)
             dissipation += float(np.dot(mean, np.abs(solved.ds)))
-            P_begin = P_
+            P_begin, done = P_, fraction
             slip = self.free_surface(slip, g, sigma_, m)
-        edges = self.edges_slip(before, after)
+        edges = (True, True) if du is not None else self.edges_slip(before, after)
+        slid = state.slid if du is None else state.slid + du
         return NormalOutcome(
-            g, ds, slip, dissipation, slid=state.slid, P=after[2], density=density, edges=edges, locked=locked
+            g, ds, slip, dissipation, slid=slid, P=after[2], density=density, edges=edges, locked=locked
         )
 
-    #: The cells follow gross slip under a constant ``P`` (`slide`); the engine prescribes no displacement
-    #: under a varying one (docs/theory/displacement.md#sliding-sigma).
+    #: The cells follow gross slip (`slide`), under a constant or a varying ``P``
+    #: (docs/theory/displacement.md#sliding-sigma, #varying-load).
     slides = True
 
     def slide(self, state, loads, du):
-        """`Outcome` of gross slip under the contact's ``P``: the cells in contact on the point of sliding in the
-        direction of ``loads.Q`` under ``loads.sigma`` (`fretting.models.method4.on_the_point`), slid by the
-        uniform `du` [m], the free surface outside them carried as by `increment`."""
+        """`Outcome` of gross slip: the cells in contact on the point of sliding in the direction of ``loads.Q``
+        under ``loads.sigma`` (`fretting.models.method4.on_the_point`), slid by the uniform `du` [m], the free
+        surface outside them carried as by `increment`. Where the increment changes ``P``, in its parts
+        (`_in_parts`), each part that slides ending on the point of sliding under its own load."""
         P = loads.normal(self.contact)
+        if P != self.load(state):
+            return self._in_parts(state, (loads.Q, loads.sigma, P), du=du)
         m, sign = self.pairs(P), np.sign(loads.Q)
         nodes, limit = self.cells(m), self.contact.f * self.force(P, m)
         slip = state.slip.copy()
         if (loads.Q, loads.sigma) == (state.Q, state.sigma):  # on the point of sliding already
             slip[nodes] += du
         else:
-            stiffness = self.stiffness(m)
-            G_sigma = stiffness.G @ self.bulk_slip(loads.sigma)[nodes]
-            load = sign * limit[nodes].sum() * self.punch(m) + G_sigma - sign * limit[nodes]
-            slip[nodes] = on_the_point(stiffness, load, state.slip[nodes], sign) + du
+            slip[nodes] = self._on_the_point(state.slip, sign, loads.sigma, m, limit, du).slip
         g, ds = np.zeros(self.x.size), np.zeros(self.x.size)
         g[nodes], ds[nodes] = sign * limit[nodes], slip[nodes] - state.slip[nodes]
         locked = self.forces(state.slip, state.Q, state.sigma, self.load(state))
@@ -395,6 +410,16 @@ class NormalModel(Model):
         return NormalOutcome(
             g, ds, slip, dissipation, slid=state.slid + du, P=P, density=density, edges=(True, True), locked=locked
         )
+
+    def _on_the_point(self, slip, sign, sigma, m, limit, du):
+        """`Increment` (``slip``, ``ds``, ``g`` [m, m, N/m] at the `m` pairs in contact) of the increment from the nodal
+        `slip` to the contact on the point of sliding in the direction `sign` of ``Q`` under `sigma` [Pa] and the
+        nodal friction limits `limit` [N/m] (`fretting.models.method4.on_the_point`), slid by the uniform `du` [m]."""
+        nodes, stiffness = self.cells(m), self.stiffness(m)
+        G_sigma = stiffness.G @ self.bulk_slip(sigma)[nodes]
+        load = sign * limit[nodes].sum() * self.punch(m) + G_sigma - sign * limit[nodes]
+        after = on_the_point(stiffness, load, slip[nodes], sign) + du
+        return Increment(after, after - slip[nodes], sign * limit[nodes], 0)
 
     def edges_slip(self, before, after):
         """Whether each edge of the contact (``x = -a``, ``x = a``) slips in the increment from the loads

@@ -187,11 +187,33 @@ class Contact:
             f"specimen={self.specimen!r}{nu}{datum})"
         )
 
-    def displacement(self, Q: float, delta_Q: float) -> float:
+    def displacement(self, Q: float, delta_Q: float, P: float | None = None) -> float:
         """Tangential displacement ``delta`` [m] of the pad relative to the specimen at the datum under
-        the shear force `Q` [N/m] with the slip part `delta_Q` [m]: ``(C_L + C) Q + delta_Q``
-        (docs/theory/displacement.md, eq D4). Only for a contact with a datum."""
-        return self.displacement_compliance * Q + delta_Q
+        the shear force `Q` [N/m] with the slip part `delta_Q` [m] and the normal load `P` [N/m] (None:
+        the contact's): ``(C_L + C) Q + delta_Q`` (docs/theory/displacement.md, eq D4), ``C_L`` of the
+        half-width under `P` (`compliance_under`). Only for a contact with a datum."""
+        return self.compliance_under(P) * Q + delta_Q
+
+    def compliance_under(self, P: float | None = None) -> float:
+        """``d delta / dQ`` [m per N/m] of the fully stuck contact at the datum, with the rig, under the
+        normal load `P` [N/m] (None: the contact's, `displacement_compliance`): `stuck_compliance` of
+        ``L`` and the half-width ``a(P)`` plus ``C`` (docs/theory/displacement.md#varying-load). Only
+        for a contact with a datum.
+
+        Raises
+        ------
+        ValueError
+            Where the contact under `P` reaches the datum, ``a(P) >= L``.
+        """
+        if P is None or P == self.P:
+            return self.displacement_compliance
+        a = float(self.profile.half_width(P, self.E_star)[0])
+        if not a < self.datum:
+            raise ValueError(
+                f"the normal load P = {P!r} N/m forms a contact of half-width a = {a!r} m, "
+                f"not within the datum L = {self.datum!r} m; expected a datum beyond the largest contact"
+            )
+        return stuck_compliance(self.datum, a, self.E_star) + self.compliance
 
     def pressure(self, x: ArrayLike) -> np.ndarray:
         """Contact pressure ``p(x)`` [Pa] at positions `x` [m]; zero outside the contact."""
