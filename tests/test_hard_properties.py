@@ -30,6 +30,9 @@ def scenes(draw, kinds):
 # ----------------------------------------------------------------------------------------------
 
 
+#: The ``rtol`` of the default's adapted mesh in `test_friction_conditions_on_random_profiles`.
+PROPERTY_RTOL = 1e-3
+
 loads = st.lists(st.tuples(st.floats(-0.97, 0.97), st.floats(-3.0, 3.0)), min_size=1, max_size=6)
 
 
@@ -38,10 +41,14 @@ loads = st.lists(st.tuples(st.floats(-0.97, 0.97), st.floats(-3.0, 3.0)), min_si
 def test_friction_conditions_on_random_profiles(scene, vertices, steps):
     """|q| <= f p, q = f p sign(ds) where slipping, ds = 0 exactly where stuck, dissipation >= 0
     and exactly 0 when nothing slipped: any path, any profile. (The stick set of one large
-    increment can shrink to a point that no node hits, so no stuck node is asked for.)"""
+    increment can shrink to a point that no node hits, so no stuck node is asked for.)
+
+    The conditions are the solver's on any mesh, so the mesh is adapted to ``rtol = PROPERTY_RTOL``:
+    the default's meshes of about 3,000 nodes on the rounded and asymmetric flats cost up to 35 s
+    an example, and `tests/test_hard_cases.py` checks these conditions on them."""
     psi, tau = np.array([(0.0, 0.0), *vertices]).T
     history = fr.History.piecewise_linear(psi * scene.f * scene.P, tau * scene.f * scene.p0, steps)
-    result = simulate_as_a_user(scene, history)
+    result = simulate_as_a_user(scene, history, rtol=PROPERTY_RTOL)
     assert_friction_conditions(result, scene)
     assert_zone_ends_are_consistent(result)
 
