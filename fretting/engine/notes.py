@@ -4,12 +4,12 @@ A cycle whose loads vary on a contact whose pressure vanishes at its edges slips
 stuck traction of eqs (9) and (20), ``q = (Q / pi + sigma x / 4) / sqrt(a^2 - x^2)``, is unbounded at
 the edges while ``f p`` falls to zero, so every change of ``Q`` or ``sigma`` makes slip zones at the
 edges. On Hertz a range ``Delta Q`` of ``Q`` slips over ``a - c = a (1 - sqrt(1 - Delta Q / (2 f P)))``
-at an edge (Mindlin-Deresiewicz; Johnson, Contact Mechanics, sec. 7.2), ``~ a Delta Q / (4 f P)`` for a
-small range. A discretised model resolves such a cycle only with enough nodes in those zones:
-`unresolved_cycles` names the cycles whose slip zones hold fewer than `SLIP_NODES` nodes of a model
-that does not adapt its nodes to the energy (a grid, a given mesh), and those of any model that
-dissipated exactly nothing; the run records the note (``model_unresolved``) and says it, as it does
-a model's fallback.
+at an edge (Mindlin & Deresiewicz 1953, `fretting.physics.closed_forms.mindlin_deresiewicz_traction`),
+``~ a Delta Q / (4 f P)`` for a small range. A discretised model resolves such a cycle only with enough
+nodes in those zones: `unresolved_cycles` names the cycles whose slip zones (so estimated, or as
+recorded where wider) hold fewer than `SLIP_NODES` nodes of a model that does not adapt its nodes to
+the energy (a grid, a given mesh), and those of any model that dissipated exactly nothing; the run
+records the note (``model_unresolved``) and says it, as it does a model's fallback.
 """
 
 from __future__ import annotations
@@ -19,7 +19,16 @@ import numpy as np
 from fretting.physics.profiles import profile_class, recorded_profile
 from fretting.results.io import open_result
 
-__all__ = ["SLIP_NODES", "UNRESOLVED", "cycle_ranges", "edge_slip_nodes", "noted", "parts_note", "unresolved_cycles"]
+__all__ = [
+    "SLIP_NODES",
+    "UNRESOLVED",
+    "cycle_ranges",
+    "edge_slip_nodes",
+    "noted",
+    "observed_slip_nodes",
+    "parts_note",
+    "unresolved_cycles",
+]
 
 #: Attribute of a result that holds the note of `unresolved_cycles`.
 UNRESOLVED = "model_unresolved"
@@ -77,7 +86,20 @@ def edge_slip_nodes(attrs, x, p, ranges):
     return np.stack(counts, axis=1)[np.arange(len(ranges)), wider]
 
 
-def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None):
+def observed_slip_nodes(stick, cycle, numbers):
+    """The most nodes slipping in a row from either edge at a recorded step of each cycle of `numbers`,
+    from the recorded `stick` (bool, shape (steps, nodes)) of steps of load cycle `cycle` (shape
+    (steps,)): ndarray of int, shape (len(numbers),), 0 for a cycle with no step recorded."""
+    stick = np.asarray(stick, dtype=bool).reshape(len(cycle), -1)
+    from_left = np.where(stick.any(axis=1), np.argmax(stick, axis=1), stick.shape[1])
+    from_right = np.where(stick.any(axis=1), np.argmax(stick[:, ::-1], axis=1), stick.shape[1])
+    observed = np.zeros(len(numbers), dtype=int)
+    known = np.isin(cycle, numbers)
+    np.maximum.at(observed, np.searchsorted(numbers, cycle[known]), np.maximum(from_left, from_right)[known])
+    return observed
+
+
+def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None, observed=None):
     """The note [str] of the cycles whose loads move that the model does not resolve, or None.
 
     Parameters
@@ -92,7 +114,7 @@ def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None):
     x, p : array_like, shape (nodes,), optional
         The model's nodes [m] and the pressure there [Pa]: with them, the cycles of a model with fixed
         nodes (`FIXED_NODES`) under a constant ``P`` whose slip zone holds fewer than `SLIP_NODES`
-        (`edge_slip_nodes`) are named too.
+        (`edge_slip_nodes`, or the `observed_slip_nodes` `observed` where more) are named too.
 
     Returns
     -------
@@ -110,7 +132,10 @@ def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None):
     few = np.zeros_like(silent)
     if x is not None and attrs["model"] in FIXED_NODES and "rtol" not in attrs:
         counted = varied & (ranges[:, 2] == 0) & ~silent
-        few[counted] = edge_slip_nodes(attrs, x, np.asarray(p), ranges[counted]) < SLIP_NODES
+        nodes = edge_slip_nodes(attrs, x, np.asarray(p), ranges[counted])
+        if observed is not None:
+            nodes = np.maximum(nodes, np.asarray(observed)[counted])
+        few[counted] = nodes < SLIP_NODES
     nodes = f"the {attrs['model']} model's {attrs['nodes']} nodes"
     said = []
     if silent.any():
@@ -121,7 +146,8 @@ def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None):
     if few.any():
         said.append(
             f"{_cycles(numbers[few])} slipped over fewer than {SLIP_NODES} of {nodes} at an edge "
-            "(Mindlin-Deresiewicz's width of their load range), too few for their energy to be within 1e-4"
+            "(Mindlin-Deresiewicz's width of their load range, or their recorded slip where wider), too few for "
+            "their energy to be within 1e-4"
         )
     if not said:
         return None
@@ -140,9 +166,11 @@ def noted(result, history):
     if "cycle_number" not in result.dims:
         return result
     ranges = cycle_ranges(history, result.attrs["a"])[result.cycle_number.values - 1]
+    numbers = result.cycle_number.values
     pressure = result.p.values if result.p.dims == ("x",) else None
+    observed = observed_slip_nodes(result.stick.values, result.cycle.values, numbers)
     note = unresolved_cycles(
-        result.attrs, result.cycle_number.values, result.cycle_dissipation.values, ranges, result.x.values, pressure
+        result.attrs, numbers, result.cycle_dissipation.values, ranges, result.x.values, pressure, observed
     )
     return result if note is None else result.assign_attrs({UNRESOLVED: note})
 
@@ -151,17 +179,21 @@ def parts_note(parts, ranges):
     """The note of `unresolved_cycles` of a run kept in the result files `parts` (in order; a cycle that
     spans two parts is the later part's), whose cycles' loads range as `ranges` (`cycle_ranges`) says;
     or None."""
-    cycles, attrs, x, p = {}, None, None, None
+    cycles, observed, attrs, x, p = {}, {}, None, None, None
     for part in parts:
         with open_result(part) as opened:
             if attrs is None:
                 attrs, x = dict(opened.attrs), opened.x.values
                 p = opened.p.values if "p" in opened and opened.p.dims == ("x",) else None
             if "cycle_number" in opened.dims:
-                rows = zip(opened.cycle_number.values.tolist(), opened.cycle_dissipation.values.tolist(), strict=True)
-                cycles |= dict(rows)
+                numbers = opened.cycle_number.values
+                cycles |= dict(zip(numbers.tolist(), opened.cycle_dissipation.values.tolist(), strict=True))
+                seen = observed_slip_nodes(opened.stick.values, opened.cycle.values, numbers)
+                for number, count in zip(numbers.tolist(), seen.tolist(), strict=True):
+                    observed[number] = max(observed.get(number, 0), count)
     if not cycles:
         return None
     numbers = np.array(sorted(cycles))
     dissipation = [cycles[number] for number in numbers]
-    return unresolved_cycles(attrs, numbers, dissipation, ranges[numbers - 1], x, p)
+    seen = [observed[number] for number in numbers]
+    return unresolved_cycles(attrs, numbers, dissipation, ranges[numbers - 1], x, p, seen)

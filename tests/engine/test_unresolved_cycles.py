@@ -7,7 +7,7 @@ from conftest import HERTZ_TOML
 
 import fretting as fr
 from fretting import cli
-from fretting.engine.notes import SLIP_NODES, UNRESOLVED, cycle_ranges, edge_slip_nodes
+from fretting.engine.notes import SLIP_NODES, UNRESOLVED, cycle_ranges, edge_slip_nodes, observed_slip_nodes
 from fretting.results.io import load
 
 CONTACT = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.7, 1e5)
@@ -67,10 +67,12 @@ def test_cycles_of_too_few_nodes_in_their_slip_zones_are_said_and_the_others_wit
     result, error = energy_error(model, amplitude)
     note = result.attrs.get(UNRESOLVED, "")
     named = "(cycle 1 to 2) slipped over fewer than" in note
-    nodes = edge_slip_nodes(
-        result.attrs, result.x.values, result.p.values, np.array([[2.0, 2.0, 0.0]]) * amplitude * CONTACT.f * CONTACT.P
-    )
-    assert named == said == ("rtol" not in result.attrs and nodes[0] < SLIP_NODES)
+    ranges = np.array([[2.0, 2.0, 0.0]]) * amplitude * CONTACT.f * CONTACT.P
+    estimated = edge_slip_nodes(result.attrs, result.x.values, result.p.values, ranges)[0]
+    recorded = observed_slip_nodes(result.stick.values, result.cycle.values, np.array([2]))[0]
+    # on Hertz under Q alone, the small-range estimate is a little short of Mindlin-Deresiewicz's zone
+    assert estimated - 2 <= recorded <= 1.1 * estimated + 2
+    assert named == said == ("rtol" not in result.attrs and max(estimated, recorded) < SLIP_NODES)
     assert named or abs(error) < 1e-4
 
 
