@@ -6,9 +6,9 @@ Cycles of ``Q = A f P sin`` (two cycles of 32 steps; the second's energy) on the
 of 800 nodes equally spaced in ``theta`` and the mesh adapted to the energy (default rtol), against the
 exact model of ``Q`` alone. Each row: the nodes in the cycle's estimated slip zone
 (`fretting.engine.notes.edge_slip_nodes`, or the recorded slip's where wider), whether the result's
-``model_unresolved`` names the cycle, and ``W / W_exact - 1``. Then the largest error of the cycles not flagged (to be within the README's
-1e-4) and the smallest of those flagged (the criterion is on the safe side: a cycle of few nodes may
-happen to err by less).
+``model_unresolved`` names the cycle, and ``W / W_exact - 1``. Then the largest error of the cycles not
+flagged (to be within the README's 1e-4) and the smallest of those flagged (the criterion is on the safe
+side: a cycle of few nodes may happen to err by less).
 
 Run:  python benchmarks/unresolved_cycles.py
 """
