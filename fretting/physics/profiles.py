@@ -469,21 +469,26 @@ class Gap(Profile):
                     f"{spacing:.6g} m of the table's rows there, where the spline's slope is lost to rounding: "
                     "tabulate the gap finer where the bodies touch"
                 )
-        cusp = self.undeclared_cusp(a, centre)
-        if cusp is not None:
-            raise ValueError(
-                f"the gap's curvature is unbounded at x = {cusp:.6g} m in the contact [{low:.6g}, {high:.6g}] m "
-                f"(a cusp or a corner), where the pressure would come out low: declare it, Gap(h0, slope, "
-                f"breakpoints=[{cusp:.6g}])"
-            )
-        jump = self.undeclared_jump(a, centre)
-        if jump is not None:
-            raise ValueError(
-                f"the table's curvature jumps at x = {jump:.6g} m in the contact [{low:.6g}, {high:.6g}] m, where one "
-                f"spline across it rings and the traction next to it errs: declare it, Gap.from_table(x, h0, "
-                f"breakpoints=[..., {jump:.6g}]) (breakpoints = [..., {jump:.6g}] in a history file), or leave "
-                "breakpoints out to use those the table shows"
-            )
+        undeclared = (
+            (
+                self.undeclared_cusp,
+                "the gap's curvature is unbounded",
+                " (a cusp or a corner), where the pressure "
+                "would come out low: declare it, Gap(h0, slope, breakpoints=[{x}])",
+            ),
+            (
+                self.undeclared_jump,
+                "the table's curvature jumps",
+                ", where one spline across it rings and the "
+                "traction next to it errs: declare it, Gap.from_table(x, h0, breakpoints=[..., {x}]) (breakpoints = "
+                "[..., {x}] in a history file), or leave breakpoints out to use those the table shows",
+            ),
+        )
+        for find, problem, remedy in undeclared:
+            x = find(a, centre)
+            if x is not None:
+                where = f"at x = {x:.6g} m in the contact [{low:.6g}, {high:.6g}] m"
+                raise ValueError(f"{problem} {where}{remedy.format(x=f'{x:.6g}')}")
         t = np.cos((np.arange(CHECK_POINTS) + 0.5) * np.pi / CHECK_POINTS)[::-1]
         p = self.pressure(t, a, centre, P, E_star)
         negative = np.flatnonzero(p < -NEGATIVE_PRESSURE * p.max())
