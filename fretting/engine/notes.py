@@ -90,7 +90,7 @@ def observed_slip_nodes(stick, cycle, numbers):
     """The most nodes slipping in a row from either edge at a recorded step of each cycle of `numbers`,
     from the recorded `stick` (bool, shape (steps, nodes)) of steps of load cycle `cycle` (shape
     (steps,)): ndarray of int, shape (len(numbers),), 0 for a cycle with no step recorded."""
-    stick = np.asarray(stick, dtype=bool).reshape(len(cycle), -1)
+    stick = np.asarray(stick, dtype=bool)
     from_left = np.where(stick.any(axis=1), np.argmax(stick, axis=1), stick.shape[1])
     from_right = np.where(stick.any(axis=1), np.argmax(stick[:, ::-1], axis=1), stick.shape[1])
     observed = np.zeros(len(numbers), dtype=int)

@@ -95,3 +95,11 @@ def test_the_command_line_says_the_note_and_the_file_records_it(tmp_path, monkey
     err = capsys.readouterr().err
     assert f"fretting: note: {said}" in err
     assert load(tmp_path / "tiny.h5").attrs[UNRESOLVED] in err
+
+
+def test_the_recorded_slip_zone_of_a_cycle_is_its_longest_run_from_an_edge():
+    """Per cycle, the most nodes slipping in a row from either edge at its recorded steps; 0 where none is
+    recorded (a run recording no step)."""
+    stick = np.array([[0, 0, 1, 1, 0], [1, 1, 1, 0, 0], [0, 1, 1, 1, 1]], dtype=bool)
+    assert observed_slip_nodes(stick, np.array([1, 1, 2]), np.array([1, 2, 3])).tolist() == [2, 1, 0]
+    assert observed_slip_nodes(np.zeros((0, 5), dtype=bool), np.zeros(0, int), np.array([1, 2])).tolist() == [0, 0]
