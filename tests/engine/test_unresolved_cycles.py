@@ -52,10 +52,10 @@ def energy_error(model, amplitude):
     ("model", "amplitude", "said"),
     [
         (fr.models.Grid(384), 1e-2, True),  # 12 nodes in the slip zone: 6.2e-3
-        (fr.models.Grid(384), 0.4, True),  # 79: 2.6e-4
+        (fr.models.Grid(384), 0.4, True),  # 84: 2.6e-4
         (fr.models.Grid(1536), 2e-2, True),  # 69: 1.2e-4
-        (fr.models.Mesh(theta=np.linspace(0, np.pi, 800)), 0.1, True),  # 80: 1.4e-4
-        (fr.models.Mesh(theta=np.linspace(0, np.pi, 800)), 0.2, False),  # 114: 6.9e-5
+        (fr.models.Mesh(theta=np.linspace(0, np.pi, 800)), 0.1, True),  # 82: 1.4e-4
+        (fr.models.Mesh(theta=np.linspace(0, np.pi, 800)), 0.2, False),  # 118: 6.9e-5
         (fr.models.Grid(1536), 5e-2, False),  # 110: 7.7e-5
         (fr.models.Mesh(), 1e-4, False),  # adapted to the energy, not counted: 1.7e-5
     ],
