@@ -34,7 +34,7 @@ from filelock import FileLock, Timeout
 
 from fretting.engine.choice import ModelFallbackWarning
 from fretting.engine.follow import skippable
-from fretting.engine.notes import UNRESOLVED, parts_note, varied_cycles
+from fretting.engine.notes import UNRESOLVED, cycle_ranges, parts_note
 from fretting.engine.recorder import (
     CYCLE_PEAKS_TALLIED,
     CycleFields,
@@ -275,8 +275,10 @@ def run_file(
     >>> from fretting.loading.examples import example_path
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     run = fr.run_file(example_path("hertz_shear_cycling"), Path(folder) / "result.nc", fr.models.Grid(32))
-    ...     print(run.output.name, run.output.is_file(), run.result.sizes["cycle_number"], run.notes)
-    result.nc True 5 []
+    ...     print(run.output.name, run.output.is_file(), run.result.sizes["cycle_number"], len(run.notes))
+    result.nc True 5 1
+    >>> run.notes[0].startswith("5 load cycles (cycle 1 to 5) slipped over fewer than 100 of the grid model's 32")
+    True
     """
     source = read_history_source(history_path)
     policy = CycleFields.parse(cycle_fields, source.history.cycle_count)
@@ -332,11 +334,11 @@ def run_file(
             except GrossSlipError:
                 shutil.rmtree(checkpoint, ignore_errors=True)  # resuming would only reach it again
                 raise
-            varied = varied_cycles(history)
+            ranges = cycle_ranges(history, source.contact.a)
             del source, history  # the loads of every step: the result holds what it records
             if len(part):
                 _save_part(part, checkpoint, attributes)
-            note = parts_note(_parts(checkpoint), varied)
+            note = parts_note(_parts(checkpoint), ranges)
             if note is not None:
                 notes.append(note)
                 attributes[UNRESOLVED] = note

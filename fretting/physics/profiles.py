@@ -367,8 +367,9 @@ class Gap(Profile):
         (tests/models/test_galerkin.py::test_rounded_flat). Neither is done for a point it is not told
         of: an undeclared cusp in the contact, where the pressure would come out low (by about a percent
         at ``|x|^(3/2)``), is refused with its position when the `Contact` is built (`undeclared_cusp`;
-        tests/physics/test_profiles.py::test_the_pressure_at_a_cusp_is_the_closed_form); an undeclared
-        jump of the curvature is not found. A table finds its own (`from_table`).
+        tests/physics/test_profiles.py::test_the_pressure_at_a_cusp_is_the_closed_form); so is an undeclared
+        jump of a table's curvature (`undeclared_jump`), while one in a gap of functions is not found. A
+        table finds its own (`from_table`).
 
     Notes
     -----
@@ -411,7 +412,8 @@ class Gap(Profile):
         of a flat, two radii meeting) it rings, and the pressure and traction next to the jump with it.
         The table is therefore interpolated by one spline between each two `breakpoints` (`_Segments`),
         each carried on to the breakpoints from its side. `breakpoints` None: those the table shows
-        (`table_breakpoints`); a sequence, those (empty: none, one spline over the whole table).
+        (`table_breakpoints`); a sequence, those (empty: none, one spline over the whole table); a jump the
+        rows show that is not among them is refused when the `Contact` is built (`undeclared_jump`).
         """
         from scipy.interpolate import CubicSpline
 
@@ -445,7 +447,8 @@ class Gap(Profile):
 
     def check(self, a: float, centre: float, P: float, E_star: float) -> None:  # noqa: B027 (a default: closed-form profiles pass)
         """Raise ValueError naming where the contact fails: outside the table, too narrow for its rows
-        (`TABLE_RESOLUTION`), an undeclared cusp (`undeclared_cusp`), or a negative pressure.
+        (`TABLE_RESOLUTION`), an undeclared cusp (`undeclared_cusp`) or jump of a table's curvature
+        (`undeclared_jump`), or a negative pressure.
 
         The pressure is sampled at `CHECK_POINTS` Chebyshev angles; one below `NEGATIVE_PRESSURE`
         of the largest is negative. For a table, the message starts with the first knot in the
@@ -466,13 +469,26 @@ class Gap(Profile):
                     f"{spacing:.6g} m of the table's rows there, where the spline's slope is lost to rounding: "
                     "tabulate the gap finer where the bodies touch"
                 )
-        cusp = self.undeclared_cusp(a, centre)
-        if cusp is not None:
-            raise ValueError(
-                f"the gap's curvature is unbounded at x = {cusp:.6g} m in the contact [{low:.6g}, {high:.6g}] m "
-                f"(a cusp or a corner), where the pressure would come out low: declare it, Gap(h0, slope, "
-                f"breakpoints=[{cusp:.6g}])"
-            )
+        undeclared = (
+            (
+                self.undeclared_cusp,
+                "the gap's curvature is unbounded",
+                " (a cusp or a corner), where the pressure "
+                "would come out low: declare it, Gap(h0, slope, breakpoints=[{x}])",
+            ),
+            (
+                self.undeclared_jump,
+                "the table's curvature jumps",
+                ", where one spline across it rings and the "
+                "traction next to it errs: declare it, Gap.from_table(x, h0, breakpoints=[..., {x}]) (breakpoints = "
+                "[..., {x}] in a history file), or leave breakpoints out to use those the table shows",
+            ),
+        )
+        for find, problem, remedy in undeclared:
+            x = find(a, centre)
+            if x is not None:
+                where = f"at x = {x:.6g} m in the contact [{low:.6g}, {high:.6g}] m"
+                raise ValueError(f"{problem} {where}{remedy.format(x=f'{x:.6g}')}")
         t = np.cos((np.arange(CHECK_POINTS) + 0.5) * np.pi / CHECK_POINTS)[::-1]
         p = self.pressure(t, a, centre, P, E_star)
         negative = np.flatnonzero(p < -NEGATIVE_PRESSURE * p.max())
@@ -514,6 +530,24 @@ class Gap(Profile):
         k = cusps[np.argmax(quotient[cusps])]
         digits = range(int(np.floor(-np.log10(a))) - 1, 340)
         return next(float(np.round(low[k], d)) + 0.0 for d in digits if low[k] <= np.round(low[k], d) <= high[k])
+
+    def undeclared_jump(self, a: float, centre: float) -> float | None:
+        """Position [m] in the contact ``centre +- a`` [m] where the curvature of a table jumps
+        (`table_breakpoints` of its rows) and no breakpoint is declared within a row's spacing of it;
+        None where there is none, and for a gap of functions.
+
+        The spline is continuous in its curvature across an undeclared jump, so it rings there and the
+        pressure and traction next to the jump with it (tests/physics/test_profiles.py).
+        """
+        if self.table is None:
+            return None
+        x = self.table[0]
+        jumps = table_breakpoints(*self.table)
+        spacing = np.diff(x)[np.clip(np.searchsorted(x, jumps) - 1, 0, x.size - 2)]
+        declared = np.asarray(self.breakpoints, dtype=float)
+        away = np.abs(jumps[:, None] - declared).min(axis=1, initial=np.inf) > spacing
+        undeclared = jumps[away & (np.abs(jumps - centre) < a)]
+        return float(undeclared[0]) if undeclared.size else None
 
     def _refuse(self, low: float, high: float, problem: str) -> NoReturn:
         """Raise ValueError with `problem`, after the first knot of a table in [low, high] where it is concave."""

@@ -1,11 +1,13 @@
-"""Cycles a discretised model cannot resolve (slip zones nearer the edges than its outermost nodes) are said."""
+"""Cycles a discretised model cannot resolve (slip zones nearer the edges than its outermost nodes, or
+holding too few of its nodes for the energy's 1e-4) are said."""
 
 import numpy as np
+import pytest
 from conftest import HERTZ_TOML
 
 import fretting as fr
 from fretting import cli
-from fretting.engine.notes import UNRESOLVED, varied_cycles
+from fretting.engine.notes import SLIP_NODES, UNRESOLVED, cycle_ranges, edge_slip_nodes, observed_slip_nodes
 from fretting.results.io import load
 
 CONTACT = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.7, 1e5)
@@ -28,18 +30,76 @@ def test_a_coarse_grid_says_that_tiny_cycles_dissipate_nothing_on_its_nodes():
 
 
 def test_only_cycles_whose_loads_move_count():
-    """A hold between two cycles is a cycle whose loads do not move: it dissipates nothing, rightly."""
+    """A hold between two cycles is a cycle whose loads do not move: it dissipates nothing, rightly. A cycle
+    of ``sigma`` alone moves the two edges' loads ``Q -+ pi a sigma / 4`` (eqs 9 and 20 at ``x = -+a``)."""
     Q = np.array([0.0, TINY, TINY, TINY, 0.0])
     history = fr.History(Q, np.zeros(5), np.arange(5), np.array([0, 1, 2, 2, 3], dtype=np.int32))
-    assert varied_cycles(history).tolist() == [True, False, True]
+    assert cycle_ranges(history, CONTACT.a).tolist() == [[TINY, TINY, 0.0], [0.0, 0.0, 0.0], [TINY, TINY, 0.0]]
+    sigma = fr.History(np.zeros(3), np.array([0.0, 4.0, -4.0]), np.arange(3), np.array([0, 1, 1], dtype=np.int32))
+    np.testing.assert_allclose(cycle_ranges(sigma, 1e-3), [[8e-3 * np.pi / 4, 8e-3 * np.pi / 4, 0.0]], rtol=1e-15)
 
 
-def test_the_command_line_says_the_note_and_the_file_records_it(tmp_path, monkeypatch, capsys):
+def energy_error(model, amplitude):
+    """The result of cycles of ``Q = amplitude f P sin`` on `model`, and its second cycle's energy relative
+    to the exact model's, less one."""
+    history = fr.History.sinusoidal(amplitude * CONTACT.f * CONTACT.P, cycles=2, steps_per_cycle=32)
+    result = fr.simulate(CONTACT, history, model)
+    exact = fr.simulate(CONTACT, history, fr.models.Exact()).cycle_dissipation.values[-1]
+    return result, result.cycle_dissipation.values[-1] / exact - 1
+
+
+@pytest.mark.parametrize(
+    ("model", "amplitude", "said"),
+    [
+        (fr.models.Grid(384), 1e-2, True),  # 12 nodes in the slip zone: 6.2e-3
+        (fr.models.Grid(384), 0.4, True),  # 84: 2.6e-4
+        (fr.models.Grid(1536), 2e-2, True),  # 69: 1.2e-4
+        (fr.models.Mesh(theta=np.linspace(0, np.pi, 800)), 0.1, True),  # 82: 1.4e-4
+        (fr.models.Mesh(theta=np.linspace(0, np.pi, 800)), 0.2, False),  # 118: 6.9e-5
+        (fr.models.Grid(1536), 5e-2, False),  # 110: 7.7e-5
+        (fr.models.Mesh(), 1e-4, False),  # adapted to the energy, not counted: 1.7e-5
+    ],
+)
+def test_cycles_of_too_few_nodes_in_their_slip_zones_are_said_and_the_others_within_1e_4(model, amplitude, said):
+    """Either side of `SLIP_NODES` (benchmarks/unresolved_cycles.py): a cycle whose energy errs by more than
+    the README's 1e-4 against the exact model is named in ``model_unresolved``; one that is not named is
+    within 1e-4. Near the threshold on both sides, on a grid and on a given mesh."""
+    result, error = energy_error(model, amplitude)
+    note = result.attrs.get(UNRESOLVED, "")
+    named = "(cycle 1 to 2) slipped over fewer than" in note
+    ranges = np.array([[2.0, 2.0, 0.0]]) * amplitude * CONTACT.f * CONTACT.P
+    estimated = edge_slip_nodes(result.attrs, result.x.values, result.p.values, ranges)[0]
+    recorded = observed_slip_nodes(result.stick.values, result.cycle.values, np.array([2]))[0]
+    # on Hertz under Q alone, the small-range estimate is a little short of Mindlin-Deresiewicz's zone
+    assert estimated - 2 <= recorded <= 1.1 * estimated + 2
+    assert named == said == ("rtol" not in result.attrs and max(estimated, recorded) < SLIP_NODES)
+    assert named or abs(error) < 1e-4
+
+
+@pytest.mark.parametrize(
+    ("amplitude", "said"),
+    [
+        (TINY, "3 load cycles (cycle 1 to 3) dissipated exactly nothing"),
+        (
+            1e-2 * CONTACT.f * CONTACT.P,
+            "3 load cycles (cycle 1 to 3) slipped over fewer than 100 of the grid model's 96",
+        ),
+    ],
+)
+def test_the_command_line_says_the_note_and_the_file_records_it(tmp_path, monkeypatch, capsys, amplitude, said):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "tiny.toml").write_text(
-        HERTZ_TOML + f'\n[[loading]]\nkind = "sine"\nQ_amplitude = {TINY!r}\ncycles = 3\nsteps_per_cycle = 16\n'
+        HERTZ_TOML + f'\n[[loading]]\nkind = "sine"\nQ_amplitude = {amplitude!r}\ncycles = 3\nsteps_per_cycle = 16\n'
     )
     assert cli.main(["run", "tiny.toml", "--nodes", "96"]) == 0
     err = capsys.readouterr().err
-    assert "fretting: note: 3 load cycles (cycle 1 to 3) dissipated exactly nothing" in err
+    assert f"fretting: note: {said}" in err
     assert load(tmp_path / "tiny.h5").attrs[UNRESOLVED] in err
+
+
+def test_the_recorded_slip_zone_of_a_cycle_is_its_longest_run_from_an_edge():
+    """Per cycle, the most nodes slipping in a row from either edge at its recorded steps; 0 where none is
+    recorded (a run recording no step)."""
+    stick = np.array([[0, 0, 1, 1, 0], [1, 1, 1, 0, 0], [0, 1, 1, 1, 1]], dtype=bool)
+    assert observed_slip_nodes(stick, np.array([1, 1, 2]), np.array([1, 2, 3])).tolist() == [2, 1, 0]
+    assert observed_slip_nodes(np.zeros((0, 5), dtype=bool), np.zeros(0, int), np.array([1, 2])).tolist() == [0, 0]

@@ -4,7 +4,7 @@ import re
 
 import numpy as np
 import pytest
-from scipy import integrate
+from scipy import integrate, interpolate
 
 import fretting as fr
 from fretting.physics.profiles import profile_class, recorded_profile
@@ -385,21 +385,48 @@ def test_a_table_shows_its_curvature_jumps(rows, seed):
     assert fr.Gap.from_table(*pad.T).breakpoints == (0.0,)
 
 
-def test_a_table_with_curvature_jumps_gives_the_traction_of_its_profile():
+@pytest.mark.parametrize("declared", [None, "corners"])
+def test_a_table_with_curvature_jumps_gives_the_traction_of_its_profile(declared):
     """On one fixed grid (the profile's representation is all that differs), the flat's table of 121 rows,
-    its jumps found, gives the traction of the analytic flat within 1e-6 f p0 at every step and node
-    (measured 4e-14), where one spline over the table (``breakpoints=[]``) rings across each jump and errs
-    by more than 1e-3 f p0 (measured 4.1e-2)."""
-    found, analytic, _ = asymmetric_flat_table()
-    smooth = asymmetric_flat_table(breakpoints=[])[0]
+    its jumps found or declared, gives the traction of the analytic flat within 1e-6 f p0 at every step and
+    node (measured 4e-14), where one spline over the table (which `Gap.from_table` with ``breakpoints=[]``
+    refuses, so a `Gap` of the spline's functions) rings across each jump and errs by more than 1e-3 f p0
+    (measured 4.1e-2)."""
+    found, analytic, corners = asymmetric_flat_table()
+    table = found if declared is None else fr.Gap.from_table(*found.table, corners)
+    spline = interpolate.CubicSpline(*found.table)
+    smooth = fr.Gap(spline, spline.derivative())
     history = fr.History.piecewise_linear([0.0, 0.5 * 0.5 * P, -0.3 * 0.5 * P], None, [2, 2])
     q = {}
-    for name, profile in (("analytic", analytic), ("found", found), ("smooth", smooth)):
+    for name, profile in (("analytic", analytic), ("found", table), ("smooth", smooth)):
         contact = fr.Contact(profile, E_STAR, 0.5, P)
         q[name] = fr.simulate(contact, history, fr.models.Grid(192)).q.values
     fp0 = 0.5 * fr.Contact(analytic, E_STAR, 0.5, P).p0
     assert np.abs(q["found"] - q["analytic"]).max() < 1e-6 * fp0
     assert np.abs(q["smooth"] - q["analytic"]).max() > 1e-3 * fp0
+
+
+@pytest.mark.parametrize("declared", [[], [-5e-4], [5e-4]])
+def test_an_undeclared_jump_of_a_tables_curvature_is_refused_naming_it(declared):
+    """The flat's table with none or one of its two corners declared: the Contact is refused with the
+    position of the first undeclared one and how to declare it; both declared (or found), it is built."""
+    table, _, corners = asymmetric_flat_table(breakpoints=declared)
+    missing = next(corner for corner in corners if corner not in declared)
+    message = rf"^the table's curvature jumps at x = {missing:g} m in the contact .* declare it, Gap.from_table"
+    with pytest.raises(ValueError, match=message):
+        fr.Contact(table, E_STAR, 0.5, P)
+    assert fr.Contact(asymmetric_flat_table(breakpoints=corners)[0], E_STAR, 0.5, P).a > 0
+
+
+def test_smooth_tables_given_without_breakpoints_are_not_refused():
+    """Hertz sampled finely and coarsely, a smooth polynomial and a smooth curve, each one spline
+    (``breakpoints=[]``): no jump is reported over nine tenths of the table, and the Contact is built."""
+    for rows in (41, 2001):
+        x = np.linspace(-1e-3, 1e-3, rows)
+        for h0 in (x**2 / 0.1, x**2 / 0.1 + 1e6 * x**4, 1e-3 * np.cosh(1e3 * x)):
+            gap = fr.Gap.from_table(x, h0, [])
+            assert gap.undeclared_jump(0.9e-3, 0.0) is None
+            assert fr.Contact(gap, E_STAR, 0.5, 1e5).a > 0
 
 
 def test_breakpoints_of_a_table_leave_rows_for_each_spline():
