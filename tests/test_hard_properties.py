@@ -44,8 +44,8 @@ def test_friction_conditions_on_random_profiles(scene, vertices, steps):
     increment can shrink to a point that no node hits, so no stuck node is asked for.)
 
     The conditions are the solver's on any mesh, so the mesh is adapted to ``rtol = PROPERTY_RTOL``:
-    the default's meshes of about 3,000 nodes on the rounded and asymmetric flats cost up to 35 s
-    an example, and `tests/test_hard_cases.py` checks these conditions on them."""
+    the default's meshes on the rounded and asymmetric flats are the costliest of the suite's
+    examples (CHANGELOG.md), and `tests/test_hard_cases.py` checks these conditions on them."""
     psi, tau = np.array([(0.0, 0.0), *vertices]).T
     history = fr.History.piecewise_linear(psi * scene.f * scene.P, tau * scene.f * scene.p0, steps)
     result = simulate_as_a_user(scene, history, rtol=PROPERTY_RTOL)

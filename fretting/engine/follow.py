@@ -5,8 +5,8 @@ A cycle whose loads repeat those of the cycle just completed, from a state that 
 state before that cycle bit for bit, would repeat its increments bit for bit (the increment
 depends on the loads and the state only); such cycles are copied instead of solved, and the
 recorder is told so (`Recorder.copied`). Rounding can leave the state periodic over a few cycles
-rather than one (a state that comes back bit for bit every third cycle, with rounding-level
-differences in between, depending on the CPU's BLAS kernels): where the state before a cycle
+rather than one (bit for bit every few cycles, with rounding-level differences in between, as the
+CPU's BLAS kernels have it): where the state before a cycle
 repeats the state before one of the last `PERIOD_CYCLES` cycles, those cycles are solved once more
 as a block and the blocks that follow are copied.
 

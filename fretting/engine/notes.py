@@ -132,10 +132,10 @@ def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None, 
     few = np.zeros_like(silent)
     if x is not None and attrs["model"] in FIXED_NODES and "rtol" not in attrs:
         counted = varied & (ranges[:, 2] == 0) & ~silent
-        nodes = edge_slip_nodes(attrs, x, np.asarray(p), ranges[counted])
+        slipping = edge_slip_nodes(attrs, x, np.asarray(p), ranges[counted])
         if observed is not None:
-            nodes = np.maximum(nodes, np.asarray(observed)[counted])
-        few[counted] = nodes < SLIP_NODES
+            slipping = np.maximum(slipping, np.asarray(observed)[counted])
+        few[counted] = slipping < SLIP_NODES
     nodes = f"the {attrs['model']} model's {attrs['nodes']} nodes"
     said = []
     if silent.any():
