@@ -638,8 +638,8 @@ def _on_dask(cases, todo, scheduler, scheduler_file):
     distributed = _distributed()
     with _client(distributed, scheduler, scheduler_file, len(todo)) as client:
         futures = {client.submit(run_case, cases[k].contact, cases[k].history, pure=False): k for k in todo}
-        for future in _completed(distributed, client, futures):
-            yield futures[future], future.result()
+        for future, summary in _completed(distributed, client, futures):
+            yield futures[future], summary
 
 
 class NoWorkersError(FrettingError, RuntimeError):
@@ -647,8 +647,12 @@ class NoWorkersError(FrettingError, RuntimeError):
 
 
 def _completed(distributed, client, futures):
-    """The futures `futures` of `client` as each completes, while the scheduler has workers.
+    """``(future, result)`` of the futures `futures` of `client` as each completes, while the scheduler has
+    workers.
 
+    A result is fetched within `NO_WORKERS_SECONDS`, else its future waits again with the others: a
+    worker killed after its case finished takes the result with it, and the scheduler runs that case
+    again (the future is pending once more: an unbounded fetch would wait forever with no worker left).
     Every `WORKER_POLL_SECONDS` without a future completed, asks the scheduler for its workers;
     raises NoWorkersError once it has had none for `NO_WORKERS_SECONDS` (each worker killed, and
     none restarted or added: a future would wait forever).
@@ -659,7 +663,15 @@ def _completed(distributed, client, futures):
             done, pending = distributed.wait(pending, timeout=WORKER_POLL_SECONDS, return_when="FIRST_COMPLETED")
         except TimeoutError:
             done = ()
-        yield from done
+        for future in done:
+            try:
+                summary = future.result(timeout=NO_WORKERS_SECONDS)
+            except TimeoutError:
+                if future.status == "error":  # the case's own error
+                    raise
+                pending.add(future)
+                continue
+            yield future, summary
         if client.scheduler_info()["workers"]:
             alone = None
         elif alone is None:

@@ -158,3 +158,37 @@ def test_a_sweep_whose_every_worker_dies_stops_and_resumes(tmp_path, monkeypatch
     again = {path.name: path.stat().st_mtime_ns for path in cases.iterdir()}
     assert len(again) == 6 and all(again[name] == written for name, written in kept.items())
     assert xr.load_dataset(tmp_path / "dead.h5", engine="h5netcdf").regime.size == 6
+
+
+class LostResult:
+    """A future whose case finished on a worker that was then killed: `distributed.wait` saw it done, its
+    result can no longer be fetched (the scheduler runs the case again, on no worker)."""
+
+    status = "lost"
+
+    def result(self, timeout=None):
+        assert timeout is not None, "an unbounded fetch waits forever on a lost result"
+        raise TimeoutError(f"timed out after {timeout} s.")
+
+
+class NoWorkers:
+    """A client of a scheduler whose every worker was killed."""
+
+    def scheduler_info(self):
+        return {"workers": {}}
+
+
+def test_a_result_lost_with_its_worker_stops_the_sweep_as_no_workers(monkeypatch):
+    """The race of a worker killed between its case finishing and the sweep fetching the result: the
+    sweep waits on the future again, bounded by the no-worker check, and stops."""
+    monkeypatch.setattr(sweeps, "NO_WORKERS_SECONDS", 0.05)
+    lost = LostResult()
+
+    def wait(pending, timeout, return_when):
+        time.sleep(timeout)
+        return set(pending), set()
+
+    monkeypatch.setattr(sweeps, "WORKER_POLL_SECONDS", 0.01)
+    fake = type("FakeDistributed", (), {"wait": staticmethod(wait)})
+    with pytest.raises(sweeps.NoWorkersError, match="no workers for 0.05 s"):
+        list(sweeps._completed(fake, NoWorkers(), {lost: 0}))
