@@ -5,7 +5,7 @@ Cycles of ``Q = A f P sin`` (two cycles of 32 steps; the second's energy) on the
 ``A`` from 1e-6 to 0.5, on Grid(96), Grid(384) (the grid's default), Grid(1536), a given mesh of 200 and
 of 800 nodes equally spaced in ``theta`` and the mesh adapted to the energy (default rtol), against the
 exact model of ``Q`` alone. Each row: the nodes in the cycle's estimated slip zone
-(`fretting.engine.notes.edge_slip_nodes`, or the recorded slip's where wider), whether the result's
+(`fretting.results.notes.edge_slip_nodes`, or the recorded slip's where wider), whether the result's
 ``model_unresolved`` names the cycle, and ``W / W_exact - 1``. Then the largest error of the cycles not
 flagged (to be within the README's 1e-4) and the smallest of those flagged (the criterion is on the safe
 side: a cycle of few nodes may happen to err by less).
@@ -16,7 +16,7 @@ Run:  python benchmarks/unresolved_cycles.py
 import numpy as np
 
 import fretting as fr
-from fretting.engine.notes import UNRESOLVED, cycle_ranges, edge_slip_nodes, observed_slip_nodes
+from fretting.results.notes import UNRESOLVED, edge_slip_nodes, observed_slip_nodes
 
 AMPLITUDES = (1e-6, 1e-5, 1e-4, 1e-3, 3e-3, 1e-2, 2e-2, 5e-2, 0.1, 0.2, 0.3, 0.4, 0.5)
 E_STAR = fr.plane_strain_modulus(210e9, 0.3)
@@ -45,7 +45,7 @@ def main():
             for label, model in MODELS.items():
                 result = fr.simulate(contact, history, model)
                 error = result.cycle_dissipation.values[-1] / exact - 1
-                ranges = cycle_ranges(history, contact.a)[-1:]
+                ranges = result.cycle_load_range.values[-1:]
                 estimated = edge_slip_nodes(result.attrs, result.x.values, result.p.values, ranges)[0]
                 recorded = observed_slip_nodes(result.stick.values, result.cycle.values, np.array([2]))[0]
                 nodes = max(estimated, recorded)

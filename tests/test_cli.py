@@ -17,9 +17,9 @@ from conftest import HERTZ_TOML as CONTACT
 import fretting as fr
 from fretting import cli, plots
 from fretting.engine import runner
-from fretting.engine.notes import UNRESOLVED
 from fretting.loading.history_file import read_history
 from fretting.results.io import WRITTEN_ATTRIBUTES, load
+from fretting.results.notes import UNRESOLVED
 
 NODES = "32"
 
@@ -65,7 +65,7 @@ def test_run_writes_a_self_describing_result(workdir, capsys):
     assert run("run", "shear.toml", "--nodes", NODES) == 0
     out, err = capsys.readouterr()
     result = load(workdir / "shear.h5")
-    # the only note: the coarse grid's slip zones (fretting.engine.notes)
+    # the only note: the coarse grid's slip zones (fretting.results.notes)
     assert out.startswith("shear.h5: 82 steps, 3 cycles") and err == f"fretting: note: {result.attrs[UNRESOLVED]}\n"
     assert result.attrs["history_toml"] == history.read_text()
     assert result.attrs["history_sha256"] == hashlib.sha256(history.read_bytes()).hexdigest()
@@ -195,7 +195,7 @@ def test_interrupted_run_keeps_its_progress_and_resumes(workdir, capsys, monkeyp
     monkeypatch.setattr(runner, "CHUNK_SECONDS", 0.0)  # chunks of 20 steps each
     write(workdir / "shear.toml", CONTACT + SHEAR)
     assert run("run", "shear.toml", "-o", "whole.h5", *model) == 0
-    capsys.readouterr()  # the whole run's notes (the grid's: fretting.engine.notes)
+    capsys.readouterr()  # the whole run's notes (the grid's: fretting.results.notes)
     monkeypatch.setattr(runner, "Stepper", _interrupt_after(2))
     assert run("run", "shear.toml", "-o", "part.h5", *model, "--checkpoint-interval", "1e6") == 130
     err = capsys.readouterr().err

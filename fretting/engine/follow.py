@@ -32,7 +32,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from fretting.errors import GrossSlipError, HistoryError, SolverError
-from fretting.loading.loads import Loads
+from fretting.loading.loads import Loads, edge_loads
 from fretting.models.base import UNFOLLOWED
 from fretting.models.state import State, Tally
 from fretting.physics.surface import SurfaceStress, bulk_stress
@@ -166,7 +166,8 @@ def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=Tru
         surface, shear = specimen_surface(model, outcome, sigma)
     else:
         surface, shear = None, np.abs(model.traction(outcome))
-    return outcome, state.advance(outcome, loads, model.energy_density(outcome), surface, shear)
+    edges = edge_loads(loads, model.contact)
+    return outcome, state.advance(outcome, loads, model.energy_density(outcome), surface, shear, edges)
 
 
 def specimen_surface(model, outcome, sigma):
@@ -288,7 +289,9 @@ class _Run:
                 else:  # steps outside the cycles: nothing to copy
                     before = None
                     starts.clear()
-                state = replace(state, tally=Tally.begin(number, state.slip))
+                state = replace(
+                    state, tally=Tally.begin(number, state.slip, edge_loads(state.loads, self.model.contact))
+                )
                 if before is not None and len(tallies) == period:
                     previous = _Cycle(step - len(steps), before, steps, tallies)
                     before = None
@@ -382,8 +385,9 @@ class _Run:
         slips = np.vstack([state.slip, slip[:K]])  # the slip before each step, then after the last
         ds = slips[1:] - slips[:-1]
         ds[still[:K]] = 0.0
+        edges = np.vstack([edge_loads(state.loads, model.contact), edge_loads(self.loads[ahead], model.contact)])
         tally = self._tallies(
-            state, self.cycle[ahead], slips, model.dissipation_density(ds), np.abs(q[:K]), dissipation
+            state, self.cycle[ahead], slips, model.dissipation_density(ds), np.abs(q[:K]), dissipation, edges
         )
         dissipated = state.dissipated
         for energy in dissipation[:K]:  # in order, as step by step
@@ -394,9 +398,10 @@ class _Run:
         )
         return after, solved + K
 
-    def _tallies(self, state, numbers, slips, w, shear, dissipation):
+    def _tallies(self, state, numbers, slips, w, shear, dissipation, edges):
         """The tally of the cycle in progress after the rows of a window (`_window`) whose steps are in
-        the cycles `numbers`; the cycles they complete are told to the recorder."""
+        the cycles `numbers`; the cycles they complete are told to the recorder. `edges` [N/m] holds the
+        `edge_loads` before the first row, then after each (as `slips` the slip)."""
         bounds = np.concatenate([[0], np.flatnonzero(np.diff(numbers)) + 1, [numbers.size]])
         first, length, number = bounds[:-1], np.diff(bounds), numbers[bounds[:-1]]
         tally = state.tally
@@ -405,13 +410,15 @@ class _Run:
             if k:
                 if tally.number:
                     self._cycle(tally.number, tally, False)
-                tally = Tally.begin(n, slips[start])
+                tally = Tally.begin(n, slips[start], edges[start])
             if n:
                 energy = tally.dissipation
                 for row in range(start, stop):
                     energy += dissipation[row]
                 w, slip_min, slip_max, q_peak = (folded[name][k] for name in ("w", "slip_min", "slip_max", "q_peak"))
-                tally = Tally.without_stress(n, energy, w, slip_min, slip_max, q_peak)
+                low = np.minimum(tally.load_low, edges[start + 1 : stop + 1].min(axis=0))
+                high = np.maximum(tally.load_high, edges[start + 1 : stop + 1].max(axis=0))
+                tally = Tally.without_stress(n, energy, w, slip_min, slip_max, q_peak, low, high)
         return tally
 
     def _cycle(self, number, tally, repeated):

@@ -292,6 +292,8 @@ class Recorder:
                 "state_w": tally.w,
                 "state_slip_min": tally.slip_min,
                 "state_slip_max": tally.slip_max,
+                "state_load_low": tally.load_low,
+                "state_load_high": tally.load_high,
                 "total_dissipation": state.dissipated,
             }
             | {f"state_{name}": getattr(tally, name) for name in CYCLE_PEAKS}
@@ -347,7 +349,8 @@ def final_state(result: xr.Dataset) -> State:
         result.state_w.values.copy(),
         result.state_slip_min.values.copy(),
         result.state_slip_max.values.copy(),
-        *(_state_peak(result, name) for name in CYCLE_PEAKS),
+        *(_tallied(result, f"state_{name}", result.sizes["x"]) for name in CYCLE_PEAKS),
+        *(_tallied(result, name, 3) for name in ("state_load_low", "state_load_high")),
     )
     spec = recorded_spec(result)
     P = None if "state_P" not in result or float(result.state_P) == result.attrs["P"] else float(result.state_P)
@@ -380,10 +383,10 @@ def recorded_spec(result: xr.Dataset) -> ModelSpec:
     return ModelSpec.recorded(result.attrs, theta)
 
 
-def _state_peak(result, name):
-    """The tally's peak `name` of the cycle in progress in `result` (NaN, unknown, in results written without it)."""
-    variable = f"state_{name}"
-    return result[variable].values.copy() if variable in result else np.full(result.sizes["x"], np.nan)
+def _tallied(result, variable, size):
+    """The tally's `variable` (a ``state_`` peak or load extreme, `size` values) of the cycle in progress in
+    `result` (NaN, unknown, in results written without it)."""
+    return result[variable].values.copy() if variable in result else np.full(size, np.nan)
 
 
 def _cycle_rows(cycles, N, left_out):
@@ -405,6 +408,7 @@ def _cycle_rows(cycles, N, left_out):
     return {
         "cycle_number": numbers,
         "cycle_dissipation": rows([t.dissipation for t in distinct], float, 1)[:, 0],
+        "cycle_load_range": rows([t.load_high - t.load_low for t in distinct], float, 3),
         "cycle_copied": repeated,
         "w": rows([t.w for t in distinct], np.float32, N),
         "slip_amplitude": rows([t.slip_amplitude for t in distinct], np.float32, N),

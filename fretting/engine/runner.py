@@ -34,7 +34,6 @@ from filelock import FileLock, Timeout
 
 from fretting.engine.choice import ModelFallbackWarning
 from fretting.engine.follow import skippable
-from fretting.engine.notes import UNRESOLVED, cycle_ranges, parts_note
 from fretting.engine.recorder import (
     CYCLE_PEAKS_TALLIED,
     CycleFields,
@@ -59,6 +58,7 @@ from fretting.results.io import (
     save_joined,
     source_attributes,
 )
+from fretting.results.notes import UNRESOLVED, observed_slip_nodes, unresolved_cycles
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -334,11 +334,10 @@ def run_file(
             except GrossSlipError:
                 shutil.rmtree(checkpoint, ignore_errors=True)  # resuming would only reach it again
                 raise
-            ranges = cycle_ranges(history, source.contact.a)
             del source, history  # the loads of every step: the result holds what it records
             if len(part):
                 _save_part(part, checkpoint, attributes)
-            note = parts_note(_parts(checkpoint), ranges)
+            note = parts_note(_parts(checkpoint))
             if note is not None:
                 notes.append(note)
                 attributes[UNRESOLVED] = note
@@ -468,6 +467,35 @@ def _solved(history, record, start, end, contact):
     recorded = np.zeros(len(near), dtype=bool)
     recorded[record[(record >= start) & (record < start + len(near))] - start] = True
     return np.flatnonzero(~skippable(near, recorded, contact)[1 : end - start + 1]) + start + 1
+
+
+def parts_note(parts):
+    """The note of `fretting.results.notes.unresolved_cycles` of a run kept in the result files `parts` (in
+    order), or None: as `fretting.results.notes.noted` of their join, read a part at a time. A cycle that
+    spans two parts is the later part's, whose tally carries on from the earlier; its recorded steps
+    are counted in each."""
+    cycles, observed, attrs, x, p = {}, {}, None, None, None
+    for part in parts:
+        with open_result(part) as opened:
+            if attrs is None:
+                attrs, x = dict(opened.attrs), opened.x.values
+                p = opened.p.values if "p" in opened and opened.p.dims == ("x",) else None
+            if "cycle_number" not in opened.dims:
+                continue
+            numbers = opened.cycle_number.values
+            unknown = np.full((numbers.size, 3), np.nan)  # a part written before the ranges were
+            ranges = opened.cycle_load_range.values if "cycle_load_range" in opened else unknown
+            energies = opened.cycle_dissipation.values
+            cycles |= zip(numbers.tolist(), zip(energies.tolist(), ranges, strict=True), strict=True)
+            seen = observed_slip_nodes(opened.stick.values, opened.cycle.values, numbers)
+            for number, count in zip(numbers.tolist(), seen.tolist(), strict=True):
+                observed[number] = max(observed.get(number, 0), count)
+    if not cycles:
+        return None
+    numbers = np.array(sorted(cycles))
+    energies, ranges = zip(*(cycles[number] for number in numbers.tolist()), strict=True)
+    seen = [observed[number] for number in numbers.tolist()]
+    return unresolved_cycles(attrs, numbers, energies, np.array(ranges), x, p, seen)
 
 
 def _resumable(checkpoint, source, model, skipping, attributes):

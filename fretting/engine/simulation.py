@@ -11,13 +11,13 @@ from numpy.typing import ArrayLike
 from fretting._validate import positive
 from fretting.engine.choice import continued, spec_from
 from fretting.engine.follow import follow
-from fretting.engine.notes import noted
 from fretting.engine.recorder import Recorder, recorded_steps
 from fretting.engine.stepper import Stepper
 from fretting.engine.threads import one_blas_thread
 from fretting.loading.history import History
 from fretting.models.galerkin import DEFAULT_RTOL, Mesh
 from fretting.models.galerkin.adaptation import MeshTooLarge, adapted_model
+from fretting.results.notes import noted
 
 if TYPE_CHECKING:
     from fretting.models.base import ModelSpec
@@ -74,7 +74,7 @@ def simulate(
         Variables of `fretting.results.variables.VARIABLES`; attributes of the contact and the
         model (``model``, its parameters, ``model_fallback`` where the default fell back,
         ``model_unresolved`` where cycles whose ``Q`` varies dissipated nothing on its nodes:
-        `fretting.engine.notes`).
+        `fretting.results.notes`).
 
     Raises
     ------
@@ -101,7 +101,7 @@ def simulate(
     recorded = recorded_steps(record, len(history))
     stepper.resolve(history, recorded)
     recorder = Recorder(stepper.model, history, recorded)
-    return noted(recorder.dataset(stepper.run(history, recorder)), history)
+    return noted(recorder.dataset(stepper.run(history, recorder)))
 
 
 def adapted_mesh(

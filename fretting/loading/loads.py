@@ -11,7 +11,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-__all__ = ["CONVERTED", "INPUTS", "NAMED", "LoadBlock", "Loads"]
+__all__ = ["CONVERTED", "INPUTS", "NAMED", "LoadBlock", "Loads", "edge_loads"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -97,3 +97,26 @@ class LoadBlock:
         return LoadBlock(
             self.Q[steps], self.sigma[steps], None if P is None else P[steps], None if delta is None else delta[steps]
         )
+
+
+def edge_loads(loads, contact):
+    """The loads that make slip at the edges of `contact` and its normal load [N/m]: ``Q - pi a sigma / 4``
+    (at ``x = -a``), ``Q + pi a sigma / 4`` (at ``+a``) and ``P``, the last axis of the ndarray returned.
+
+    The first two are the numerators of the fully stuck traction of eqs (9) and (20), ``q = (Q / pi +
+    sigma x / 4) / sqrt(a^2 - x^2)``, at the edges, with the half-width ``a`` at the contact's ``P``:
+    a change of either makes a slip zone at its edge wherever the pressure vanishes there.
+    `loads` is a `Loads` (shape (3,)) or a `LoadBlock` (shape (steps, 3)); ``P`` None is the contact's.
+    The same operations on floats or elementwise on arrays: a step's row is the same either way, bit
+    for bit (the engine tallies them at every increment: a float's are a tenth of the array's cost).
+    """
+    a, P = contact.a, contact.P if loads.P is None else loads.P
+    if isinstance(loads, Loads):
+        return np.array(_at_edges(loads.Q, loads.sigma, P, a))
+    Q = np.asarray(loads.Q, dtype=float)
+    return np.stack(_at_edges(Q, np.asarray(loads.sigma, dtype=float), np.broadcast_to(P, Q.shape), a), axis=-1)
+
+
+def _at_edges(Q, sigma, P, a):
+    """``(Q - pi a sigma / 4, Q + pi a sigma / 4, P)`` of floats, or of arrays elementwise (`edge_loads`)."""
+    return Q - np.pi * a * sigma / 4, Q + np.pi * a * sigma / 4, P

@@ -7,7 +7,7 @@ computed with (`State.model`, a resolved `fretting.models.base.ModelSpec`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from typing import Any, Protocol
 
@@ -71,6 +71,14 @@ class Continued(Nodes, Protocol):
     def pressure_at(self, P: float) -> np.ndarray: ...
 
 
+@cache
+def _unknown(N):
+    """A read-only row of `N` NaN: a peak not known, shared by the tallies that do not know it."""
+    row = np.full(N, np.nan)
+    row.flags.writeable = False
+    return row
+
+
 @dataclass(frozen=True, eq=False)
 class Tally:
     """What the cycle in progress has done so far.
@@ -92,9 +100,14 @@ class Tally:
         Largest ``|q|`` [Pa] over the steps of the cycle.
     sigma_xx_q_peak : ndarray, shape (N,)
         Largest ``sigma_xx |q|`` [Pa^2] over the steps of the cycle.
+    load_low, load_high : ndarray, shape (3,)
+        Least and greatest `fretting.loading.loads.edge_loads` [N/m] over the cycle's increments,
+        both ends of each (the loads of its starting state included): their difference is the range
+        of the loads that make slip at each contact edge, and of ``P``.
 
     The three peaks are ``-inf`` before the cycle's first increment, and NaN where they are not
-    known (a state read from a result written without them): a NaN stays NaN.
+    known (a state read from a result written without them): a NaN stays NaN. So are the load
+    extremes of a state read from a result written without them (their default).
     """
 
     number: int
@@ -105,22 +118,26 @@ class Tally:
     sigma_xx_peak: np.ndarray
     q_peak: np.ndarray
     sigma_xx_q_peak: np.ndarray
+    load_low: np.ndarray = field(default_factory=lambda: _unknown(3))
+    load_high: np.ndarray = field(default_factory=lambda: _unknown(3))
 
     @classmethod
-    def begin(cls, number: int, slip: np.ndarray) -> Tally:
-        """Nothing done yet in cycle `number`, which starts from `slip` [m]."""
+    def begin(cls, number: int, slip: np.ndarray, loads: np.ndarray) -> Tally:
+        """Nothing done yet in cycle `number`, which starts from `slip` [m] under the `loads` [N/m]
+        (`fretting.loading.loads.edge_loads`)."""
         nothing = np.full(slip.size, -np.inf)
-        return cls(number, 0.0, np.zeros(slip.size), slip, slip, nothing, nothing, nothing)
+        return cls(number, 0.0, np.zeros(slip.size), slip, slip, nothing, nothing, nothing, loads, loads)
 
     @classmethod
-    def without_stress(cls, number, dissipation, w, slip_min, slip_max, q_peak):
+    def without_stress(cls, number, dissipation, w, slip_min, slip_max, q_peak, load_low, load_high):
         """A tally whose two peaks of ``sigma_xx`` are not known (NaN): that of a run that skips steps."""
         unknown = _unknown(w.size)
-        return cls(number, dissipation, w, slip_min, slip_max, unknown, q_peak, unknown)
+        return cls(number, dissipation, w, slip_min, slip_max, unknown, q_peak, unknown, load_low, load_high)
 
-    def add(self, dissipation, w, slip, stress, shear):
-        """The tally after an increment that dissipated `dissipation` [J/m], `w` [J/m^2] and left `slip` [m],
-        the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa].
+    def add(self, dissipation, w, slip, stress, shear, loads):
+        """The tally after an increment to the `loads` [N/m] (`fretting.loading.loads.edge_loads`) that
+        dissipated `dissipation` [J/m], `w` [J/m^2] and left `slip` [m], the specimen's surface stress
+        `stress` [Pa] and the traction's magnitude `shear` [Pa].
 
         `stress` None: not known (a run that skips steps), so the two peaks of ``sigma_xx`` are
         NaN, as the maximum with a NaN row would make them, without forming that row.
@@ -139,6 +156,8 @@ class Tally:
             sigma_xx_peak,
             np.maximum(self.q_peak, shear),
             sigma_xx_q_peak,
+            np.minimum(self.load_low, loads),
+            np.maximum(self.load_high, loads),
         )
 
     def folded(self, slips, w, shear, first, length):
@@ -222,7 +241,7 @@ class State:
     def virgin(cls, model: Nodes) -> State:
         """The contact of `model` (a `fretting.models.base.Model`) just formed: no load and no slip."""
         slip = np.zeros(model.x.size)
-        return cls(Loads(0.0, 0.0), slip, slip, Tally.begin(0, slip), model.spec)
+        return cls(Loads(0.0, 0.0), slip, slip, Tally.begin(0, slip, _unknown(3)), model.spec)  # cycle 0: not tallied
 
     def advance(
         self,
@@ -231,11 +250,13 @@ class State:
         w: np.ndarray | None,
         stress: np.ndarray | None,
         shear: np.ndarray | None,
+        edges: np.ndarray | None = None,
     ) -> State:
         """The state after the increment `outcome` to `loads`, which dissipated `w` [J/m^2]
         and left the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]
         (`w` None where nothing is tallied: outside a load cycle, or where only the slip matters;
-        `stress` None where it is not known, `Tally.add`).
+        `stress` None where it is not known, `Tally.add`); `edges` [N/m], `loads` as the tally
+        takes them (`fretting.loading.loads.edge_loads`), where `w` is given.
 
         A node's episode begins again where it sticks (at its slip) or reverses (at its slip before).
         """
@@ -243,7 +264,7 @@ class State:
         # reversed where ds and the episode so far have strictly opposite signs (sign(ds) times it: exact)
         episode_start = np.where(np.sign(ds) * (before - self.episode_start) < 0, before, self.episode_start)
         np.copyto(episode_start, slip, where=ds == 0)
-        tally = self.tally if w is None else self.tally.add(outcome.dissipation, w, slip, stress, shear)
+        tally = self.tally if w is None else self.tally.add(outcome.dissipation, w, slip, stress, shear, edges)
         dissipated = self.dissipated + outcome.dissipation
         return State(loads, slip, episode_start, tally, self.model, dissipated, outcome.memory, outcome.slid)
 
@@ -385,11 +406,3 @@ def _folded(op, held, rows, first, length):
         else:
             folded[live] = op(folded[live], rows[first[live] + k])
     return folded
-
-
-@cache
-def _unknown(N):
-    """A read-only row of `N` NaN: a peak not known, shared by the tallies that do not know it."""
-    row = np.full(N, np.nan)
-    row.flags.writeable = False
-    return row

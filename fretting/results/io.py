@@ -30,6 +30,7 @@ from xarray.backends import H5NetCDFStore
 from fretting._version import __version__
 from fretting.errors import FrettingError
 from fretting.results.loops import recorded_loops, with_loops
+from fretting.results.notes import noted
 from fretting.results.variables import AXES, VARIABLES
 
 try:
@@ -451,12 +452,14 @@ def join_results(parts: Sequence[xr.Dataset]) -> xr.Dataset:
         vertex steps and cycles are numbered as in the whole history; a cycle that spans
         parts is taken from the last part that has it (its tally carries on from part to
         part), and the rows along ``field_cycle`` (each cycle's once) are concatenated; the
-        state and the accumulated fields are the last part's. Attributes are the first part's.
+        state and the accumulated fields are the last part's. Attributes are the first part's, but
+        the note of the cycles the model does not resolve, which is the whole run's
+        (`fretting.results.notes.noted`).
     """
     joiner = Joiner()
     for part in parts:
         joiner.add(part)
-    return with_loops(joiner.result())
+    return noted(with_loops(joiner.result()))
 
 
 class Joiner:

@@ -85,6 +85,10 @@ ACCUMULATED = {"w_total": "w"} | {f"{name}_max": name for name in CYCLE_FIELDS[1
 REGIMES = ("stuck", "partial_slip", "gross_slip")
 
 #: What the long names of the loop's per-cycle variables add (`fretting.results.loops`).
+#: The loads along the dimension ``load`` (`fretting.loading.loads.edge_loads`): the numerators of the fully
+#: stuck traction of eqs (9) and (20) at the two contact edges, then the normal load.
+_EDGE_LOADS = "load 0: Q - pi a sigma / 4 (at x = -a), 1: Q + pi a sigma / 4 (at x = +a), 2: P"
+
 _LOOP = ", from the recorded steps where the contact has a datum (NaN: the cycle's steps not all recorded)"
 
 #: name -> (dims, units, long_name) of the variables that follow from no other.
@@ -127,6 +131,13 @@ _DECLARED = {
     ),
     "cycle": (("step",), "1", "load cycle of the increment ending at this step (0: outside any cycle)"),
     "cycle_dissipation": (("cycle_number",), "J/m", "energy dissipated in each load cycle"),
+    "cycle_load_range": (
+        ("cycle_number", "load"),
+        "N/m",
+        "range over each load cycle of the loads that make slip at the contact edges and of the normal load: "
+        + _EDGE_LOADS
+        + " (NaN: not known, a cycle continued from a state written without it)",
+    ),
     "cycle_number": (("cycle_number",), "1", "load cycle (1, 2, ...)"),
     "cycle_copied": (
         ("cycle_number",),
@@ -189,6 +200,8 @@ _DECLARED = {
     "state_cycle_dissipation": ((), "J/m", "energy dissipated so far in the cycle in progress"),
     "state_slip_min": (("x",), "m", "least slip so far in the cycle in progress"),
     "state_slip_max": (("x",), "m", "greatest slip so far in the cycle in progress"),
+    "state_load_low": (("load",), "N/m", "least of the loads so far in the cycle in progress: " + _EDGE_LOADS),
+    "state_load_high": (("load",), "N/m", "greatest of the loads so far in the cycle in progress: " + _EDGE_LOADS),
     "state_turning": (
         ("turning",),
         "N/m",

@@ -11,20 +11,21 @@ import fretting as fr
 from fretting.engine.follow import skippable
 from fretting.engine.recorder import Recorder
 from fretting.models import Grid
+from fretting.results.notes import noted
 
 NODES = 64
 
 
 def _run(contact, history, record=(), skipping=True, state=None, counted=None):
-    """The dataset of `history` run from `state` by a stepper whose recorder skips (or not);
-    `counted` (a list) gets one entry per increment solved."""
+    """The dataset of `history` run from `state` by a stepper whose recorder skips (or not), with its note
+    as `fr.simulate` writes it; `counted` (a list) gets one entry per increment solved."""
     stepper = fr.Stepper(contact, Grid(NODES) if state is None else None, state)
     stepper.resolve(history)
     if counted is not None:
         increment = stepper.model.increment
         stepper.model.increment = lambda *arguments: counted.append(1) or increment(*arguments)
     recorder = Recorder(stepper.model, history, np.asarray(record, dtype=np.int64), skipping)
-    return recorder.dataset(stepper.run(history, recorder))
+    return noted(recorder.dataset(stepper.run(history, recorder)))
 
 
 def _random(contact, cycles=12, sigma=0.5, steps=8):

@@ -7,8 +7,8 @@ from conftest import HERTZ_TOML
 
 import fretting as fr
 from fretting import cli
-from fretting.engine.notes import SLIP_NODES, UNRESOLVED, cycle_ranges, edge_slip_nodes, observed_slip_nodes
 from fretting.results.io import load
+from fretting.results.notes import SLIP_NODES, UNRESOLVED, edge_slip_nodes, observed_slip_nodes
 
 CONTACT = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.7, 1e5)
 TINY = 1e-6 * CONTACT.f * CONTACT.P  # slip zones of a - c ~ 2.5e-7 a (Mindlin-Deresiewicz); Grid(96): 1.3e-4 a
@@ -31,12 +31,34 @@ def test_a_coarse_grid_says_that_tiny_cycles_dissipate_nothing_on_its_nodes():
 
 def test_only_cycles_whose_loads_move_count():
     """A hold between two cycles is a cycle whose loads do not move: it dissipates nothing, rightly. A cycle
-    of ``sigma`` alone moves the two edges' loads ``Q -+ pi a sigma / 4`` (eqs 9 and 20 at ``x = -+a``)."""
+    of ``sigma`` alone moves the two edges' loads ``Q -+ pi a sigma / 4`` (eqs 9 and 20 at ``x = -+a``). Each
+    cycle's ``cycle_load_range`` spans the loads of its increments, the one it starts from included."""
     Q = np.array([0.0, TINY, TINY, TINY, 0.0])
     history = fr.History(Q, np.zeros(5), np.arange(5), np.array([0, 1, 2, 2, 3], dtype=np.int32))
-    assert cycle_ranges(history, CONTACT.a).tolist() == [[TINY, TINY, 0.0], [0.0, 0.0, 0.0], [TINY, TINY, 0.0]]
-    sigma = fr.History(np.zeros(3), np.array([0.0, 4.0, -4.0]), np.arange(3), np.array([0, 1, 1], dtype=np.int32))
-    np.testing.assert_allclose(cycle_ranges(sigma, 1e-3), [[8e-3 * np.pi / 4, 8e-3 * np.pi / 4, 0.0]], rtol=1e-15)
+    result = fr.simulate(CONTACT, history, fr.models.Grid(96))
+    assert result.cycle_load_range.values.tolist() == [[TINY, TINY, 0.0], [0.0, 0.0, 0.0], [TINY, TINY, 0.0]]
+    assert result.attrs[UNRESOLVED].startswith("2 load cycles (cycle 1 to 3) dissipated exactly nothing")
+    sigma = fr.History(np.zeros(3), np.array([0.0, 4e3, -4e3]), np.arange(3), np.array([0, 1, 1], dtype=np.int32))
+    ranges = fr.simulate(CONTACT, sigma, fr.models.Grid(96)).cycle_load_range.values
+    np.testing.assert_allclose(ranges, [[8e3 * np.pi * CONTACT.a / 4, 8e3 * np.pi * CONTACT.a / 4, 0.0]], rtol=1e-15)
+
+
+def test_a_joined_result_notes_the_cycles_of_every_part():
+    """The note of a result joined from parts is the whole run's: a first part of a ramp alone has no note,
+    the join of it and of tiny cycles after, cut inside a cycle, has the whole run's, from the cycles'
+    ranges the state carries from part to part."""
+    ramp = fr.History.piecewise_linear([0.0, 0.3 * CONTACT.f * CONTACT.P, 0.0], None, 8)
+    history = fr.History.concatenate([ramp, fr.History.sinusoidal(TINY, cycles=3, steps_per_cycle=16)])
+    grid = fr.models.Grid(96)
+    whole = fr.simulate(CONTACT, history, grid)
+    assert whole.attrs[UNRESOLVED].startswith("2 load cycles (cycle 2 to 3) dissipated exactly nothing")
+    parts = [fr.simulate(CONTACT, history[:17], grid)]
+    for start, stop in [(16, 40), (40, len(history) - 1)]:  # cut inside cycles 2 and 3
+        parts.append(fr.simulate(CONTACT, history[start : stop + 1], grid, state=fr.final_state(parts[-1])))
+    assert UNRESOLVED not in parts[0].attrs and parts[1].cycle_number.values.tolist() == [1, 2]
+    joined = fr.join_results(parts)
+    assert joined.attrs[UNRESOLVED] == whole.attrs[UNRESOLVED]
+    np.testing.assert_array_equal(joined.cycle_load_range.values, whole.cycle_load_range.values)
 
 
 def energy_error(model, amplitude):

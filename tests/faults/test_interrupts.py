@@ -13,8 +13,8 @@ from test_cli import data_of, run
 
 import fretting as fr
 from fretting.engine import runner
-from fretting.engine.notes import UNRESOLVED
 from fretting.results.io import load
+from fretting.results.notes import UNRESOLVED
 
 SHEAR = CONTACT + CLI_SHEAR
 
@@ -72,7 +72,7 @@ def test_an_interrupt_dropped_after_the_last_chunk_is_said_and_exits_130(tmp_pat
     monkeypatch.setattr(runner, "save_joined", dropping)
     assert run("run", "shear.toml", "-o", "out.h5", "--nodes", "32") == 130
     out, err = capsys.readouterr()
-    note = f"fretting: note: {load(tmp_path / 'out.h5').attrs[UNRESOLVED]}\n"  # the 32 nodes' (engine.notes)
+    note = f"fretting: note: {load(tmp_path / 'out.h5').attrs[UNRESOLVED]}\n"  # the 32 nodes' (results.notes)
     assert err == note + "fretting: error: interrupted\n" and "Exception ignored" not in out + err
     assert load(tmp_path / "out.h5").attrs["steps"] == 83
 

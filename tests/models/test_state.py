@@ -39,7 +39,7 @@ def _episode_start(before, start, ds, slip):
 def test_episode_start_is_its_definition_bit_for_bit(fields):
     before, start, ds = fields
     slip = before + ds
-    state = State(Loads(1.0, 0.0), before, start, Tally.begin(1, before), None)
+    state = State(Loads(1.0, 0.0), before, start, Tally.begin(1, before, np.array([1.0, 1.0, 1e5])), None)
     after = state.advance(Outcome(slip, ds, slip, 0.0), Loads(2.0, 0.0), None, None, None)
     expected = _episode_start(before, start, ds, slip)
     assert np.array_equal(after.episode_start, expected)
@@ -51,11 +51,26 @@ def test_stress_not_known_leaves_the_sigma_xx_peaks_nan_as_a_nan_row_would(field
     before, _, ds = fields
     slip, w, shear = before + ds, np.abs(ds), np.abs(before)
     tally = Tally(1, 0.5, np.ones(N), before, before, np.zeros(N), np.zeros(N), np.zeros(N))
-    unknown = tally.add(0.25, w, slip, None, shear)
-    nan_row = tally.add(0.25, w, slip, np.full(N, np.nan), shear)
+    loads = np.array([-1.0, 3.0, 1e5])
+    unknown = tally.add(0.25, w, slip, None, shear, loads)
+    nan_row = tally.add(0.25, w, slip, np.full(N, np.nan), shear, loads)
     for name in ("w", "slip_min", "slip_max", "sigma_xx_peak", "q_peak", "sigma_xx_q_peak"):
         assert np.array_equal(getattr(unknown, name), getattr(nan_row, name), equal_nan=True), name
     assert unknown.dissipation == nan_row.dissipation == 0.75
     assert np.all(np.isnan(unknown.sigma_xx_peak)) and np.all(np.isnan(unknown.sigma_xx_q_peak))
     with pytest.raises(ValueError):  # the NaN row is shared between tallies: nobody may write into it
         unknown.sigma_xx_peak[0] = 1.0
+
+
+def test_the_load_extremes_span_the_cycle_from_its_starting_loads(fields):
+    """`Tally.load_low` and `load_high` are the elementwise least and greatest of the loads the cycle
+    started from and of those after each increment; a tally read without them (NaN) stays unknown."""
+    before, _, ds = fields
+    w, shear, start = np.abs(ds), np.abs(before), np.array([0.0, 0.0, 1e5])
+    steps = [np.array([2.0, -1.0, 1.2e5]), np.array([-3.0, 0.5, 0.9e5]), np.array([1.0, 4.0, 1e5])]
+    tally = Tally.begin(1, before, start)
+    for loads in steps:
+        tally = tally.add(0.0, w, before, None, shear, loads)
+    assert tally.load_low.tolist() == [-3.0, -1.0, 0.9e5] and tally.load_high.tolist() == [2.0, 4.0, 1.2e5]
+    unknown = Tally(1, 0.0, w, before, before, w, w, w).add(0.0, w, before, None, shear, steps[0])
+    assert np.all(np.isnan(unknown.load_low)) and np.all(np.isnan(unknown.load_high))

@@ -9,7 +9,9 @@ at an edge (Mindlin & Deresiewicz 1953, `fretting.physics.closed_forms.mindlin_d
 nodes in those zones: `unresolved_cycles` names the cycles whose slip zones (so estimated, or as
 recorded where wider) hold fewer than `SLIP_NODES` nodes of a model that does not adapt its nodes to
 the energy (a grid, a given mesh), and those of any model that dissipated exactly nothing; the run
-records the note (``model_unresolved``) and says it, as it does a model's fallback.
+records the note (``model_unresolved``) and says it, as it does a model's fallback. The note is a
+function of the result alone (each cycle's ``cycle_load_range``, which the engine tallies and a state
+carries from part to part), so a result joined from parts has the whole run's.
 """
 
 from __future__ import annotations
@@ -17,18 +19,8 @@ from __future__ import annotations
 import numpy as np
 
 from fretting.physics.profiles import profile_class, recorded_profile
-from fretting.results.io import open_result
 
-__all__ = [
-    "SLIP_NODES",
-    "UNRESOLVED",
-    "cycle_ranges",
-    "edge_slip_nodes",
-    "noted",
-    "observed_slip_nodes",
-    "parts_note",
-    "unresolved_cycles",
-]
+__all__ = ["SLIP_NODES", "UNRESOLVED", "edge_slip_nodes", "noted", "observed_slip_nodes", "unresolved_cycles"]
 
 #: Attribute of a result that holds the note of `unresolved_cycles`.
 UNRESOLVED = "model_unresolved"
@@ -42,33 +34,9 @@ SLIP_NODES = 100
 #: adapted to the energy (a result with ``rtol``) and the exact models are not.
 FIXED_NODES = ("grid", "mesh")
 
-#: Steps of a history read at once by `cycle_ranges`.
-BLOCK = 2**18
-
-
-def cycle_ranges(history, a):
-    """The range [N/m] over each load cycle of `history` (1 to its ``cycle_count``) of the loads that
-    make slip at the two edges of a contact of half-width `a` [m], ``Q - pi a sigma / 4`` (at ``-a``)
-    and ``Q + pi a sigma / 4`` (at ``+a``), the numerators of eqs (9) and (20) there, and of ``P``
-    where it varies: ndarray, shape (cycles, 3); a row of zeros is a cycle whose loads do not move."""
-    if not history.has_cycles:
-        return np.zeros((0, 3))
-    low = np.full((history.cycle_count + 1, 3), np.inf)
-    high = np.full((history.cycle_count + 1, 3), -np.inf)
-    for start in range(1, len(history), BLOCK):
-        Q, sigma, cycle, P = history.at(np.arange(start - 1, min(start + BLOCK, len(history))))
-        loads = np.stack([Q - np.pi * a * sigma / 4, Q + np.pi * a * sigma / 4, 0 * Q if P is None else P], axis=1)
-        # each increment belongs to the cycle of the step it ends at, and spans its two ends' loads;
-        # reduced over each run of increments of one cycle first (the ufuncs' at is slow per element)
-        runs = np.flatnonzero(np.diff(cycle[1:], prepend=-1) != 0)
-        for ends in (loads[:-1], loads[1:]):
-            np.minimum.at(low, cycle[1:][runs], np.minimum.reduceat(ends, runs, axis=0))
-            np.maximum.at(high, cycle[1:][runs], np.maximum.reduceat(ends, runs, axis=0))
-    return np.where(np.isfinite(low), high - low, 0.0)[1:]
-
 
 def edge_slip_nodes(attrs, x, p, ranges):
-    """Nodes of a model at `x` [m] within the slip zone each cycle's `ranges` (`cycle_ranges`) make at the
+    """Nodes of a model at `x` [m] within the slip zone each cycle's `ranges` (its ``cycle_load_range``) make at the
     contact edge where it is wider, by Mindlin-Deresiewicz's small-range width: with the pressure
     ``p ~ K sqrt(2 d / a)`` at a distance ``d`` from an edge (``K = p0`` on Hertz), a range ``Delta`` of
     the edge's load slips over ``d < Delta / (2 pi f K)`` (``a Delta / (4 f P)`` on Hertz); ``K`` from the
@@ -110,7 +78,7 @@ def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None, 
     cycle_number, dissipation : array_like, shape (cycles,)
         Each cycle's number and ``cycle_dissipation`` [J/m].
     ranges : array_like, shape (cycles, 3)
-        Each cycle's `cycle_ranges`.
+        Each cycle's ``cycle_load_range`` [N/m]: of the loads that make slip at the edges, and of ``P``.
     x, p : array_like, shape (nodes,), optional
         The model's nodes [m] and the pressure there [Pa]: with them, the cycles of a model with fixed
         nodes (`FIXED_NODES`) under a constant ``P`` whose slip zone holds fewer than `SLIP_NODES`
@@ -160,40 +128,26 @@ def _cycles(numbers):
     return f"{numbers.size} load cycle{'s' * (numbers.size > 1)} ({which})"
 
 
-def noted(result, history):
-    """`result` (a dataset of `fretting.engine.simulation` of `history`) with the note of
-    `unresolved_cycles` in its attribute `UNRESOLVED`, where there is one."""
-    if "cycle_number" not in result.dims:
+def noted(result):
+    """`result` (a dataset of `fretting.simulate`, or joined from parts) with the note of `unresolved_cycles`
+    in its attribute `UNRESOLVED`, or without that attribute where there is none; as it is where it
+    records no ``cycle_load_range`` (written before the ranges were)."""
+    if "cycle_load_range" not in result:
         return result
-    ranges = cycle_ranges(history, result.attrs["a"])[result.cycle_number.values - 1]
     numbers = result.cycle_number.values
     pressure = result.p.values if result.p.dims == ("x",) else None
     observed = observed_slip_nodes(result.stick.values, result.cycle.values, numbers)
     note = unresolved_cycles(
-        result.attrs, numbers, result.cycle_dissipation.values, ranges, result.x.values, pressure, observed
+        result.attrs,
+        numbers,
+        result.cycle_dissipation.values,
+        result.cycle_load_range.values,
+        result.x.values,
+        pressure,
+        observed,
     )
-    return result if note is None else result.assign_attrs({UNRESOLVED: note})
-
-
-def parts_note(parts, ranges):
-    """The note of `unresolved_cycles` of a run kept in the result files `parts` (in order; a cycle that
-    spans two parts is the later part's), whose cycles' loads range as `ranges` (`cycle_ranges`) says;
-    or None."""
-    cycles, observed, attrs, x, p = {}, {}, None, None, None
-    for part in parts:
-        with open_result(part) as opened:
-            if attrs is None:
-                attrs, x = dict(opened.attrs), opened.x.values
-                p = opened.p.values if "p" in opened and opened.p.dims == ("x",) else None
-            if "cycle_number" in opened.dims:
-                numbers = opened.cycle_number.values
-                cycles |= dict(zip(numbers.tolist(), opened.cycle_dissipation.values.tolist(), strict=True))
-                seen = observed_slip_nodes(opened.stick.values, opened.cycle.values, numbers)
-                for number, count in zip(numbers.tolist(), seen.tolist(), strict=True):
-                    observed[number] = max(observed.get(number, 0), count)
-    if not cycles:
-        return None
-    numbers = np.array(sorted(cycles))
-    dissipation = [cycles[number] for number in numbers]
-    seen = [observed[number] for number in numbers]
-    return unresolved_cycles(attrs, numbers, dissipation, ranges[numbers - 1], x, p, seen)
+    if note is not None:
+        return result.assign_attrs({UNRESOLVED: note})
+    said = result.copy(deep=False)  # a shallow copy's attrs are its own
+    said.attrs.pop(UNRESOLVED, None)
+    return said
