@@ -107,8 +107,9 @@ def edge_loads(loads, contact):
     sigma x / 4) / sqrt(a^2 - x^2)``, at the edges, with the half-width ``a`` at the contact's ``P``:
     a change of either makes a slip zone at its edge wherever the pressure vanishes there.
     `loads` is a `Loads` (shape (3,)) or a `LoadBlock` (shape (steps, 3)); ``P`` None is the contact's.
-    The same operations on floats or elementwise on arrays: a step's row is the same either way, bit
-    for bit (the engine tallies them at every increment: a float's are a tenth of the array's cost).
+    The same operations on floats (one step: the engine tallies them at every increment, where numpy's
+    call on small arrays would cost more than the sums) or elementwise on arrays: a step's row is the
+    same either way, bit for bit.
     """
     a, P = contact.a, contact.P if loads.P is None else loads.P
     if isinstance(loads, Loads):

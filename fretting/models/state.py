@@ -73,7 +73,7 @@ class Continued(Nodes, Protocol):
 
 @cache
 def _unknown(N):
-    """A read-only row of `N` NaN: a peak not known, shared by the tallies that do not know it."""
+    """A read-only row of `N` NaN: a peak or load extremes not known, shared by the tallies that do not know them."""
     row = np.full(N, np.nan)
     row.flags.writeable = False
     return row
