@@ -5,7 +5,11 @@ default Galerkin mesh, the default grid and the 96-node grid: the largest error 
 to p0, against Cattaneo-Mindlin at Q = 0.5 f P and Nowell-Hills at Q = 0.5 f P with sigma = 0.2 f p0 in
 phase (McEwen's surface stress of their elliptical loads), with where it lies, ``(x - e) / b``; for a
 discretised model also the error of its nodal tractions alone (the stick flags cleared, so that no
-stick end is fitted: `fretting.physics.surface.SurfaceStress.at_stick_ends`). Then the wall-clock time
+stick end is fitted: `fretting.physics.surface.SurfaceStress.at_stick_ends`). Then the same on
+Mindlin-Deresiewicz unloading, Q from 0 to 0.5 f P and back to 0.1 f P (McEwen's stress of
+``q_CM(0.5 f P) - 2 q_CM(0.2 f P)``), the largest error split by where it lies: within `NEAR` node
+spacings of the stick end the loading left (``c*``, now inside the stick zone: not fitted), of the
+current stick end (``c'``, fitted), and elsewhere. Then the wall-clock time
 (best of `--repeats`) of `fretting.simulate`, whose engine tallies the per-cycle peaks of the surface
 stress, and of `surface_stress` on three histories, under the default model and the default grid: 20
 sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within 0.8 f P, and 200
@@ -49,6 +53,31 @@ def closed_form_error(tau, model):
     return result.attrs["model"], x.size, error.max() / CONTACT.p0, (x[error.argmax()] - e) / b, nodal
 
 
+#: Node spacings about a stick end within which `unloading_error` counts an error as that end's.
+NEAR = 3
+
+
+def unloading_error(model):
+    """Model, nodes and the largest errors [p0] of body 1's surface stress after Mindlin-Deresiewicz unloading
+    from ``Q* = 0.5 f P`` to ``Q = 0.1 f P``: about the former stick end ``c*``, about the current one ``c'``,
+    and elsewhere (`NEAR`)."""
+    fP, fp0, a = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0, CONTACT.a
+    Q_star, Q = 0.5 * fP, 0.1 * fP
+    result = fr.simulate(CONTACT, fr.History.piecewise_linear([0.0, Q_star, Q], None, 8), model)
+    x = result.x.values
+    c_star, c = cf.stick_half_width(CONTACT, Q_star), cf.stick_half_width(CONTACT, (Q_star - Q) / 2)
+
+    def cattaneo(b):  # the stress of Cattaneo-Mindlin's traction of stick half-width b [m], over f p0
+        return ellipse_transform(x, 0.0, a) - b / a * ellipse_transform(x, 0.0, b)
+
+    expected = -CONTACT.pressure(x) + fp0 * (cattaneo(c_star) - 2 * cattaneo(c))
+    error = np.abs(nucleation.surface_stress(result, body=1).values[-1] - expected) / CONTACT.p0
+    spacing = NEAR * np.diff(x).max()
+    former, current = np.abs(np.abs(x) - c_star) < spacing, np.abs(np.abs(x) - c) < spacing
+    rest = ~(former | current)
+    return result.attrs["model"], x.size, error[former].max(), error[current].max(), error[rest].max()
+
+
 def histories():
     fP, fp0 = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0
     walk = np.concatenate([[0.0], np.random.default_rng(1).uniform(-0.8, 0.8, 400) * fP])
@@ -71,6 +100,10 @@ def main():
                 f"{name:8s} {nodes:5d} nodes, sigma = {tau} f p0: largest error {error:.2e} p0 at (x - e) / b = "
                 f"{where:.4f}{alone}"
             )
+    print("Mindlin-Deresiewicz unloading, 0.5 f P to 0.1 f P: largest error [p0] about c*, about c', elsewhere")
+    for model in (None, fr.models.Mesh(), fr.models.Grid(), fr.models.Grid(1536)):
+        name, nodes, former, current, rest = unloading_error(model)
+        print(f"{name:8s} {nodes:5d} nodes: {former:.2e} (c*), {current:.2e} (c'), {rest:.2e} (elsewhere)")
     for model in (None, fr.models.Grid()):
         for name, history in histories().items():
             result = fr.simulate(CONTACT, history, model)
