@@ -192,3 +192,19 @@ def test_a_result_lost_with_its_worker_stops_the_sweep_as_no_workers(monkeypatch
     fake = type("FakeDistributed", (), {"wait": staticmethod(wait)})
     with pytest.raises(sweeps.NoWorkersError, match="no workers for 0.05 s"):
         list(sweeps._completed(fake, NoWorkers(), {lost: 0}))
+
+
+def test_a_case_that_fails_on_its_own_timeout_error_raises_it(monkeypatch):
+    """A case whose own error is a TimeoutError (status "error") is raised, not taken for a lost result and
+    waited on again (until the no-worker check stopped the sweep)."""
+    monkeypatch.setattr(sweeps, "NO_WORKERS_SECONDS", 0.05)
+
+    class Failed(LostResult):
+        status = "error"
+
+    def wait(pending, timeout, return_when):
+        return set(pending), set()
+
+    fake = type("FakeDistributed", (), {"wait": staticmethod(wait)})
+    with pytest.raises(TimeoutError, match="timed out after"):
+        list(sweeps._completed(fake, NoWorkers(), {Failed(): 0}))
