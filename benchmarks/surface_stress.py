@@ -9,7 +9,8 @@ stick end is fitted: `fretting.physics.surface.SurfaceStress.at_stick_ends`). Th
 Mindlin-Deresiewicz unloading, Q from 0 to 0.5 f P and back to 0.1 f P (McEwen's stress of
 ``q_CM(0.5 f P) - 2 q_CM(0.2 f P)``), the largest error split by where it lies: within `NEAR` node
 spacings of the stick end the loading left (``c*``, now inside the stick zone: not fitted), of the
-current stick end (``c'``, fitted), and elsewhere. Then the wall-clock time
+current stick end (``c'``, fitted), and elsewhere, and about ``c'`` with the exact slip fitted instead
+of the model's. Then the wall-clock time
 (best of `--repeats`) of `fretting.simulate`, whose engine tallies the per-cycle peaks of the surface
 stress, and of `surface_stress` on three histories, under the default model and the default grid: 20
 sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within 0.8 f P, and 200
@@ -36,15 +37,22 @@ def ellipse_transform(x, centre, half_width):
     return -2 * (d - np.sign(d) * np.sqrt(np.clip(d**2 - half_width**2, 0, None))) / half_width
 
 
+def partial_slip_stress(x, b, e=0.0):
+    """The surface stress [f p0] of body 1 at `x` [m] of the traction of Cattaneo-Mindlin (`e` = 0) or of
+    Nowell-Hills, ``f p0 (sqrt(1 - x^2/a^2) - (b/a) sqrt(1 - (x - e)^2/b^2))``, stick zone `b` [m] about `e` [m]."""
+    a = CONTACT.a
+    return ellipse_transform(x, 0.0, a) - b / a * ellipse_transform(x, e, b)
+
+
 def closed_form_error(tau, model):
     """Largest error [p0] of body 1's surface stress at Q = 0.5 f P with sigma = tau f p0 in phase, where it
     lies, ``(x - e) / b``, and the error of the nodal tractions alone (NaN for an exact model)."""
-    fP, fp0, a = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0, CONTACT.a
+    fP, fp0 = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0
     Q, sigma = 0.5 * fP, tau * fp0
     result = fr.simulate(CONTACT, fr.History.piecewise_linear([0.0, Q], [0.0, sigma], 4), model)
     x = result.x.values
     b, e = cf.stick_half_width(CONTACT, Q), cf.nowell_hills_offset(CONTACT, sigma)
-    expected = -CONTACT.pressure(x) + fp0 * (ellipse_transform(x, 0.0, a) - b / a * ellipse_transform(x, e, b))
+    expected = -CONTACT.pressure(x) + fp0 * partial_slip_stress(x, b, e)
     error = np.abs(nucleation.surface_stress(result, body=1).values[-1] - expected)
     nodal = np.nan
     if result.attrs["model"] in ("grid", "mesh"):
@@ -60,22 +68,33 @@ NEAR = 3
 def unloading_error(model):
     """Model, nodes and the largest errors [p0] of body 1's surface stress after Mindlin-Deresiewicz unloading
     from ``Q* = 0.5 f P`` to ``Q = 0.1 f P``: about the former stick end ``c*``, about the current one ``c'``,
-    and elsewhere (`NEAR`)."""
-    fP, fp0, a = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0, CONTACT.a
+    elsewhere (`NEAR`), and about ``c'`` again with the model's slip at the last step replaced by the exact
+    one (``s_CM(Q*) - 2 s_CM((Q* - Q) / 2)``, `fretting.physics.closed_forms.cattaneo_mindlin_slip`), which
+    tells the fit's error from that of the model's slip."""
+    fP, fp0 = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0
     Q_star, Q = 0.5 * fP, 0.1 * fP
     result = fr.simulate(CONTACT, fr.History.piecewise_linear([0.0, Q_star, Q], None, 8), model)
     x = result.x.values
     c_star, c = cf.stick_half_width(CONTACT, Q_star), cf.stick_half_width(CONTACT, (Q_star - Q) / 2)
-
-    def cattaneo(b):  # the stress of Cattaneo-Mindlin's traction of stick half-width b [m], over f p0
-        return ellipse_transform(x, 0.0, a) - b / a * ellipse_transform(x, 0.0, b)
-
-    expected = -CONTACT.pressure(x) + fp0 * (cattaneo(c_star) - 2 * cattaneo(c))
-    error = np.abs(nucleation.surface_stress(result, body=1).values[-1] - expected) / CONTACT.p0
+    expected = -CONTACT.pressure(x) + fp0 * (partial_slip_stress(x, c_star) - 2 * partial_slip_stress(x, c))
+    slip = result.slip.values.copy()
+    slip[-1] = cf.cattaneo_mindlin_slip(CONTACT, Q_star, x) - 2 * cf.cattaneo_mindlin_slip(CONTACT, (Q_star - Q) / 2, x)
+    errors = [
+        np.abs(nucleation.surface_stress(run, body=1).values[-1] - expected) / CONTACT.p0
+        for run in (result, result.assign(slip=(result.slip.dims, slip)))
+    ]
     spacing = NEAR * np.diff(x).max()
     former, current = np.abs(np.abs(x) - c_star) < spacing, np.abs(np.abs(x) - c) < spacing
-    rest = ~(former | current)
-    return result.attrs["model"], x.size, error[former].max(), error[current].max(), error[rest].max()
+    model_slip, exact_slip = errors
+    elsewhere = model_slip[~(former | current)].max()
+    return (
+        result.attrs["model"],
+        x.size,
+        model_slip[former].max(),
+        model_slip[current].max(),
+        elsewhere,
+        exact_slip[current].max(),
+    )
 
 
 def histories():
@@ -100,10 +119,13 @@ def main():
                 f"{name:8s} {nodes:5d} nodes, sigma = {tau} f p0: largest error {error:.2e} p0 at (x - e) / b = "
                 f"{where:.4f}{alone}"
             )
-    print("Mindlin-Deresiewicz unloading, 0.5 f P to 0.1 f P: largest error [p0] about c*, about c', elsewhere")
+    print("Mindlin-Deresiewicz unloading, 0.5 f P to 0.1 f P: largest error [p0] by where it lies")
     for model in (None, fr.models.Mesh(), fr.models.Grid(), fr.models.Grid(1536)):
-        name, nodes, former, current, rest = unloading_error(model)
-        print(f"{name:8s} {nodes:5d} nodes: {former:.2e} (c*), {current:.2e} (c'), {rest:.2e} (elsewhere)")
+        name, nodes, former, current, rest, fitted = unloading_error(model)
+        print(
+            f"{name:8s} {nodes:5d} nodes: {former:.2e} (c*), {current:.2e} (c'), {rest:.2e} (elsewhere); "
+            f"{fitted:.2e} (c', the exact slip fitted)"
+        )
     for model in (None, fr.models.Grid()):
         for name, history in histories().items():
             result = fr.simulate(CONTACT, history, model)

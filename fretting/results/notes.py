@@ -67,7 +67,7 @@ def observed_slip_nodes(stick, cycle, numbers):
     return observed
 
 
-def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None, observed=None):
+def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x, p, observed):
     """The note [str] of the cycles whose loads move that the model does not resolve, or None.
 
     Parameters
@@ -79,10 +79,12 @@ def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None, 
         Each cycle's number and ``cycle_dissipation`` [J/m].
     ranges : array_like, shape (cycles, 3)
         Each cycle's ``cycle_load_range`` [N/m]: of the loads that make slip at the edges, and of ``P``.
-    x, p : array_like, shape (nodes,), optional
-        The model's nodes [m] and the pressure there [Pa]: with them, the cycles of a model with fixed
-        nodes (`FIXED_NODES`) under a constant ``P`` whose slip zone holds fewer than `SLIP_NODES`
-        (`edge_slip_nodes`, or the `observed_slip_nodes` `observed` where more) are named too.
+    x, p : array_like, shape (nodes,)
+        The model's nodes [m] and the pressure there [Pa] (`p` None: it varies from step to step). The
+        cycles of a model with fixed nodes (`FIXED_NODES`) under a constant ``P`` whose slip zone holds
+        fewer than `SLIP_NODES` (`edge_slip_nodes`, or `observed` where more) are named too.
+    observed : array_like of int, shape (cycles,)
+        Each cycle's `observed_slip_nodes`.
 
     Returns
     -------
@@ -98,11 +100,9 @@ def unresolved_cycles(attrs, cycle_number, dissipation, ranges, x=None, p=None, 
     numbers = np.asarray(cycle_number)
     silent = (np.asarray(dissipation) == 0) & varied
     few = np.zeros_like(silent)
-    if x is not None and attrs["model"] in FIXED_NODES and "rtol" not in attrs:
+    if p is not None and attrs["model"] in FIXED_NODES and "rtol" not in attrs:
         counted = varied & (ranges[:, 2] == 0) & ~silent
-        slipping = edge_slip_nodes(attrs, x, np.asarray(p), ranges[counted])
-        if observed is not None:
-            slipping = np.maximum(slipping, np.asarray(observed)[counted])
+        slipping = np.maximum(edge_slip_nodes(attrs, x, np.asarray(p), ranges[counted]), np.asarray(observed)[counted])
         few[counted] = slipping < SLIP_NODES
     nodes = f"the {attrs['model']} model's {attrs['nodes']} nodes"
     said = []

@@ -84,11 +84,11 @@ ACCUMULATED = {"w_total": "w"} | {f"{name}_max": name for name in CYCLE_FIELDS[1
 #: are the CF ``flag_meanings`` of ``regime``, as those of a sweep's (`fretting.studies.sweeps`).
 REGIMES = ("stuck", "partial_slip", "gross_slip")
 
-#: What the long names of the loop's per-cycle variables add (`fretting.results.loops`).
 #: The loads along the dimension ``load`` (`fretting.loading.loads.edge_loads`): the numerators of the fully
 #: stuck traction of eqs (9) and (20) at the two contact edges, then the normal load.
 _EDGE_LOADS = "load 0: Q - pi a sigma / 4 (at x = -a), 1: Q + pi a sigma / 4 (at x = +a), 2: P"
 
+#: What the long names of the loop's per-cycle variables add (`fretting.results.loops`).
 _LOOP = ", from the recorded steps where the contact has a datum (NaN: the cycle's steps not all recorded)"
 
 #: name -> (dims, units, long_name) of the variables that follow from no other.
