@@ -267,11 +267,17 @@ class NormalModel(Model):
         b = linalg.solve_toeplitz(self.column[: 2 * m], np.ones(2 * m))
         return b / b.sum()
 
+    @functools.cache  # noqa: B019 (one array per run of cells, as long as the model)
+    def inverse_column(self, m):
+        """First column of ``B = D^-1`` of the `m` central pairs (Levinson), kept: the `stiffness` of a
+        contact met again, once it has left the cache, is formed from it (`slip_to_traction`)."""
+        return linalg.solve_toeplitz(self.column[: 2 * m], np.eye(2 * m, 1)[:, 0])
+
     @functools.lru_cache(maxsize=CACHED_CONTACTS)  # noqa: B019 (a model lives as long as its stepper)
     def stiffness(self, m):
         """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring, `slip_to_traction`), kept
         as a `Stiffness` (not `kept` for the solver's inverse) so that the parts on one run share ``|G|``."""
-        return Stiffness(slip_to_traction(self.column[: 2 * m], self.punch(m)), kept=False)
+        return Stiffness(slip_to_traction(self.column[: 2 * m], self.punch(m), self.inverse_column(m)), kept=False)
 
     def _cumulative(self):
         """Nodal forces ``p h`` [N/m] at each load `start` (Jaeger's superposition of the `punch` of each run)."""
@@ -585,10 +591,11 @@ def edge_end(t, deficit, side):
     return float(np.clip(estimate, *sorted((t[outer], side))))
 
 
-def slip_to_traction(column, punch):
+def slip_to_traction(column, punch, first=None):
     """``G = B - b b^T / beta`` of the symmetric positive definite Toeplitz matrix ``D`` of first column
     `column` (an even number ``n`` of cells), ``B = D^-1``, ``b = B 1``, ``beta = 1^T b`` (module docstring),
-    in ``O(n^2)``, given ``punch = b / beta`` (`NormalModel.punch`).
+    in ``O(n^2)``, given ``punch = b / beta`` (`NormalModel.punch`) and, if known, the first column `first` of
+    ``B`` (`NormalModel.inverse_column`; else one Levinson solve).
 
     ``B`` by Trench's recursion (Trench 1964; Gohberg & Semencul 1972): with ``v`` the first column of
     ``B``, ``B[i + 1, j + 1] = B[i, j] + (v[i + 1] v[j + 1] - v[n - 1 - i] v[n - 1 - j]) / v[0]``, one
@@ -603,7 +610,8 @@ def slip_to_traction(column, punch):
     n = column.size
     if n % 2:
         raise ValueError(f"column must have an even number of entries, found {n}")
-    first = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
+    if first is None:
+        first = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
     w, c = first / np.sqrt(first[0]), punch / np.sqrt(column @ punch)
     head, tail = w[1:], w[:0:-1]  # w[j + 1], w[n - 1 - j], j = 0 .. n - 2
     G = np.empty((n, n))

@@ -369,7 +369,8 @@ def test_stick_end_between_two_nodes_from_the_kink_of_cattaneo_mindlin():
 @pytest.mark.parametrize("n", [8, 64, 512])
 def test_slip_to_traction_is_the_dense_one_and_symmetric(n):
     """Trench's recursion less the flat punch against LAPACK's inverse of the dense flexibility, ``B - b b^T / beta``
-    (1e-12 relative), exactly symmetric and persymmetric, with the rigid shift in its null space."""
+    (1e-12 relative), exactly symmetric and persymmetric, with the rigid shift in its null space; given the first
+    column of ``B`` that a model keeps (`NormalModel.inverse_column`), the same bit for bit."""
     from scipy import linalg
 
     from fretting.models.normal import flexibility, slip_to_traction
@@ -377,7 +378,9 @@ def test_slip_to_traction_is_the_dense_one_and_symmetric(n):
     column = flexibility(n, 1e-5, E_STAR)
     B = np.linalg.inv(linalg.toeplitz(column))
     b = B.sum(axis=1)
-    G = slip_to_traction(column, linalg.solve_toeplitz(column, np.ones(n)) / b.sum())
+    punch = linalg.solve_toeplitz(column, np.ones(n)) / b.sum()
+    G = slip_to_traction(column, punch)
+    np.testing.assert_array_equal(slip_to_traction(column, punch, linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])), G)
     expected = B - np.outer(b, b) / b.sum()
     scale = np.max(np.abs(expected))
     assert np.max(np.abs(G - expected)) < 1e-12 * scale
