@@ -110,9 +110,15 @@ DEFAULT_CELLS = 768
 DEFAULT_LOAD_PART = 1 / 400
 
 #: Contacts (runs of cells) whose `Stiffness` (``G`` and ``|G|``, ``2 (2m)^2`` floats, 9.4 MB at 768 cells)
-#: `NormalModel` keeps: consecutive parts of an increment mostly share a contact, and one not kept costs
-#: ``O(m^2)`` to form again (`slip_to_traction`), less than keeping many costs in memory traffic.
+#: `NormalModel` keeps: consecutive parts of an increment mostly share a contact, and one not kept is
+#: formed again from its kept rows (`CACHED_HALVES`) by a copy, or else by Trench's recursion.
 CACHED_CONTACTS = 8
+
+#: Bytes of the first ``m`` rows of ``G`` (`half_stiffness`, ``2 m^2`` floats, 2.4 MB at 768 cells) that
+#: `NormalModel` keeps for the contacts it has met, the least recently used dropped first: a history whose
+#: ``P`` varies meets the same contacts again and again, and the whole ``G`` is one flipped copy of those
+#: rows (`whole`), where the recursion that forms them takes a few array operations per row.
+CACHED_HALVES = 2**27
 
 #: Episode slip [of the largest at the step's nodes in contact] at or below which a node counts as stuck when its
 #: stick zones are read (`NormalModel.stick_zones`): nodes at the limit that do not slip (bands that entered at the
@@ -239,6 +245,8 @@ class NormalModel(Model):
         self.t = (self.x - contact.centre) / contact.a
         self.friction_force = np.inf  # f P at each step: the engine checks the load of the step
         self.column = flexibility(N, self.h, contact.E_star)
+        # m -> what the model keeps of the run of m central pairs (`_recent`), dropped with the model:
+        self._punches, self._columns, self._stiffnesses, self._halves = {}, {}, {}, {}
         self._kernel = np.concatenate([self.column[:0:-1], self.column])  # D_ij = kernel[N - 1 + i - j]
         self.start = self._starts()
         self._sums = self._cumulative()
@@ -261,23 +269,27 @@ class NormalModel(Model):
         middle = self.x.size // 2
         return slice(middle - m, middle + m)
 
-    @functools.cache  # noqa: B019 (one array per run of cells, as long as the model)
     def punch(self, m):
-        """``b / beta``: the nodal forces of the unit load on the `m` central pairs, flat punch (Levinson)."""
-        b = linalg.solve_toeplitz(self.column[: 2 * m], np.ones(2 * m))
-        return b / b.sum()
+        """``b / beta``: the nodal forces of the unit load on the `m` central pairs, flat punch (Levinson), kept."""
+        return _recent(self._punches, m, lambda: _unit_load(self.column[: 2 * m]))
 
-    @functools.cache  # noqa: B019 (one array per run of cells, as long as the model)
     def inverse_column(self, m):
         """First column of ``B = D^-1`` of the `m` central pairs (Levinson), kept: the `stiffness` of a
-        contact met again, once it has left the cache, is formed from it (`slip_to_traction`)."""
-        return linalg.solve_toeplitz(self.column[: 2 * m], np.eye(2 * m, 1)[:, 0])
+        contact met again, once its rows have left the cache (`_half`), is formed from it (`half_stiffness`)."""
+        return _recent(self._columns, m, lambda: linalg.solve_toeplitz(self.column[: 2 * m], np.eye(2 * m, 1)[:, 0]))
 
-    @functools.lru_cache(maxsize=CACHED_CONTACTS)  # noqa: B019 (a model lives as long as its stepper)
     def stiffness(self, m):
         """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring, `slip_to_traction`), kept
-        as a `Stiffness` (not `kept` for the solver's inverse) so that the parts on one run share ``|G|``."""
-        return Stiffness(slip_to_traction(self.column[: 2 * m], self.punch(m), self.inverse_column(m)), kept=False)
+        as a `Stiffness` (not `kept` for the solver's inverse) so that the parts on one run share ``|G|``; the
+        last `CACHED_CONTACTS` used."""
+        full = lambda kept, new: len(kept) >= CACHED_CONTACTS  # noqa: E731
+        return _recent(self._stiffnesses, m, lambda: Stiffness(whole(self._half(m)), kept=False), full)
+
+    def _half(self, m):
+        """`half_stiffness` of the `m` central pairs, kept within `CACHED_HALVES` bytes."""
+        full = lambda kept, new: sum(half.nbytes for half in kept.values()) + new.nbytes > CACHED_HALVES  # noqa: E731
+        compute = lambda: half_stiffness(self.column[: 2 * m], self.punch(m), self.inverse_column(m))  # noqa: E731
+        return _recent(self._halves, m, compute, full)
 
     def _cumulative(self):
         """Nodal forces ``p h`` [N/m] at each load `start` (Jaeger's superposition of the `punch` of each run)."""
@@ -521,6 +533,25 @@ class NormalModel(Model):
         return self.surface[0], self.pressure_at(outcome.P)
 
 
+def _recent(kept, key, compute, full=lambda kept, new: False):
+    """``kept[key]``, computed by `compute()` where `kept` (a dict, least recently used first) lacks it, and
+    moved to the end; before a new value is added, the least recently used are dropped while `full(kept, new)`."""
+    value = kept.pop(key, None)
+    if value is None:
+        value = compute()
+        while kept and full(kept, value):
+            del kept[next(iter(kept))]
+    kept[key] = value
+    return value
+
+
+def _unit_load(column):
+    """``b / beta`` [-]: the nodal forces of a unit load on the cells of the Toeplitz flexibility ``D`` of first
+    column `column` that move them rigidly, ``b = D^-1 1`` over its sum (a flat punch; Levinson)."""
+    b = linalg.solve_toeplitz(column, np.ones(column.size))
+    return b / b.sum()
+
+
 def slip_start(begin, carried, end):
     """The friction limit [N/m] at which a node starts to slip in a part of an increment: that at the part's
     start, `begin`, but where the limit falls no more than the force the node `carried` then (a stuck node
@@ -595,7 +626,22 @@ def slip_to_traction(column, punch, first=None):
     """``G = B - b b^T / beta`` of the symmetric positive definite Toeplitz matrix ``D`` of first column
     `column` (an even number ``n`` of cells), ``B = D^-1``, ``b = B 1``, ``beta = 1^T b`` (module docstring),
     in ``O(n^2)``, given ``punch = b / beta`` (`NormalModel.punch`) and, if known, the first column `first` of
-    ``B`` (`NormalModel.inverse_column`; else one Levinson solve).
+    ``B`` (`NormalModel.inverse_column`; else one Levinson solve): the `whole` of its `half_stiffness`."""
+    return whole(half_stiffness(column, punch, first))
+
+
+def whole(half):
+    """The persymmetric ``G`` [as `half`] whose first ``n / 2`` rows are `half`, ``(n / 2, n)``:
+    ``G[n - 1 - i, n - 1 - j] = G[i, j]``."""
+    n = half.shape[1]
+    G = np.empty((n, n))
+    G[: n // 2] = half
+    G[n // 2 :] = half[::-1, ::-1]
+    return G
+
+
+def half_stiffness(column, punch, first=None):
+    """The first ``n / 2`` rows of `slip_to_traction`'s ``G``, ``(n / 2, n)`` (arguments as there).
 
     ``B`` by Trench's recursion (Trench 1964; Gohberg & Semencul 1972): with ``v`` the first column of
     ``B``, ``B[i + 1, j + 1] = B[i, j] + (v[i + 1] v[j + 1] - v[n - 1 - i] v[n - 1 - j]) / v[0]``, one
@@ -614,7 +660,7 @@ def slip_to_traction(column, punch, first=None):
         first = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
     w, c = first / np.sqrt(first[0]), punch / np.sqrt(column @ punch)
     head, tail = w[1:], w[:0:-1]  # w[j + 1], w[n - 1 - j], j = 0 .. n - 2
-    G = np.empty((n, n))
+    G = np.empty((n // 2, n))
     row, previous = first.copy(), np.empty(n)
     for i in range(n // 2):
         width = n - i  # the entries i + j <= n - 1 of row i
@@ -627,7 +673,6 @@ def slip_to_traction(column, punch, first=None):
             G[i, width:] = G[i - 1 :: -1, width - 1]  # G[i, j] = G[n - 1 - j, n - 1 - i], j >= n - i
         np.multiply(c[:width], -c[i], out=G[i, :width])
         G[i, :width] += row[:width]
-    G[n // 2 :] = G[n // 2 - 1 :: -1, ::-1]
     return G
 
 

@@ -391,6 +391,42 @@ def test_slip_to_traction_is_the_dense_one_and_symmetric(n):
         slip_to_traction(column[:-1], np.ones(n - 1) / (n - 1))
 
 
+def test_a_model_is_dropped_with_what_it_keeps():
+    """The arrays a varying-load model keeps per run of cells go when the model goes: caches on the class's
+    methods kept every model built alive, a few MB a run, without bound in a long sweep."""
+    import gc
+    import weakref
+
+    c = contact(fr.Hertz(0.05))
+    model = Varying(64).resolved_for(c, None).build(c)
+    model.stiffness(model.pairs(c.P))
+    gone = weakref.ref(model)
+    del model
+    gc.collect()
+    assert gone() is None
+
+
+def test_the_stiffness_formed_again_from_kept_rows_is_the_same_and_they_stay_within_their_bytes(monkeypatch):
+    """`NormalModel.stiffness` of a contact met again, formed from its kept rows or from nothing, is the same bit for
+    bit as `slip_to_traction`'s; the rows kept never exceed `CACHED_HALVES` bytes, the least recently used dropped."""
+    from fretting.models import normal
+
+    c = contact(fr.Hertz(0.05))
+    model = Varying(64).resolved_for(c, None).build(c)
+    # The first m rows of G of m pairs, 2 m^2 floats: the halves of the runs of 13 to 24 pairs, more than the
+    # last `CACHED_CONTACTS` stiffnesses kept whole; down and up again, some are formed from kept rows.
+    monkeypatch.setattr(normal, "CACHED_HALVES", sum(16 * m**2 for m in range(13, 25)))
+    runs = list(range(32, 12, -1)) + list(range(13, 33))
+    for m in runs:
+        G = model.stiffness(m).G
+        expected = normal.slip_to_traction(model.column[: 2 * m], model.punch(m))
+        np.testing.assert_array_equal(G, expected)
+        assert sum(half.nbytes for half in model._halves.values()) <= normal.CACHED_HALVES
+        assert len(model._stiffnesses) <= normal.CACHED_CONTACTS
+    kept = list(model._halves)
+    assert len(kept) >= 4 and kept == runs[-len(kept) :]  # the most recently used, oldest first
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("shift", [1.001, 1.002])
 def test_slip_zone_stops_at_a_former_edge(shift):
