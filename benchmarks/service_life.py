@@ -32,8 +32,9 @@ in a fresh process, on one BLAS thread:
   steps a cycle), with a constant normal load and with a varying one (each cycle its own amplitude
   and phase of P), run by ``fretting.simulate`` at default settings recording the last step, in a
   fresh process each, for the cycles of `SPECTRUM_CYCLES`; the time and memory of 10^4 and 10^6
-  cycles projected from the two (linear in the cycles beyond the longer run, at the cost per cycle
-  between the two: the mesh of the default has reached its bound there); the energy per cycle of
+  cycles projected from the last two (linear in the cycles beyond the longest run, at the cost per
+  cycle between the last two: the mesh of the default, and what the models keep of the contacts
+  they meet, have reached their bounds by the second); the energy per cycle of
   the first cycles against `dense_method4` on a converged grid (its change from a coarser grid
   printed); and the CPU time per step of the varying load over that of the constant load on the
   same history, with the default of each and with `fretting.models.Varying` on both.
@@ -48,7 +49,7 @@ are extrapolated linearly in the cycles, and printed as such.
 Run:  python benchmarks/service_life.py [--short] [--Q-alone] [--million] [--out-of-phase]   (--short:
 10^3 cycles in phase and 10^4 of Q alone, two minutes; default 10^4 and 10^5, about 15 minutes;
 --Q-alone: the rows of Q alone only; --million: 10^6 cycles of each as well, half an hour more;
---out-of-phase: those rows only, ten minutes; --spectra: the spectra of issue 34 only, five minutes)
+--out-of-phase: those rows only, ten minutes; --spectra: the spectra of issue 34 only, ten minutes)
 """
 
 import argparse
@@ -296,7 +297,7 @@ def _extrapolated(row, cycles):
 
 
 #: Spectra of issue 34: cycles of the two timed runs, steps a cycle, largest relative amplitude of P.
-SPECTRUM_CYCLES, SPECTRUM_STEPS, P_AMPLITUDE = (8, 24), 32, 0.1
+SPECTRUM_CYCLES, SPECTRUM_STEPS, P_AMPLITUDE = (8, 24, 72), 32, 0.1
 
 #: Grids of `dense_method4` for the spectra's reference energies (the first of `SPECTRUM_CYCLES`
 #: cycles): the reference and the coarser one it is checked against; and its parts where P varies.
@@ -387,38 +388,39 @@ def spectra_rows():
     """The spectra of issue 34: a table of the constant and the varying normal load, each at its
     default, with projected time and memory and the energy error of the first cycles; then the
     ratios of the CPU time per step, varying over constant."""
-    few, many = SPECTRUM_CYCLES
+    few, middle, many = SPECTRUM_CYCLES
     print("| spectrum | model | cycles run | CPU s | peak MB | energy error | 10^4 cycles | 10^6 cycles | target |")
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
     per_step, notes = {}, []
     for varying_P in (False, True):
         name = "out of phase, varying P" if varying_P else "out of phase"
-        short, long = (spectrum_run(n, varying_P) for n in (few, many))
+        short, _, long = runs = [spectrum_run(n, varying_P) for n in SPECTRUM_CYCLES]
         reference, change = spectrum_reference(varying_P)
         error = worst(np.array(short["energy"]), reference)
         fine, coarse = SPECTRUM_NODES[varying_P]
         notes.append(f"- {name}: energy per cycle of the first {few} cycles against dense_method4 N = {fine}"
                      f" (N = {coarse} differs from it by {change:.1e})")  # fmt: skip
-        cpu_cycle = (long["cpu"] - short["cpu"]) / (many - few)
-        peak_cycle = max(long["peak"] - short["peak"], _loads_bytes(varying_P)) / (many - few)
+        cpu_cycle = (long["cpu"] - runs[1]["cpu"]) / (many - middle)
+        peak_cycle = max(long["peak"] - runs[1]["peak"], _loads_bytes(varying_P)) / (many - middle)
         per_step[varying_P] = cpu_cycle / SPECTRUM_STEPS
         projected = {
             n: (long["cpu"] + cpu_cycle * (n - many), long["peak"] + peak_cycle * (n - many)) for n in SPECTRUM_TARGETS
         }
         cells = [f"{seconds:.0f} s, {peak / 1e9:.2g} GB" for seconds, peak in projected.values()]
-        print(f"| {name} | {long['model']} | {few}, {many} | {short['cpu']:.1f}, {long['cpu']:.1f} | "
-              f"{short['peak'] / 1e6:.0f}, {long['peak'] / 1e6:.0f} | {error:.1e} | {' | '.join(cells)} | "
-              f"{_spectrum_met(projected)} |")  # fmt: skip
+        cpu, peak = (", ".join(f"{r[key] / scale:.{digits}f}" for r in runs) for key, scale, digits in
+                     (("cpu", 1, 1), ("peak", 1e6, 0)))  # fmt: skip
+        print(f"| {name} | {long['model']} | {few}, {middle}, {many} | {cpu} | {peak} | {error:.1e} | "
+              f"{' | '.join(cells)} | {_spectrum_met(projected)} |")  # fmt: skip
     same = {
-        v: spectrum_run(many, v, same_cells=True)["cpu"] - spectrum_run(few, v, same_cells=True)["cpu"]
+        v: spectrum_run(many, v, same_cells=True)["cpu"] - spectrum_run(middle, v, same_cells=True)["cpu"]
         for v in (False, True)
     }
     for line in notes:
         print(line)
     print(
-        "- projected: the longer run plus the cost per cycle between the two runs (CPU time; peak memory, at least"
-        " the loads of the history held by its steps, 8 bytes a load and 4 a cycle number: an upper bound where the"
-        " records and the fields per cycle stop growing)"
+        "- projected: the longest run plus the cost per cycle between the last two runs (CPU time; peak memory, at"
+        " least the loads of the history held by its steps, 8 bytes a load and 4 a cycle number: an upper bound where"
+        " the records and the fields per cycle stop growing)"
     )
     for label, ratio in (
         ("the default of each", per_step[True] / per_step[False]),
@@ -432,9 +434,10 @@ def spectra_rows():
 
 
 def _loads_bytes(varying_P):
-    """Bytes [B] of the loads of `SPECTRUM_CYCLES` cycles' difference held by their steps (`spectrum`'s arrays)."""
-    few, many = SPECTRUM_CYCLES
-    history = spectrum(many - few, varying_P)[1]
+    """Bytes [B] of the loads of the cycles between the last two `SPECTRUM_CYCLES` held by their steps (`spectrum`'s
+    arrays)."""
+    middle, many = SPECTRUM_CYCLES[1:]
+    history = spectrum(many - middle, varying_P)[1]
     return sum(v.nbytes for v in (history.Q, history.sigma, history.cycle, history.P) if v is not None)
 
 

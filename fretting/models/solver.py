@@ -326,8 +326,7 @@ def _runs(nodes):
     breaks = np.flatnonzero(np.diff(nodes) != 1) + 1
     if nodes.size == 0 or breaks.size >= MAX_RUNS:
         return None
-    offsets = np.r_[0, breaks]
-    ends = np.r_[breaks, nodes.size]
+    offsets, ends = [0, *breaks.tolist()], [*breaks.tolist(), nodes.size]
     return [(nodes[o], nodes[e - 1] + 1, o) for o, e in zip(offsets, ends, strict=True)]
 
 
