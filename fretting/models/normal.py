@@ -72,6 +72,8 @@ limit of the sign of the outermost node's traction.
 from __future__ import annotations
 
 import functools
+import math
+import operator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
@@ -282,14 +284,17 @@ class NormalModel(Model):
         """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring, `slip_to_traction`), kept
         as a `Stiffness` (not `kept` for the solver's inverse) so that the parts on one run share ``|G|``; the
         last `CACHED_CONTACTS` used."""
-        full = lambda kept, new: len(kept) >= CACHED_CONTACTS  # noqa: E731
-        return _recent(self._stiffnesses, m, lambda: Stiffness(whole(self._half(m)), kept=False), full)
+        return _recent(self._stiffnesses, m, lambda: Stiffness(whole(self._half(m)), kept=False), CACHED_CONTACTS)
 
     def _half(self, m):
         """`half_stiffness` of the `m` central pairs, kept within `CACHED_HALVES` bytes."""
-        full = lambda kept, new: sum(half.nbytes for half in kept.values()) + new.nbytes > CACHED_HALVES  # noqa: E731
-        compute = lambda: half_stiffness(self.column[: 2 * m], self.punch(m), self.inverse_column(m))  # noqa: E731
-        return _recent(self._halves, m, compute, full)
+        return _recent(
+            self._halves,
+            m,
+            lambda: half_stiffness(self.column[: 2 * m], self.punch(m), self.inverse_column(m)),
+            CACHED_HALVES,
+            operator.attrgetter("nbytes"),
+        )
 
     def _cumulative(self):
         """Nodal forces ``p h`` [N/m] at each load `start` (Jaeger's superposition of the `punch` of each run)."""
@@ -533,16 +538,22 @@ class NormalModel(Model):
         return self.surface[0], self.pressure_at(outcome.P)
 
 
-def _recent(kept, key, compute, full=lambda kept, new: False):
+def _recent(kept, key, compute, limit=math.inf, size=None):
     """``kept[key]``, computed by `compute()` where `kept` (a dict, least recently used first) lacks it, and
-    moved to the end; before a new value is added, the least recently used are dropped while `full(kept, new)`."""
+    moved to the end. A new value first drops the least recently used while, with it, they would number (or,
+    by `size`, a function of a value, measure) more than `limit`."""
     value = kept.pop(key, None)
     if value is None:
         value = compute()
-        while kept and full(kept, value):
+        while kept and _measure(kept.values(), size) + _measure([value], size) > limit:
             del kept[next(iter(kept))]
     kept[key] = value
     return value
+
+
+def _measure(values, size):
+    """How many `values` there are, or the sum of their `size` (`_recent`)."""
+    return len(values) if size is None else sum(map(size, values))
 
 
 def _unit_load(column):
@@ -631,8 +642,8 @@ def slip_to_traction(column, punch, first=None):
 
 
 def whole(half):
-    """The persymmetric ``G`` [as `half`] whose first ``n / 2`` rows are `half`, ``(n / 2, n)``:
-    ``G[n - 1 - i, n - 1 - j] = G[i, j]``."""
+    """The persymmetric ``G`` (``G[n - 1 - i, n - 1 - j] = G[i, j]``, in the units of `half`) whose first
+    ``n / 2`` rows are `half`, of shape ``(n / 2, n)``."""
     n = half.shape[1]
     G = np.empty((n, n))
     G[: n // 2] = half
