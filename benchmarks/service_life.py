@@ -296,7 +296,8 @@ def _extrapolated(row, cycles):
     return Row(row.history, row.model, cycles, row.seconds / row.cycles * cycles, None, None, measured=False)
 
 
-#: Spectra of issue 34: cycles of the two timed runs, steps a cycle, largest relative amplitude of P.
+#: Spectra of issue 34: cycles of the three timed runs (the energy error of the first, the cost per cycle
+#: between the last two), steps a cycle, largest relative amplitude of P.
 SPECTRUM_CYCLES, SPECTRUM_STEPS, P_AMPLITUDE = (8, 24, 72), 32, 0.1
 
 #: Grids of `dense_method4` for the spectra's reference energies (the first of `SPECTRUM_CYCLES`

@@ -392,8 +392,8 @@ def test_slip_to_traction_is_the_dense_one_and_symmetric(n):
 
 
 def test_a_model_is_dropped_with_what_it_keeps():
-    """The arrays a varying-load model keeps per run of cells go when the model goes: caches on the class's
-    methods kept every model built alive, a few MB a run, without bound in a long sweep."""
+    """The arrays a varying-load model keeps per run of cells go when the model goes (a cache on the class's
+    methods would keep every model built alive, a few MB a run, without bound in a long sweep)."""
     import gc
     import weakref
 
