@@ -341,8 +341,8 @@ class NormalModel(Model):
         nodes = self.cells(m)
         forces = np.zeros(self.x.size)
         forces[nodes] = g[nodes]
-        N = self.x.size
-        elastic = self.bulk_slip(sigma) - np.convolve(forces, self._kernel)[N - 1 : 2 * N - 1]  # D g, D Toeplitz
+        # D g, D Toeplitz (`_kernel`): the correlation's N outputs of full overlap, each one dot product
+        elastic = self.bulk_slip(sigma) - np.correlate(self._kernel, forces[::-1], "valid")
         shift = np.mean(slip[nodes] - elastic[nodes])
         out = np.ones(self.x.size, dtype=bool)
         out[nodes] = False
