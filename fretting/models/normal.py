@@ -276,14 +276,14 @@ class NormalModel(Model):
         return _recent(self._punches, m, lambda: _unit_load(self.column[: 2 * m]))
 
     def inverse_column(self, m):
-        """First column of ``B = D^-1`` of the `m` central pairs (Levinson), kept: the `stiffness` of a
+        """First column of ``B = D^-1`` [(N/m)/m] of the `m` central pairs (Levinson), kept: the `stiffness` of a
         contact met again, once its rows have left the cache (`_half`), is formed from it (`half_stiffness`)."""
         return _recent(self._columns, m, lambda: linalg.solve_toeplitz(self.column[: 2 * m], np.eye(2 * m, 1)[:, 0]))
 
     def stiffness(self, m):
-        """``G = B - b b^T / beta`` [Pa/m] of the `m` central pairs (module docstring, `slip_to_traction`), kept
-        as a `Stiffness` (not `kept` for the solver's inverse) so that the parts on one run share ``|G|``; the
-        last `CACHED_CONTACTS` used."""
+        """``G = B - b b^T / beta`` [(N/m)/m: nodal force per slip] of the `m` central pairs (module docstring,
+        `slip_to_traction`), kept as a `Stiffness` (not `kept` for the solver's inverse) so that the parts on
+        one run share ``|G|``: the last `CACHED_CONTACTS` used."""
         return _recent(self._stiffnesses, m, lambda: Stiffness(whole(self._half(m)), kept=False), CACHED_CONTACTS)
 
     def _half(self, m):
