@@ -541,13 +541,14 @@ class NormalModel(Model):
 def _recent(kept, key, compute, limit=math.inf, size=None):
     """``kept[key]``, computed by `compute()` where `kept` (a dict, least recently used first) lacks it, and
     moved to the end. A new value first drops the least recently used while, with it, they would number (or,
-    by `size`, a function of a value, measure) more than `limit`."""
+    by `size`, a function of a value, measure) more than `limit`; one over `limit` alone is not kept."""
     value = kept.pop(key, None)
     if value is None:
         value = compute()
         while kept and _measure(kept.values(), size) + _measure([value], size) > limit:
             del kept[next(iter(kept))]
-    kept[key] = value
+    if _measure([value], size) <= limit:
+        kept[key] = value
     return value
 
 

@@ -425,6 +425,9 @@ def test_the_stiffness_formed_again_from_kept_rows_is_the_same_and_they_stay_wit
         assert len(model._stiffnesses) <= normal.CACHED_CONTACTS
     kept = list(model._halves)
     assert len(kept) >= 4 and kept == runs[-len(kept) :]  # the most recently used, oldest first
+    monkeypatch.setattr(normal, "CACHED_HALVES", 16 * 12**2)  # the rows of 12 pairs, fewer than any run's here
+    np.testing.assert_array_equal(model.stiffness(14).G, normal.slip_to_traction(model.column[:28], model.punch(14)))
+    assert not model._halves  # rows over the bytes alone are not kept
 
 
 @pytest.mark.slow
