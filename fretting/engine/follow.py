@@ -161,7 +161,7 @@ def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=Tru
     if not outcome.dissipation >= 0:
         raise SolverError(f"the increment to Q = {Q!r}, sigma = {sigma!r} dissipated {outcome.dissipation!r} J/m")
     if not (tally and state.tally.number):
-        return outcome, state.advance(outcome, loads, None, None, None)
+        return outcome, state.advance(outcome, loads, None, None, None, None)
     if stress:
         surface, shear = specimen_surface(model, outcome, sigma)
     else:
@@ -289,9 +289,7 @@ class _Run:
                 else:  # steps outside the cycles: nothing to copy
                     before = None
                     starts.clear()
-                state = replace(
-                    state, tally=Tally.begin(number, state.slip, edge_loads(state.loads, self.model.contact))
-                )
+                state = state.begun(number, self.model.contact)
                 if before is not None and len(tallies) == period:
                     previous = _Cycle(step - len(steps), before, steps, tallies)
                     before = None

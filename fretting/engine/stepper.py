@@ -8,7 +8,6 @@ which `run` tells of every step and cycle.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -18,9 +17,9 @@ from fretting.engine.follow import advance, displaced, follow
 from fretting.engine.threads import one_blas_thread
 from fretting.errors import HistoryError
 from fretting.loading.history import History
-from fretting.loading.loads import CONVERTED, NAMED, Loads, edge_loads
+from fretting.loading.loads import CONVERTED, NAMED, Loads
 from fretting.models.base import Model, ModelSpec, Outcome
-from fretting.models.state import State, Tally
+from fretting.models.state import State
 from fretting.physics.contact import Contact
 
 if TYPE_CHECKING:
@@ -112,9 +111,7 @@ class Stepper:
             raise HistoryError(f"loads must be finite, found {given}, sigma = {sigma!r}")
         with one_blas_thread():
             if cycle != self._state.tally.number:
-                self._state = replace(
-                    self._state, tally=Tally.begin(cycle, self._state.slip, edge_loads(self._state.loads, self.contact))
-                )
+                self._state = self._state.begun(cycle, self.contact)
             P = None if P is None or P == self.contact.P else positive_load(P)
             loads = Loads(Q, sigma, P, delta)
             if unfollowed := {CONVERTED.get(name, name) for name in loads.given()} - self._spec.inputs:

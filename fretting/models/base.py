@@ -307,7 +307,7 @@ class Model(abc.ABC):
         slip, q, dissipation, memory, still = [], [], [], [], []
         for k in range(len(loads)):
             outcome = self.increment(state, loads[k])
-            state = state.advance(outcome, loads[k], None, None, None)
+            state = state.advance(outcome, loads[k], None, None, None, None)
             slip.append(outcome.slip)
             q.append(self.traction(outcome))
             dissipation.append(outcome.dissipation)

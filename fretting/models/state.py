@@ -7,14 +7,14 @@ computed with (`State.model`, a resolved `fretting.models.base.ModelSpec`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from functools import cache
 from typing import Any, Protocol
 
 import numpy as np
 
 from fretting.errors import HistoryError
-from fretting.loading.loads import Loads
+from fretting.loading.loads import Loads, edge_loads
 from fretting.results.variables import CYCLE_PEAKS
 
 __all__ = ["Continued", "Nodes", "Solved", "State", "Tally"]
@@ -107,7 +107,7 @@ class Tally:
 
     The three peaks are ``-inf`` before the cycle's first increment, and NaN where they are not
     known (a state read from a result written without them): a NaN stays NaN. So are the load
-    extremes of a state read from a result written without them (their default).
+    extremes of a state read from a result written without them.
     """
 
     number: int
@@ -118,8 +118,8 @@ class Tally:
     sigma_xx_peak: np.ndarray
     q_peak: np.ndarray
     sigma_xx_q_peak: np.ndarray
-    load_low: np.ndarray = field(default_factory=lambda: _unknown(3))
-    load_high: np.ndarray = field(default_factory=lambda: _unknown(3))
+    load_low: np.ndarray
+    load_high: np.ndarray
 
     @classmethod
     def begin(cls, number: int, slip: np.ndarray, loads: np.ndarray) -> Tally:
@@ -243,6 +243,11 @@ class State:
         slip = np.zeros(model.x.size)
         return cls(Loads(0.0, 0.0), slip, slip, Tally.begin(0, slip, _unknown(3)), model.spec)  # cycle 0: not tallied
 
+    def begun(self, number: int, contact: Any) -> State:
+        """This state with the tally of cycle `number` begun from it: from its slip and from its loads at the
+        edges of `contact` (a `fretting.physics.contact.Contact`, `fretting.loading.loads.edge_loads`)."""
+        return replace(self, tally=Tally.begin(number, self.slip, edge_loads(self.loads, contact)))
+
     def advance(
         self,
         outcome: Solved,
@@ -250,13 +255,13 @@ class State:
         w: np.ndarray | None,
         stress: np.ndarray | None,
         shear: np.ndarray | None,
-        edges: np.ndarray | None = None,
+        edges: np.ndarray | None,
     ) -> State:
         """The state after the increment `outcome` to `loads`, which dissipated `w` [J/m^2]
         and left the specimen's surface stress `stress` [Pa] and the traction's magnitude `shear` [Pa]
         (`w` None where nothing is tallied: outside a load cycle, or where only the slip matters;
         `stress` None where it is not known, `Tally.add`); `edges` [N/m], `loads` as the tally
-        takes them (`fretting.loading.loads.edge_loads`), where `w` is given.
+        takes them (`fretting.loading.loads.edge_loads`; None with `w`).
 
         A node's episode begins again where it sticks (at its slip) or reverses (at its slip before).
         """
