@@ -395,14 +395,14 @@ def spectra_rows():
     per_step, notes = {}, []
     for varying_P in (False, True):
         name = "out of phase, varying P" if varying_P else "out of phase"
-        short, _, long = runs = [spectrum_run(n, varying_P) for n in SPECTRUM_CYCLES]
+        short, between, long = runs = [spectrum_run(n, varying_P) for n in SPECTRUM_CYCLES]
         reference, change = spectrum_reference(varying_P)
         error = worst(np.array(short["energy"]), reference)
         fine, coarse = SPECTRUM_NODES[varying_P]
         notes.append(f"- {name}: energy per cycle of the first {few} cycles against dense_method4 N = {fine}"
                      f" (N = {coarse} differs from it by {change:.1e})")  # fmt: skip
-        cpu_cycle = (long["cpu"] - runs[1]["cpu"]) / (many - middle)
-        peak_cycle = max(long["peak"] - runs[1]["peak"], _loads_bytes(varying_P)) / (many - middle)
+        cpu_cycle = (long["cpu"] - between["cpu"]) / (many - middle)
+        peak_cycle = max(long["peak"] - between["peak"], _loads_bytes(varying_P)) / (many - middle)
         per_step[varying_P] = cpu_cycle / SPECTRUM_STEPS
         projected = {
             n: (long["cpu"] + cpu_cycle * (n - many), long["peak"] + peak_cycle * (n - many)) for n in SPECTRUM_TARGETS
