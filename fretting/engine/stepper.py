@@ -8,6 +8,7 @@ which `run` tells of every step and cycle.
 from __future__ import annotations
 
 from collections.abc import Callable
+from contextlib import nullcontext
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -109,7 +110,7 @@ class Stepper:
         if not (np.isfinite(sigma) and np.isfinite(Q if delta is None else delta)):
             given = f"Q = {Q!r}" if delta is None else f"delta = {delta!r}"
             raise HistoryError(f"loads must be finite, found {given}, sigma = {sigma!r}")
-        with one_blas_thread():
+        with one_blas_thread() if self._model.linear_algebra else nullcontext():
             if cycle != self._state.tally.number:
                 self._state = self._state.begun(cycle, self.contact)
             P = None if P is None or P == self.contact.P else positive_load(P)

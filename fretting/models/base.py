@@ -297,6 +297,11 @@ class Model(abc.ABC):
     #: engine then takes the unrecorded steps a window at a time).
     windows: bool = False
 
+    #: True if the increments solve linear systems (BLAS and LAPACK), which the engine runs on
+    #: `fretting.engine.threads.BLAS_THREADS` threads; False for a model in closed form, whose
+    #: increments `fretting.Stepper.step` then takes without setting the libraries' threads.
+    linear_algebra: bool = True
+
     def window(self, state: State, loads: LoadBlock) -> tuple:
         """The increments from `state` through the `loads` (a `fretting.loading.loads.LoadBlock`) in
         turn, as rows: ``(slip, q, dissipation, memory, still)``, row ``k`` what `increment` gives

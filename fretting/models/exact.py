@@ -32,9 +32,11 @@ quadratures, which serve every other symmetric profile.
 from __future__ import annotations
 
 import bisect
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
+import numba
 import numpy as np
 
 from fretting.loading.loads import Loads
@@ -43,11 +45,12 @@ from fretting.models.collocation import DEFAULT_NODES
 from fretting.models.solver import chebyshev_angles
 from fretting.models.state import State
 from fretting.physics.closed_forms import (
-    cattaneo_mindlin_compliance,
-    cattaneo_mindlin_dissipation,
-    hertz_slip_shape,
+    compliance_scale,
+    dissipation_scale,
     masing_increment,
     masing_origin,
+    slip_series,
+    slip_shape,
 )
 from fretting.physics.profiles import Hertz
 from fretting.physics.surface import ClosedFormSurfaceStress, ellipse_stress
@@ -213,6 +216,8 @@ class ExactModel(Model):
     oldest first.
     """
 
+    linear_algebra = False  # closed forms and quadratures: no linear system to solve
+
     def __init__(self, contact, spec):
         if not contact.profile.SYMMETRIC:
             raise ValueError(f"{contact.profile!r}: the exact model of Q alone needs a symmetric profile")
@@ -260,9 +265,12 @@ class ExactModel(Model):
     def increment(self, state, loads, guess=None):
         """`Outcome` from `state` (its ``Q``, slip and open turning points) to the shear force ``loads.Q`` [N/m].
 
-        ``sigma`` is zero for this model (`Exact.holds_for`); `guess` is not needed. ``|Q| = f P``
-        is the contact on the point of sliding whole (the corrective load ``P_c = 0``, no stick zone).
+        ``sigma`` must be zero (`Exact.holds_for`): a ValueError otherwise. `guess` is not needed.
+        ``|Q| = f P`` is the contact on the point of sliding whole (the corrective load ``P_c = 0``,
+        no stick zone).
         """
+        if loads.sigma:
+            raise ValueError(f"the exact model of Q alone follows no bulk tension: found sigma = {loads.sigma!r} Pa")
         return self._increment(state, loads.Q, state.slid, 0.0)
 
     def slide(self, state, loads, du):
@@ -347,20 +355,21 @@ class ExactModel(Model):
         if prepared is not None:
             return prepared
         walk = self._walk(turning, before, [Q])
-        return walk.memory[0], self._dissipated(walk, self._solve(walk.corrective)).tolist()[0]
+        return walk.memory[0], self._dissipated(walk, self._solve(walk.corrective))[0]
 
     def _dissipated(self, walk, branches):
         """Energy [J/m] dissipated by each increment of `walk` (`_Walk`), with `branches` (a dict ``P_c ->
         _Branch`` holding those it meets): per increment, each loop that it closes, then the branch it
-        ends on, ``factor (E(P_c end) - E(P_c start))`` summed in that order from 0, times ``f^2``."""
-        energy_at = np.array([branches[P_c].energy for P_c in walk.corrective])
-        factor, first, pieces = np.array(walk.factor), np.array(walk.first, dtype=int), np.array(walk.pieces)
-        energy = np.zeros(len(walk.memory))
-        for k in range(max(walk.pieces, default=0)):  # the k-th piece of each increment that has one
-            live = pieces > k
-            start = first[live] + 2 * k
-            energy[live] += factor[start] * (energy_at[start + 1] - energy_at[start])
-        return self.contact.f**2 * energy
+        ends on, ``factor (E(P_c end) - E(P_c start))`` summed in that order from 0, times ``f^2``.
+        A loop over the increments, most of which walk one piece: no array is worth forming."""
+        f2, factor, corrective = self.contact.f**2, walk.factor, walk.corrective
+        energy = []
+        for first, pieces in zip(walk.first, walk.pieces, strict=True):
+            summed = 0.0
+            for start in range(first, first + 2 * pieces, 2):
+                summed += factor[start] * (branches[corrective[start + 1]].energy - branches[corrective[start]].energy)
+            energy.append(f2 * summed)
+        return energy
 
     @property
     def windows(self):
@@ -395,7 +404,7 @@ class ExactModel(Model):
         factors = np.array(walk.signed)[:, None]  # factor x + y as `_added` forms it
         slip = np.array([branch.slip for branch in ends]) * factors + np.array([summed[0] for summed in sums])
         q = np.array([branch.q for branch in ends]) * factors + np.array([summed[1] for summed in sums])
-        return slip, q, self._dissipated(walk, branches).tolist(), walk.memory, still
+        return slip, q, self._dissipated(walk, branches), walk.memory, still
 
     def _at(self, turning, Q):
         """Slip [m], traction [Pa] at the nodes, ``delta_Q`` [m] and the stick half-width [m] at `Q`
@@ -444,7 +453,7 @@ class ExactModel(Model):
         loads = np.asarray(loads.Q, dtype=float)
         beyond = np.flatnonzero(np.abs(loads) >= self.friction_force)
         walk = self._walk(state.memory, state.Q, (loads[: beyond[0]] if beyond.size else loads).tolist())
-        energy = self._dissipated(walk, self._solve(walk.corrective)).tolist()
+        energy = self._dissipated(walk, self._solve(walk.corrective))
         self._walks = dict(zip(walk.walks, zip(walk.memory, energy, strict=True), strict=True))
 
     @property
@@ -455,25 +464,22 @@ class ExactModel(Model):
     def _walk(self, turning, before, loads):
         """`_Walk` of Masing's rule from the open `turning` points and the shear force `before` through
         the shear forces `loads` [N/m] (a list) in turn: `masing_increment` of each, and the corrective
-        loads of the branches met, all at once (`_corrective` of arrays, elementwise as of scalars)."""
-        walks, memory, first, pieces, signed, origins, factors, ends = [], [], [], [], [], [], [], []
+        loads of the branches met (`_corrective`)."""
+        walks, memory, first, pieces, signed, factors, corrective = [], [], [], [], [], [], []
         for Q in loads:
             walks.append((turning, before, Q))
             turning, walked = masing_increment(turning, before, Q)
-            first.append(len(ends))
+            first.append(len(corrective))
             for origin, factor, start, end in walked:
-                origins += (origin, origin)
                 factors += (factor, factor)
-                ends += (start, end)
+                corrective += (self._corrective(origin, factor, start), self._corrective(origin, factor, end))
             origin, factor = masing_origin(turning)
-            origins.append(origin)
             factors.append(factor)
-            ends.append(Q)
+            corrective.append(self._corrective(origin, factor, Q))
             memory.append(turning)
             pieces.append(len(walked))
             signed.append(_signed(origin, factor, Q))
             before = Q
-        corrective = self._corrective(np.array(origins), np.array(factors), np.array(ends)).tolist()
         return _Walk(walks, memory, first, pieces, signed, factors, corrective)
 
     def _solve(self, corrective):
@@ -492,8 +498,8 @@ class ExactModel(Model):
 
     def _corrective(self, origin, factor, Q):
         """Corrective load ``P_c = P - |Q - origin| / (factor f)`` [N/m] of the branch from `origin` [N/m]
-        at `Q`; of arrays elementwise."""
-        return np.maximum(self.contact.P - abs(Q - origin) / (factor * self.contact.f), 0.0)  # 0 at |Q| = f P
+        at `Q` [N/m], a float; 0 at ``|Q| = f P`` and beyond."""
+        return max(self.contact.P - abs(Q - origin) / (factor * self.contact.f), 0.0)
 
     def _solution(self, origin, factor, Q):
         """`_Branch` at `Q` [N/m] of the branch from `origin` [N/m] with `factor` (`_branch`)."""
@@ -527,33 +533,55 @@ class ExactModel(Model):
         return _Branch(c, q, slip, energy, delta_Q)
 
     def _hertz_branches(self, P_c):
-        """`_Branch` of each corrective load of the array `P_c` [N/m] of a Hertz contact, in closed form,
-        all nodes of all of them at once as 2-D arrays (each row as alone: elementwise operations only).
-
-        The slip is ``f g_c = f hertz_slip_shape(x, c) / (2R)``, Cattaneo-Mindlin's at the load
-        ``Q = f P psi`` with ``psi = 1 - (c/a)^2`` (the Ciavarella-Jaeger load ``f (P - P_c)``), and
-        the energy and ``delta_Q`` are `cattaneo_mindlin_dissipation` (over ``f^2``) and
-        `cattaneo_mindlin_compliance` of it. ``psi`` is formed as ``(a - c)(a + c) / a^2``, exact
-        where ``c`` is close to ``a``. Where ``c >= a`` nothing slips.
-        """
-        contact, profile = self.contact, self.contact.profile
-        a, f, E_star = contact.a, contact.f, contact.E_star
-        c = profile.half_width(P_c, E_star)[0][:, None]
-        whole = c == 0  # P_c = 0: on the point of sliding whole, q = f p and the slip f x^2 / (2R)
-        b = np.where(whole, 1.0, c)  # c where it is not 0; a placeholder where nothing is inside
-        t = self.x / b
-        inside = (np.abs(t) < 1) & ~whole
-        p_c = np.where(inside, profile.pressure(np.where(inside, t, 0.0), b, 0.0, P_c[:, None], E_star), 0.0)
-        q = f * (self._p - p_c)
-        shape = hertz_slip_shape(self.x, b)
-        slip = f * np.where(whole, self.x**2, shape) / (2 * profile.R)
-        c = c[:, 0]
-        Q = f * contact.P * ((a - c) * (a + c) / a**2)
-        energy = cattaneo_mindlin_dissipation(contact, Q) / f**2
-        delta_Q = cattaneo_mindlin_compliance(contact, Q)
-        slips = c < a  # elsewhere nothing slips (the shape is zero at every node)
-        c, energy, delta_Q = np.where(slips, c, a), np.where(slips, energy, 0.0), np.where(slips, delta_Q, 0.0)
+        """`_Branch` of each corrective load of the array `P_c` [N/m] of a Hertz contact, in closed form
+        (`_hertz_rows`, each branch as alone)."""
+        contact = self.contact
+        c = contact.profile.half_width(P_c, contact.E_star)[0]
+        q, slip, c, energy, delta_Q = _hertz_rows(
+            self.x, self._p, P_c, c, contact.a, contact.f, contact.P, contact.profile.R,
+            dissipation_scale(contact), compliance_scale(contact),
+        )  # fmt: skip
         return list(map(_Branch, c.tolist(), q, slip, energy.tolist(), delta_Q.tolist()))
+
+
+@numba.njit(cache=True)
+def _hertz_rows(x, p, P_c, c, a, f, P, R, dissipation, compliance):
+    """Each branch of the corrective loads `P_c` [N/m] of half-widths `c` [m] on a Hertz contact
+    (half-width `a` [m], friction `f`, load `P` [N/m], radius `R` [m]), at the nodes `x` [m] of
+    pressure `p` [Pa], in closed form; compiled: a step of `Stepper.step` solves one branch.
+
+    Per branch: the traction ``q = f (p - p_c)`` with the corrective contact's elliptical
+    pressure ``p_c = (2 P_c / (pi c)) sqrt(1 - (x / c)^2)`` (eq 5); the slip
+    ``f g_c = f slip_shape(x, c) / (2R)``, Cattaneo-Mindlin's at the load ``Q = f P psi`` with
+    ``psi = 1 - (c/a)^2`` (the Ciavarella-Jaeger load ``f (P - P_c)``), formed as
+    ``(a - c)(a + c) / a^2``, exact where ``c`` is close to ``a``; the energy over ``f^2`` and
+    ``delta_Q``, `cattaneo_mindlin_dissipation` and `cattaneo_mindlin_compliance` of that load,
+    from their scales `dissipation` [J/m] and `compliance` [m]. ``c = 0`` (``P_c = 0``) is the
+    contact on the point of sliding whole: ``q = f p`` and the slip ``f x^2 / (2R)``. Where
+    ``c >= a`` nothing slips: the half-width returned is ``a``, the energy and ``delta_Q`` 0.
+
+    Returns q [Pa], slip [m] (rows: the branches), half-widths [m], energy [J/m per unit f^2], delta_Q [m].
+    """
+    rows, nodes = c.size, x.size
+    q, slip = np.empty((rows, nodes)), np.empty((rows, nodes))
+    energy, delta_Q, half_widths = np.zeros(rows), np.zeros(rows), np.full(rows, a)
+    for i in range(rows):
+        b = c[i]
+        peak = 2 * P_c[i] / (np.pi * b) if b > 0 else 0.0
+        for j in range(nodes):
+            t = x[j] / b if b > 0 else 1.0
+            if abs(t) < 1:
+                q[i, j] = f * (p[j] - peak * math.sqrt(1 - t * t))
+                slip[i, j] = 0.0
+            else:
+                q[i, j] = f * p[j]
+                slip[i, j] = f * slip_shape(x[j], b) / (2 * R)
+        if b < a:
+            psi = abs(f * P * ((a - b) * (a + b) / a**2)) / (f * P)
+            energy[i] = dissipation * slip_series(psi, 3) / f**2
+            delta_Q[i] = compliance * slip_series(psi, 2)
+            half_widths[i] = b
+    return q, slip, half_widths, energy, delta_Q
 
 
 def _quadrature_slip_zones(contact, c, x):

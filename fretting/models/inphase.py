@@ -205,7 +205,7 @@ class InPhaseModel(ExactModel):
         Q, sigma = loads.Q, loads.sigma
         if not _on_path(Q, sigma, self.ratio, self.friction_force):
             raise ValueError(f"sigma = {sigma!r} Pa is not {self.ratio!r} 1/m times Q = {Q!r} N/m: not in phase")
-        return super().increment(state, loads, guess)
+        return self._increment(state, Q, state.slid, 0.0)
 
     def stick_zones(self, outcome, state):
         """The stick zone of the last branch, ``[e - c, e + c]`` in ``t``."""

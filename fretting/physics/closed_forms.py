@@ -10,6 +10,7 @@ import itertools
 import math
 from collections.abc import Sequence
 
+import numba
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy import optimize, special
@@ -38,13 +39,9 @@ __all__ = [
 #: A branch piece of Masing's rule, ``(origin, factor, Q_start, Q_end)``: origin and loads [N/m], factor [-].
 Piece = tuple[float, float, float, float]
 
-#: Terms of the power series of `_slip_series`, which it sums below ``psi = 1/4``: ``4^-80`` is
+#: Terms of the power series of `slip_series`, which it sums below ``psi = 1/4``: ``4^-80`` is
 #: far below rounding.
 SERIES_TERMS = 80
-
-#: Exponents ``n`` from 2 and the ``n (n - 1)`` of `_slip_series`, computed once (it is called per branch).
-_SERIES_N = np.arange(2, 3 + SERIES_TERMS)
-_SERIES_DENOMINATORS = _SERIES_N * (_SERIES_N - 1.0)
 
 #: Below this ``z = sqrt(X^2 - b^2) / b`` `hertz_slip_shape` sums the power series of ``sinh w - w``
 #: (`SHAPE_TERMS` terms: at ``w = 2 arcsinh(1/2)`` the next is ``3e-17`` of the sum); above it its
@@ -87,33 +84,44 @@ def hertz_slip_shape(x: ArrayLike, b: ArrayLike) -> np.ndarray:
     """``X sqrt(X^2 - b^2) - b^2 arccosh(X / b)`` [m^2] with ``X = max(|x|, b)``, `x` and `b` [m], without cancellation.
 
     The slip of eq (19) integrated from the stick-zone edge ``b`` (`cattaneo_mindlin_slip`), and
-    ``2R`` times the gap outside a Hertz contact of half-width ``b``; ``X^2`` for ``b = 0``. With
-    ``z = sqrt((X - b)(X + b)) / b`` it is ``b^2 (z sqrt(1 + z^2) - arcsinh z)``, whose two terms
-    cancel to ``2 z^3 / 3`` as ``X -> b``; with ``z = sinh(w / 2)`` the bracket is
-    ``(sinh w - w) / 2``, summed as its power series below ``z = SHAPE_SERIES_BELOW``, so thin slip
-    zones keep their relative precision. `b` may be an array (each ``> 0``) that broadcasts with
-    `x`, e.g. ``b[:, None]`` against nodes ``x``: several half-widths in one evaluation, each
-    element computed as it would be alone.
+    ``2R`` times the gap outside a Hertz contact of half-width ``b``; ``X^2`` for ``b = 0``.
+    Elementwise (`slip_shape`) over `x` and `b` broadcast together, e.g. ``b[:, None]`` against
+    nodes ``x``: several half-widths in one evaluation, each element computed as it would be alone.
     """
-    b = np.asarray(b, dtype=float)
-    X = np.maximum(np.abs(np.asarray(x, dtype=float)), b)
-    if b.ndim == 0 and b == 0:
-        return X**2
-    z = np.atleast_1d(np.sqrt((X - b) * (X + b)) / b)
-    shape = np.zeros(z.shape)  # where z = 0 (inside b) both forms are 0: only the slip zones are evaluated
-    large = z >= SHAPE_SERIES_BELOW
-    z_large = z[large]
-    shape[large] = z_large * np.sqrt(1 + z_large**2) - np.arcsinh(z_large)
-    small = (z > 0) & ~large
-    if small.any():
-        w = 2 * np.arcsinh(z[small])
-        w2 = w**2
-        series = np.full(w.size, _SINH_SERIES[-1])
-        for coefficient in _SINH_SERIES[-2::-1]:  # Horner in w^2
-            series *= w2
-            series += coefficient
-        shape[small] = w**3 * series / 2
-    return b**2 * shape.reshape(X.shape)
+    return np.asarray(_slip_shapes(np.asarray(x, dtype=float), np.asarray(b, dtype=float)))
+
+
+@numba.njit(cache=True)
+def slip_shape(x: float, b: float) -> float:
+    """`hertz_slip_shape` of one point `x` and half-width `b` [m]; compiled, for the exact model's branches.
+
+    With ``z = sqrt((X - b)(X + b)) / b`` the shape is ``b^2 (z sqrt(1 + z^2) - arcsinh z)``, whose
+    two terms cancel to ``2 z^3 / 3`` as ``X -> b``; with ``z = sinh(w / 2)`` the bracket is
+    ``(sinh w - w) / 2``, summed as its power series below ``z = SHAPE_SERIES_BELOW``, so thin slip
+    zones keep their relative precision.
+    """
+    if b == 0.0:
+        return x * x
+    X = max(abs(x), b)
+    z = math.sqrt((X - b) * (X + b)) / b
+    if z >= SHAPE_SERIES_BELOW:
+        bracket = z * math.sqrt(1 + z * z) - math.asinh(z)
+    elif z > 0:
+        w = 2 * math.asinh(z)
+        w2 = w * w
+        series = _SINH_SERIES[-1]
+        for k in range(SHAPE_TERMS - 2, -1, -1):  # Horner in w^2
+            series = series * w2 + _SINH_SERIES[k]
+        bracket = w * w * w * series / 2
+    else:  # inside b
+        bracket = 0.0
+    return b * b * bracket
+
+
+@numba.vectorize(cache=True)
+def _slip_shapes(x, b):
+    """`slip_shape` as a ufunc."""
+    return slip_shape(x, b)
 
 
 def mindlin_deresiewicz_traction(contact: Contact, Q_star: float, Q: float, x: ArrayLike) -> np.ndarray:
@@ -171,19 +179,37 @@ def ciavarella_jaeger(contact: Contact, Q: float, x: ArrayLike) -> tuple[np.ndar
     return np.sign(Q) * q, corrective
 
 
-def _slip_series(psi: ArrayLike, first: int) -> np.ndarray:
-    """``sum_{n >= first} psi^n / (n (n - 1))`` for ``0 <= psi <= 1`` and `first` 2 or 3, without cancellation.
+@numba.njit(cache=True)
+def slip_series(psi: float, first: int) -> float:
+    """``sum_{n >= first} psi^n / (n (n - 1))`` for ``0 <= psi <= 1``, `first` 2 or 3, without cancellation; compiled.
 
     For ``first = 2`` the sum is ``psi + (1 - psi) ln(1 - psi)``; that form cancels for small
-    ``psi`` (to ``psi^2 / 2``), so below ``psi = 1/4`` the series is summed instead. Elementwise
-    over an array `psi` (each element as alone).
+    ``psi`` (to ``psi^2 / 2``), so below ``psi = 1/4`` the series (`SERIES_TERMS` terms) is summed
+    instead, by Horner's rule from its smallest term.
     """
-    psi = np.asarray(psi, dtype=float)
-    terms = slice(first - 2, first - 2 + SERIES_TERMS)
-    series = np.add.reduce(psi[..., None] ** _SERIES_N[terms] / _SERIES_DENOMINATORS[terms], axis=-1)
-    below = np.where(psi < 1, psi, 0.0)  # the closed form's log is finite; at 1 the sum is 1
-    two = np.where(psi < 1, below + (1 - below) * np.log1p(-below), 1.0)
-    return np.where(psi < 0.25, series, two if first == 2 else two - psi**2 / 2)
+    if psi < 0.25:
+        summed = 0.0
+        for n in range(first + SERIES_TERMS - 1, first - 1, -1):
+            summed = summed * psi + 1.0 / (n * (n - 1.0))
+        return summed * psi**first
+    two = psi + (1 - psi) * math.log1p(-psi) if psi < 1 else 1.0  # at 1 the sum is 1
+    return two if first == 2 else two - psi * psi / 2
+
+
+@numba.vectorize(cache=True)
+def _slip_series(psi, first):
+    """`slip_series` as a ufunc."""
+    return slip_series(psi, first)
+
+
+def compliance_scale(contact: Contact) -> float:
+    """``f p0 a / (2 E_star)`` [m]: `cattaneo_mindlin_compliance` per unit of ``slip_series(psi, 2)``."""
+    return contact.f * contact.p0 * contact.a / (2 * contact.E_star)
+
+
+def dissipation_scale(contact: Contact) -> float:
+    """``pi (f p0 a)^2 / (4 E_star)`` [J/m]: `cattaneo_mindlin_dissipation` per unit of ``slip_series(psi, 3)``."""
+    return math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star)
 
 
 def cattaneo_mindlin_compliance(contact: Contact, Q: ArrayLike) -> float | np.ndarray:
@@ -194,7 +220,7 @@ def cattaneo_mindlin_compliance(contact: Contact, Q: ArrayLike) -> float | np.nd
     signed as ``Q``; ``f p0 a psi^2 / (4 E_star)`` to leading order. Elementwise over an array `Q`.
     """
     psi = np.abs(Q) / (contact.f * contact.P)
-    return _scalar(np.copysign(contact.f * contact.p0 * contact.a / (2 * contact.E_star) * _slip_series(psi, 2), Q))
+    return _scalar(np.copysign(compliance_scale(contact) * _slip_series(psi, 2), Q))
 
 
 def cattaneo_mindlin_dissipation(contact: Contact, Q: ArrayLike) -> float | np.ndarray:
@@ -205,7 +231,7 @@ def cattaneo_mindlin_dissipation(contact: Contact, Q: ArrayLike) -> float | np.n
     Elementwise over an array `Q`.
     """
     psi = np.abs(Q) / (contact.f * contact.P)
-    return _scalar(math.pi * (contact.f * contact.p0 * contact.a) ** 2 / (4 * contact.E_star) * _slip_series(psi, 3))
+    return _scalar(dissipation_scale(contact) * _slip_series(psi, 3))
 
 
 def _scalar(values: np.ndarray) -> float | np.ndarray:

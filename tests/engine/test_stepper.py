@@ -71,6 +71,15 @@ def test_a_step_before_any_model_is_refused(hertz):
         fr.Stepper(hertz).step(0.1 * hertz.f * hertz.P)
 
 
+def test_the_exact_model_of_q_alone_refuses_a_step_with_sigma(hertz):
+    """A bulk tension that the exact model of Q alone cannot follow is an error, not ignored."""
+    stepper = fr.Stepper(hertz, fr.choose_model(hertz, _walk(hertz, sigma=False)))
+    stepper.step(0.1 * hertz.f * hertz.P)
+    with pytest.raises(ValueError, match="follows no bulk tension: found sigma = 1000000.0 Pa"):
+        stepper.step(0.2 * hertz.f * hertz.P, 1e6)
+    assert stepper.state.Q == 0.1 * hertz.f * hertz.P
+
+
 def test_a_state_keeps_its_model(hertz):
     state = fr.final_state(fr.simulate(hertz, _walk(hertz), nodes=48))
     with pytest.raises(ValueError, match="the state has its own model"):
