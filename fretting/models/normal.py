@@ -111,10 +111,11 @@ DEFAULT_CELLS = 768
 #: converges with this share (benchmarks/normal_load.py prints the table).
 DEFAULT_LOAD_PART = 1 / 400
 
-#: Contacts (runs of cells) whose `Stiffness` (``G`` and ``|G|``, ``2 (2m)^2`` floats, 9.4 MB at 768 cells)
-#: `NormalModel` keeps: consecutive parts of an increment mostly share a contact, and one not kept is
-#: formed again from its kept rows (`CACHED_HALVES`) by a copy, or else by Trench's recursion.
-CACHED_CONTACTS = 8
+#: Bytes of the `Stiffness` of the contacts (runs of cells) `NormalModel` keeps whole (``G``, ``(2m)^2``
+#: floats, 4.7 MB at 768 cells), the least recently used dropped first: the parts of an increment and the
+#: cycles of a history meet the same contacts again, and one not kept is formed again from its kept rows
+#: (`CACHED_HALVES`) by a copy, or else by Trench's recursion.
+CACHED_STIFFNESSES = 2**27
 
 #: Bytes of the first ``m`` rows of ``G`` (`half_stiffness`, ``2 m^2`` floats, 2.4 MB at 768 cells) that
 #: `NormalModel` keeps for the contacts it has met, the least recently used dropped first: a history whose
@@ -248,7 +249,7 @@ class NormalModel(Model):
         self.friction_force = np.inf  # f P at each step: the engine checks the load of the step
         self.column = flexibility(N, self.h, contact.E_star)
         # m -> what the model keeps of the run of m central pairs (`_recent`), dropped with the model:
-        self._punches, self._columns, self._stiffnesses, self._halves = {}, {}, {}, {}
+        self._punches, self._columns, self._stiffnesses, self._halves, self._bulk = {}, {}, {}, {}, {}
         self._kernel = np.concatenate([self.column[:0:-1], self.column])  # D_ij = kernel[N - 1 + i - j]
         self.start = self._starts()
         self._sums = self._cumulative()
@@ -282,9 +283,15 @@ class NormalModel(Model):
 
     def stiffness(self, m):
         """``G = B - b b^T / beta`` [(N/m)/m: nodal force per slip] of the `m` central pairs (module docstring,
-        `slip_to_traction`), kept as a `Stiffness` (not `kept` for the solver's inverse) so that the parts on
-        one run share ``|G|``: the last `CACHED_CONTACTS` used."""
-        return _recent(self._stiffnesses, m, lambda: Stiffness(whole(self._half(m)), kept=False), CACHED_CONTACTS)
+        `slip_to_traction`), as a `Stiffness` (not `kept` for the solver's inverse), kept within
+        `CACHED_STIFFNESSES` bytes."""
+        return _recent(
+            self._stiffnesses,
+            m,
+            lambda: Stiffness(whole(self._half(m)), kept=False),
+            CACHED_STIFFNESSES,
+            lambda stiffness: stiffness.G.nbytes,
+        )
 
     def _half(self, m):
         """`half_stiffness` of the `m` central pairs, kept within `CACHED_HALVES` bytes."""
@@ -323,6 +330,12 @@ class NormalModel(Model):
     def bulk_slip(self, sigma):
         """``s_sigma = sigma x / (2 E_star)`` [m], the relative displacement of the bulk tension `sigma` [Pa]."""
         return sigma * (self.x - self.contact.centre) / (2 * self.contact.E_star)
+
+    def bulk_forces(self, m):
+        """``G s_1`` [N/m per Pa]: the nodal forces of the `m` pairs held stuck under the relative displacement of
+        a unit bulk tension (`bulk_slip` of 1 Pa), kept: those of ``sigma`` are ``sigma`` times them (`bulk_slip`
+        is linear in ``sigma``)."""
+        return _recent(self._bulk, m, lambda: self.stiffness(m).G @ self.bulk_slip(1.0)[self.cells(m)])
 
     def load(self, state):
         """The normal load [N/m] of `state` (the contact's where the state records none)."""
@@ -388,7 +401,7 @@ class NormalModel(Model):
                 share = du * (fraction - done) if sliding else du
                 solved = self._on_the_point(slip, sign, sigma_, m, limit, share)
             else:
-                g_stuck = Q_ * self.punch(m) + self.stiffness(m).G @ self.bulk_slip(sigma_)[nodes]
+                g_stuck = Q_ * self.punch(m) + sigma_ * self.bulk_forces(m)
                 solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes])
             g_begin, slip, g = g, slip.copy(), np.zeros(self.x.size)
             slip[nodes], g[nodes] = solved.slip, solved.g
@@ -439,8 +452,7 @@ class NormalModel(Model):
         `slip` to the contact on the point of sliding in the direction `sign` of ``Q`` under `sigma` [Pa] and the
         nodal friction limits `limit` [N/m] (`fretting.models.method4.on_the_point`), slid by the uniform `du` [m]."""
         nodes, stiffness = self.cells(m), self.stiffness(m)
-        G_sigma = stiffness.G @ self.bulk_slip(sigma)[nodes]
-        load = sign * limit[nodes].sum() * self.punch(m) + G_sigma - sign * limit[nodes]
+        load = sign * limit[nodes].sum() * self.punch(m) + sigma * self.bulk_forces(m) - sign * limit[nodes]
         after = on_the_point(stiffness, load, slip[nodes], sign) + du
         return Increment(after, after - slip[nodes], sign * limit[nodes], 0)
 

@@ -114,8 +114,15 @@ class Stiffness:
 
     @cached_property
     def G_abs(self):
-        """``|G|``, elementwise, for the rounding allowance."""
+        """``|G|``, elementwise, for the rounding allowance of a `kept` stiffness (`abs_rows_times`)."""
         return np.abs(self.G)
+
+    def abs_rows_times(self, rows, v):
+        """``|G|[rows] @ v`` for ascending `rows`: from `G_abs`, formed once, where the stiffness is `kept`;
+        else of the rows asked for alone, which an unkept stiffness's few solves need (the same numbers)."""
+        if self.kept:
+            return _rows_times(self.G_abs, rows, v)
+        return _rows_times(self.G, rows, v, np.abs)
 
     @cached_property
     def regularised_inverse(self):
@@ -275,7 +282,7 @@ def _over(stiffness, nodes, g, g_stuck, limit, slip):
     size).
     """
     candidates = nodes[np.abs(g[nodes]) > limit[nodes]]
-    scale = limit[candidates] + np.abs(g_stuck[candidates]) + _rows_times(stiffness.G_abs, candidates, np.abs(slip))
+    scale = limit[candidates] + np.abs(g_stuck[candidates]) + stiffness.abs_rows_times(candidates, np.abs(slip))
     return candidates[np.abs(g[candidates]) - limit[candidates] > ROUNDING * scale]
 
 
@@ -300,12 +307,13 @@ def _rows_product(G, rows, v, g_stuck):
     return g_stuck[rows] - _rows_times(G, rows, v)
 
 
-def _rows_times(M, rows, v):
-    """``M[rows] @ v`` for ascending `rows`, each run of consecutive rows a view of `M` (`_runs`)."""
+def _rows_times(M, rows, v, of=None):
+    """``M[rows] @ v`` for ascending `rows`, each run of consecutive rows a view of `M` (`_runs`); with `of`,
+    an elementwise function, ``of(M[rows]) @ v``."""
     runs = _runs(rows)
-    if runs is None:
-        return M[rows] @ v
-    return np.concatenate([M[start:end] @ v for start, end, _ in runs])
+    if of is None:
+        return M[rows] @ v if runs is None else np.concatenate([M[start:end] @ v for start, end, _ in runs])
+    return of(M[rows]) @ v if runs is None else np.concatenate([of(M[start:end]) @ v for start, end, _ in runs])
 
 
 def _columns_times(M, columns, v):

@@ -414,15 +414,17 @@ def test_the_stiffness_formed_again_from_kept_rows_is_the_same_and_they_stay_wit
     c = contact(fr.Hertz(0.05))
     model = Varying(64).resolved_for(c, None).build(c)
     # The first m rows of G of m pairs, 2 m^2 floats: the halves of the runs of 13 to 24 pairs, more than the
-    # last `CACHED_CONTACTS` stiffnesses kept whole; down and up again, some are formed from kept rows.
+    # stiffnesses kept whole (G, 4 m^2 floats) in the bytes of those of 29 to 32 pairs; down and up again, some
+    # are formed from kept rows.
     monkeypatch.setattr(normal, "CACHED_HALVES", sum(16 * m**2 for m in range(13, 25)))
+    monkeypatch.setattr(normal, "CACHED_STIFFNESSES", sum(32 * m**2 for m in range(29, 33)))
     runs = list(range(32, 12, -1)) + list(range(13, 33))
     for m in runs:
         G = model.stiffness(m).G
         expected = normal.slip_to_traction(model.column[: 2 * m], model.punch(m))
         np.testing.assert_array_equal(G, expected)
         assert sum(half.nbytes for half in model._halves.values()) <= normal.CACHED_HALVES
-        assert len(model._stiffnesses) <= normal.CACHED_CONTACTS
+        assert sum(stiffness.G.nbytes for stiffness in model._stiffnesses.values()) <= normal.CACHED_STIFFNESSES
     kept = list(model._halves)
     assert len(kept) >= 4 and kept == runs[-len(kept) :]  # the most recently used, oldest first
     monkeypatch.setattr(normal, "CACHED_HALVES", 16 * 12**2)  # the rows of 12 pairs, fewer than any run's here
