@@ -68,3 +68,24 @@ def test_the_listed_packages_are_those_of_the_source_tree():
     assert set(setuptools["packages"]) == found | shipped
     assert setuptools["package-dir"] == {"fretting.histories": "histories"}
     assert "graft histories" in (tree / "MANIFEST.in").read_text(encoding="utf-8").splitlines()
+
+
+def test_the_compiled_kernels_run_where_numba_can_write_no_cache():
+    """A read-only installation run by a user whose home is read-only too: numba finds no folder for its
+    cache (no locator) and refuses ``cache=True``; the package imports all the same, its kernels compiled
+    in the process, and gives the same numbers (checked on a read-only mount: fretting/_compiled.py)."""
+    import subprocess
+    import sys
+
+    run = (
+        "import fretting as fr; "
+        "c = fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e5); "
+        "h = fr.History.piecewise_linear([0.0, 4e4, -2e4, 3e4], None, 8); "
+        "print(repr(float(fr.simulate(c, h).total_dissipation)))"
+    )
+    no_cache = "import numba.core.caching as caching; caching.CacheImpl._locator_classes = []; "
+    energies = [
+        subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()[-1]
+        for code in (run, no_cache + run)
+    ]
+    assert energies[0] == energies[1] and float(energies[0]) > 0

@@ -36,9 +36,9 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
-import numba
 import numpy as np
 
+from fretting._compiled import njit
 from fretting.loading.loads import Loads
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.collocation import DEFAULT_NODES
@@ -544,7 +544,7 @@ class ExactModel(Model):
         return list(map(_Branch, c.tolist(), q, slip, energy.tolist(), delta_Q.tolist()))
 
 
-@numba.njit(cache=True)
+@njit
 def _hertz_rows(x, p, P_c, c, a, f, P, R, dissipation, compliance):
     """Each branch of the corrective loads `P_c` [N/m] of half-widths `c` [m] on a Hertz contact
     (half-width `a` [m], friction `f`, load `P` [N/m], radius `R` [m]), at the nodes `x` [m] of

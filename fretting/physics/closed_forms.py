@@ -10,11 +10,11 @@ import itertools
 import math
 from collections.abc import Sequence
 
-import numba
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy import optimize, special
 
+from fretting._compiled import njit, vectorize
 from fretting.physics.contact import Contact
 
 __all__ = [
@@ -91,7 +91,7 @@ def hertz_slip_shape(x: ArrayLike, b: ArrayLike) -> np.ndarray:
     return np.asarray(_slip_shapes(np.asarray(x, dtype=float), np.asarray(b, dtype=float)))
 
 
-@numba.njit(cache=True)
+@njit
 def slip_shape(x: float, b: float) -> float:
     """`hertz_slip_shape` of one point `x` and half-width `b` [m]; compiled, for the exact model's branches.
 
@@ -118,7 +118,7 @@ def slip_shape(x: float, b: float) -> float:
     return b * b * bracket
 
 
-@numba.vectorize(cache=True)
+@vectorize
 def _slip_shapes(x, b):
     """`slip_shape` as a ufunc."""
     return slip_shape(x, b)
@@ -179,7 +179,7 @@ def ciavarella_jaeger(contact: Contact, Q: float, x: ArrayLike) -> tuple[np.ndar
     return np.sign(Q) * q, corrective
 
 
-@numba.njit(cache=True)
+@njit
 def slip_series(psi: float, first: int) -> float:
     """``sum_{n >= first} psi^n / (n (n - 1))`` for ``0 <= psi <= 1``, `first` 2 or 3, without cancellation; compiled.
 
@@ -196,7 +196,7 @@ def slip_series(psi: float, first: int) -> float:
     return two if first == 2 else two - psi * psi / 2
 
 
-@numba.vectorize(cache=True)
+@vectorize
 def _slip_series(psi, first):
     """`slip_series` as a ufunc."""
     return slip_series(psi, first)
