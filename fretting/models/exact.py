@@ -538,20 +538,20 @@ class ExactModel(Model):
         contact = self.contact
         c = contact.profile.half_width(P_c, contact.E_star)[0]
         q, slip, c, energy, delta_Q = _hertz_rows(
-            self.x, self._p, P_c, c, contact.a, contact.f, contact.P, contact.profile.R,
+            self.x, self._p, P_c, c, contact.a, contact.f, contact.profile.R,
             dissipation_scale(contact), compliance_scale(contact),
         )  # fmt: skip
         return list(map(_Branch, c.tolist(), q, slip, energy.tolist(), delta_Q.tolist()))
 
 
 @njit
-def _hertz_rows(x, p, P_c, c, a, f, P, R, dissipation, compliance):
+def _hertz_rows(x, p, P_c, c, a, f, R, dissipation, compliance):
     """Each branch of the corrective loads `P_c` [N/m] of half-widths `c` [m] on a Hertz contact
-    (half-width `a` [m], friction `f`, load `P` [N/m], radius `R` [m]), at the nodes `x` [m] of
+    (half-width `a` [m], friction `f`, radius `R` [m]), at the nodes `x` [m] of
     pressure `p` [Pa], in closed form; compiled: a step of `Stepper.step` solves one branch.
 
     Per branch: the traction ``q = f (p - p_c)`` with the corrective contact's elliptical
-    pressure ``p_c = (2 P_c / (pi c)) sqrt(1 - (x / c)^2)`` (eq 5); the slip
+    pressure ``p_c = (2 P_c / (pi c)) sqrt(1 - (x / c)^2)`` (eq 6, `Hertz.pressure`); the slip
     ``f g_c = f slip_shape(x, c) / (2R)``, Cattaneo-Mindlin's at the load ``Q = f P psi`` with
     ``psi = 1 - (c/a)^2`` (the Ciavarella-Jaeger load ``f (P - P_c)``), formed as
     ``(a - c)(a + c) / a^2``, exact where ``c`` is close to ``a``; the energy over ``f^2`` and
@@ -577,7 +577,7 @@ def _hertz_rows(x, p, P_c, c, a, f, P, R, dissipation, compliance):
                 q[i, j] = f * p[j]
                 slip[i, j] = f * slip_shape(x[j], b) / (2 * R)
         if b < a:
-            psi = abs(f * P * ((a - b) * (a + b) / a**2)) / (f * P)
+            psi = (a - b) * (a + b) / a**2
             energy[i] = dissipation * slip_series(psi, 3) / f**2
             delta_Q[i] = compliance * slip_series(psi, 2)
             half_widths[i] = b
