@@ -284,12 +284,13 @@ class NormalModel(Model):
     def stiffness(self, m):
         """``G = B - b b^T / beta`` [(N/m)/m: nodal force per slip] of the `m` central pairs (module docstring,
         `slip_to_traction`), as a `Stiffness` (not `kept` for the solver's inverse), kept within
-        `CACHED_STIFFNESSES` bytes."""
+        `CACHED_STIFFNESSES` bytes, or alone where one is larger: the parts of an increment ask for it
+        several times."""
         return _recent(
             self._stiffnesses,
             m,
             lambda: Stiffness(whole(self._half(m)), kept=False),
-            CACHED_STIFFNESSES,
+            max(CACHED_STIFFNESSES, 8 * (2 * m) ** 2),
             lambda stiffness: stiffness.G.nbytes,
         )
 

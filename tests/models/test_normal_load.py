@@ -408,7 +408,8 @@ def test_a_model_is_dropped_with_what_it_keeps():
 
 def test_the_stiffness_formed_again_from_kept_rows_is_the_same_and_they_stay_within_their_bytes(monkeypatch):
     """`NormalModel.stiffness` of a contact met again, formed from its kept rows or from nothing, is the same bit for
-    bit as `slip_to_traction`'s; the rows kept never exceed `CACHED_HALVES` bytes, the least recently used dropped."""
+    bit as `slip_to_traction`'s; the rows kept never exceed `CACHED_HALVES` bytes, the least recently used dropped,
+    and the whole stiffnesses `CACHED_STIFFNESSES`, but for one larger alone, kept by itself."""
     from fretting.models import normal
 
     c = contact(fr.Hertz(0.05))
@@ -428,8 +429,11 @@ def test_the_stiffness_formed_again_from_kept_rows_is_the_same_and_they_stay_wit
     kept = list(model._halves)
     assert len(kept) >= 4 and kept == runs[-len(kept) :]  # the most recently used, oldest first
     monkeypatch.setattr(normal, "CACHED_HALVES", 16 * 12**2)  # the rows of 12 pairs, fewer than any run's here
+    monkeypatch.setattr(normal, "CACHED_STIFFNESSES", 32 * 12**2)  # G of 12 pairs, smaller than any run's here
     np.testing.assert_array_equal(model.stiffness(14).G, normal.slip_to_traction(model.column[:28], model.punch(14)))
     assert not model._halves  # rows over the bytes alone are not kept
+    assert list(model._stiffnesses) == [14]  # a stiffness over its bytes is kept alone: the parts ask for it again
+    assert model.stiffness(14) is model._stiffnesses[14]
 
 
 @pytest.mark.slow
