@@ -290,8 +290,9 @@ class NormalModel(Model):
             self._stiffnesses,
             m,
             lambda: Stiffness(whole(self._half(m)), kept=False),
-            max(CACHED_STIFFNESSES, 8 * (2 * m) ** 2),
+            CACHED_STIFFNESSES,
             lambda stiffness: stiffness.G.nbytes,
+            alone=True,
         )
 
     def _half(self, m):
@@ -551,16 +552,17 @@ class NormalModel(Model):
         return self.surface[0], self.pressure_at(outcome.P)
 
 
-def _recent(kept, key, compute, limit=math.inf, size=None):
+def _recent(kept, key, compute, limit=math.inf, size=None, alone=False):
     """``kept[key]``, computed by `compute()` where `kept` (a dict, least recently used first) lacks it, and
     moved to the end. A new value first drops the least recently used while, with it, they would number (or,
-    by `size`, a function of a value, measure) more than `limit`; one over `limit` alone is not kept."""
+    by `size`, a function of a value, measure) more than `limit`; one over `limit` by itself is kept alone
+    where `alone` (its caller asks for it again), else not kept."""
     value = kept.pop(key, None)
     if value is None:
         value = compute()
         while kept and _measure(kept.values(), size) + _measure([value], size) > limit:
             del kept[next(iter(kept))]
-    if _measure([value], size) <= limit:
+    if alone or _measure([value], size) <= limit:
         kept[key] = value
     return value
 

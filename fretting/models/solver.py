@@ -311,9 +311,9 @@ def _rows_times(M, rows, v, of=None):
     """``M[rows] @ v`` for ascending `rows`, each run of consecutive rows a view of `M` (`_runs`); with `of`,
     an elementwise function, ``of(M[rows]) @ v``."""
     runs = _runs(rows)
-    if of is None:
-        return M[rows] @ v if runs is None else np.concatenate([M[start:end] @ v for start, end, _ in runs])
-    return of(M[rows]) @ v if runs is None else np.concatenate([of(M[start:end]) @ v for start, end, _ in runs])
+    blocks = [M[rows]] if runs is None else [M[start:end] for start, end, _ in runs]
+    products = [(block if of is None else of(block)) @ v for block in blocks]
+    return products[0] if runs is None else np.concatenate(products)
 
 
 def _columns_times(M, columns, v):
