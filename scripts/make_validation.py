@@ -31,6 +31,7 @@ from fretting.physics import closed_forms as cf  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
 import displacement_guide  # noqa: E402
+import engine_speed  # noqa: E402
 import galerkin_constants  # noqa: E402
 import size_effect  # noqa: E402
 import stepping  # noqa: E402
@@ -340,7 +341,7 @@ def in_phase_errors(contact, psi, tau, **model):
     `SPEED_STEPS` steps to ``Q = psi f P``, ``sigma = tau f p0``, against Nowell-Hills."""
     Q, sigma = psi * contact.f * contact.P, tau * contact.f * contact.p0
     history = fr.History.piecewise_linear([0.0, Q], [0.0, sigma], SPEED_STEPS)
-    seconds, result = stepping.cpu(lambda: fr.simulate(contact, history, **model), 3)
+    seconds, result = engine_speed.cpu(lambda: fr.simulate(contact, history, **model), 3)
     step = result.isel(step=-1)
     b, centre = cf.stick_half_width(contact, Q), cf.nowell_hills_offset(contact, sigma)
     e = errors(contact, step, [centre - b, centre + b], cf.nowell_hills_traction(contact, Q, sigma, step.x.values))
