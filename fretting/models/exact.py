@@ -551,7 +551,8 @@ def _hertz_rows(x, p, P_c, c, a, f, R, dissipation, compliance):
     pressure `p` [Pa], in closed form; compiled: a step of `Stepper.step` solves one branch.
 
     Per branch: the traction ``q = f (p - p_c)`` with the corrective contact's elliptical
-    pressure ``p_c = (2 P_c / (pi c)) sqrt(1 - (x / c)^2)`` (eq 6, `Hertz.pressure`); the slip
+    pressure ``p_c = (2 P_c / (pi c)) sqrt(1 - (x / c)^2)`` (eq 6: `Hertz.pressure` and `Hertz.peak_pressure`,
+    restated here so that a branch needs no array call beside the kernel); the slip
     ``f g_c = f slip_shape(x, c) / (2R)``, Cattaneo-Mindlin's at the load ``Q = f P psi`` with
     ``psi = 1 - (c/a)^2`` (the Ciavarella-Jaeger load ``f (P - P_c)``), formed as
     ``(a - c)(a + c) / a^2``, exact where ``c`` is close to ``a``; the energy over ``f^2`` and
