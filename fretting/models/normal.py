@@ -80,6 +80,7 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 from scipy import linalg, optimize
 
+from fretting._compiled import njit
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.method4 import extrapolated_end, on_the_point, stick_zones
 from fretting.models.solver import Increment, Stiffness, solve_increment
@@ -685,22 +686,31 @@ def half_stiffness(column, punch, first=None):
         raise ValueError(f"column must have an even number of entries, found {n}")
     if first is None:
         first = linalg.solve_toeplitz(column, np.eye(n, 1)[:, 0])
-    w, c = first / np.sqrt(first[0]), punch / np.sqrt(column @ punch)
-    head, tail = w[1:], w[:0:-1]  # w[j + 1], w[n - 1 - j], j = 0 .. n - 2
     G = np.empty((n // 2, n))
+    _trench_rows(first, first / np.sqrt(first[0]), punch / np.sqrt(column @ punch), G)
+    return G
+
+
+@njit
+def _trench_rows(first, w, c, G):
+    """Write into `G` (``(n / 2, n)``) the rows of `half_stiffness` from the first column `first` of ``B``, ``w =
+    first / sqrt(first[0])`` and ``c = sqrt(beta) punch``: row ``i`` of ``B`` from row ``i - 1`` (Trench's
+    recursion), less ``c_i c``, its entries ``j >= n - i`` copied from ``G[n - 1 - j, n - 1 - i]``. Compiled: a
+    varying load forms a stiffness for many of the contacts it meets, and row by row in numpy the calls cost
+    more than the arithmetic."""
+    n = first.size
     row, previous = first.copy(), np.empty(n)
     for i in range(n // 2):
         width = n - i  # the entries i + j <= n - 1 of row i
         if i:
             row, previous = previous, row
             row[0] = first[i]
-            np.multiply(head[: width - 1], w[i], out=row[1:width])
-            row[1:width] -= w[width] * tail[: width - 1]
-            row[1:width] += previous[: width - 1]
-            G[i, width:] = G[i - 1 :: -1, width - 1]  # G[i, j] = G[n - 1 - j, n - 1 - i], j >= n - i
-        np.multiply(c[:width], -c[i], out=G[i, :width])
-        G[i, :width] += row[:width]
-    return G
+            for j in range(1, width):
+                row[j] = w[j] * w[i] - w[width] * w[n - j] + previous[j - 1]
+            for j in range(width, n):
+                G[i, j] = G[n - 1 - j, n - 1 - i]
+        for j in range(width):
+            G[i, j] = c[j] * -c[i] + row[j]
 
 
 class CellSurfaceStress:
