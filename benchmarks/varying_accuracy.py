@@ -12,8 +12,8 @@ Histories (`SCENES`), on the Hertz contact of `harness.hertz_contact` and the ro
   the slip zones), ``Q`` reversed, the load up to ``1.3 P0`` (it grows over them again) and back.
 
 Reference. With ``sigma = 0`` on Hertz: Jaeger's superposition, exact (benchmarks/jaeger.py). Its state
-is exact, but the energy of a step that changes ``P`` is a sum over parts that converges at an order of
-about 1.4 (the bands entering a growing contact): the reference takes it from runs in `PARTS`, twice and
+is exact, but the energy of a step that changes ``P`` is a sum over parts that converges slowly (at an order
+of 1.3 to 1.5 on these histories, which the page prints): the reference takes it from runs in `PARTS`, twice and
 four times as many parts per step, extrapolated to infinitely many (`extrapolated`), and prints the change
 from the extrapolation of half as many parts (its error) and the change of its stick ends. Otherwise
 the package itself on `FINE` cells with parts a quarter of the default's, shown converged by the run
@@ -178,7 +178,8 @@ def extrapolated(runs):
 
     The order ``p`` is that of the history's total, ``log2 (E_2n - E_n) / (E_4n - E_2n)``; every step's energy is
     then ``E_4n + (E_4n - E_2n) / (2^p - 1)``. Where the totals do not change with the parts (every step slips at
-    constant ``P``, or not at all), the energy is the last run's."""
+    constant ``P``, or not at all) or their changes do not shrink, the energy is the last run's and the order NaN
+    (the page prints it)."""
     coarse, middle, fine = (run.energy for run in runs)
     first, second = middle[-1] - coarse[-1], fine[-1] - middle[-1]
     if first == 0 or second == 0 or first / second <= 1:

@@ -97,9 +97,9 @@ def test_stick_zone_at_the_limit_ratio_is_one_zone_with_jaeger_s_ends():
 
 def test_extrapolated_energy_removes_the_error_of_the_parts():
     """`varying_accuracy.extrapolated`: energies converging as ``n^-p`` in the parts ``n`` are extrapolated to their
-    limit; on Jaeger's runs of a growing contact slipping at its edges (``|dQ/dP| = 1.05 f``, where the sum over
-    parts converges slowest), the extrapolation from 16, 32 and 64 parts per step lies nearer the run of 512 parts
-    than the run of 64 does, by at least five times."""
+    limit; on Jaeger's runs of a growing contact slipping at its edges (``|dQ/dP| = 1.05 f``), the extrapolation
+    from 16, 32 and 64 parts per step lies nearer the run of 512 parts than the run of 64 does, by at least five
+    times."""
     limit, C, p = np.array([0.0, 1.0, 3.0]), np.array([0.0, 0.2, 0.5]), 1.4
     runs = [SimpleNamespace(energy=limit + C * n**-p) for n in (16, 32, 64)]
     reference, order = extrapolated(runs)
