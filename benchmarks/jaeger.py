@@ -23,7 +23,8 @@ the slip gradient ``ds/dx = (sign x / R) int_0^{|x|} lambda(c) c dc / sqrt(x^2 -
 transform of a flat punch: ``(2 / (pi E_star)) sign x / sqrt(x^2 - c^2)`` per unit load outside it)
 and the slip ``s(x) - s(0)`` are closed forms. A growing step is exact in one part; a receding one
 removes bands of different ratios on the way, and is taken in `parts` parts, as are the energies of
-both (the reference is shown converged in them by benchmarks/varying_accuracy.py). The energy of a
+both (benchmarks/varying_accuracy.py extrapolates the energy to infinitely many parts, `extrapolated`, and
+prints how far that moves with half as many). The energy of a
 part is ``2 int f p |ds| dx`` over its slip zone, ``p`` the mean of its ends (trapezoidal in ``P``, as
 the package's).
 """
