@@ -8,9 +8,12 @@ discretised model also the error of its nodal tractions alone (the stick flags c
 stick end is fitted: `fretting.physics.surface.SurfaceStress.at_stick_ends`). Then the same on
 Mindlin-Deresiewicz unloading, Q from 0 to 0.5 f P and back to 0.1 f P (McEwen's stress of
 ``q_CM(0.5 f P) - 2 q_CM(0.2 f P)``), the largest error split by where it lies: within `NEAR` node
-spacings of the stick end the loading left (``c*``, now inside the stick zone: not fitted), of the
-current stick end (``c'``, fitted), and elsewhere, and about ``c'`` with the exact slip fitted instead
-of the model's. Then the wall-clock time
+spacings of the stick end the loading left (``c*``, now inside the stick zone, a kink of the locked-in
+slip: fitted, `fretting.physics.surface.kinks`), of the current stick end (``c'``, fitted), and
+elsewhere, and about ``c'`` with the exact slip fitted instead of the model's. Then on random walks of
+``Q``, against Masing's elliptical loads at the model's nodes, the largest error at each step (median,
+90th percentile and largest over the steps), with the kinks that earlier turning points left fitted
+where they stand apart and without them, and the steps the fit makes worse. Then the wall-clock time
 (best of `--repeats`) of `fretting.simulate`, whose engine tallies the per-cycle peaks of the surface
 stress, and of `surface_stress` on three histories, under the default model and the default grid: 20
 sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within 0.8 f P, and 200
@@ -27,6 +30,8 @@ import numpy as np
 import fretting as fr
 from fretting.analysis import nucleation
 from fretting.physics import closed_forms as cf
+from fretting.physics import surface
+from fretting.physics.surface import ellipse_stress
 
 CONTACT = fr.Contact(fr.Hertz(0.05), fr.plane_strain_modulus(210e9, 0.3), 0.6, 1e5)
 
@@ -97,6 +102,27 @@ def unloading_error(model):
     )
 
 
+def walk_errors(model, seed=1, turns=60, steps=8):
+    """Model, nodes, and the largest error [p0] of body 1's surface stress at each step of a random walk of ``Q``
+    within 0.8 f P (`turns` segments of `steps` steps) against Masing's elliptical loads (the exact model's, by
+    `fretting.analysis.nucleation.elliptical_traction`) summed at the model's nodes, with the kinks that earlier
+    turning points left in the slip fitted (`fretting.physics.surface.kinks`) and without."""
+    fP = CONTACT.f * CONTACT.P
+    walk = np.concatenate([[0.0], np.random.default_rng(seed).uniform(-0.8, 0.8, turns) * fP])
+    history = fr.History.piecewise_linear(walk, None, steps)
+    widths, centres, loads = nucleation.elliptical_traction(fr.simulate(CONTACT, history))
+    result = fr.simulate(CONTACT, history, model)
+    x = result.x.values
+    expected = loads @ ellipse_stress(x / CONTACT.a, widths[:, None], centres[:, None]) - CONTACT.pressure(x)
+    errors = [np.abs(nucleation.surface_stress(result, body=1).values - expected).max(axis=1) / CONTACT.p0]
+    kink, surface.KINK = surface.KINK, np.inf
+    try:
+        errors.append(np.abs(nucleation.surface_stress(result, body=1).values - expected).max(axis=1) / CONTACT.p0)
+    finally:
+        surface.KINK = kink
+    return result.attrs["model"], x.size, errors
+
+
 def histories():
     fP, fp0 = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0
     walk = np.concatenate([[0.0], np.random.default_rng(1).uniform(-0.8, 0.8, 400) * fP])
@@ -126,6 +152,16 @@ def main():
             f"{name:8s} {nodes:5d} nodes: {former:.2e} (c*), {current:.2e} (c'), {rest:.2e} (elsewhere); "
             f"{fitted:.2e} (c', the exact slip fitted)"
         )
+    print("random walks of Q, 60 x 8 steps: largest error [p0] at a step, median / 90 % / largest over the steps")
+    for model in (fr.models.Mesh(), fr.models.Grid(), fr.models.Grid(1536)):
+        for seed in (1, 2, 3):
+            name, nodes, (fitted, unfitted) = walk_errors(model, seed)
+            figures = [" / ".join(f"{v:.2e}" for v in np.percentile(e, [50, 90, 100])) for e in (fitted, unfitted)]
+            worse = fitted - unfitted
+            print(
+                f"{name:8s} {nodes:5d} nodes, seed {seed}: {figures[0]}; without the kinks {figures[1]}; "
+                f"{np.count_nonzero(worse > 1e-3)} of {worse.size} steps worse by over 1e-3 (at most {worse.max():.1e})"
+            )
     for model in (None, fr.models.Grid()):
         for name, history in histories().items():
             result = fr.simulate(CONTACT, history, model)

@@ -324,11 +324,13 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     (`fretting.physics.surface.ellipse_stress`), as the engine's model integrates it.
     Otherwise the principal value is integrated exactly for ``sqrt(1 - t^2) q`` interpolated
     linearly between the nodes (`fretting.physics.surface.hilbert_matrix`), except next to a stick
-    end (a node that stuck in the increment beside one that slipped): there the stress has a
-    square-root profile with a vertical tangent that no interpolation of the nodal traction
-    resolves, and it is ``sigma / 2 - E_star ds/dx`` in body 1, from the slip fitted with its
-    ``|x - c|^(3/2)`` (`fretting.physics.surface.SurfaceStress.at_stick_ends`; accuracy:
-    tests/analysis/test_nucleation.py and benchmarks/surface_stress.py). For a result of a
+    end (a node that stuck in the increment beside one that slipped) and next to a stick end an
+    earlier turning point left inside the stick zone (a kink of the slip locked in there,
+    `fretting.physics.surface.kinks`): there the stress has a square-root profile with a vertical
+    tangent that no interpolation of the nodal traction resolves, and it is ``sigma / 2 - E_star
+    ds/dx`` in body 1, from the slip fitted with its ``|x - c|^(3/2)``
+    (`fretting.physics.surface.SurfaceStress.at_stick_ends`; accuracy, and the ends left unfitted:
+    tests/analysis/test_nucleation.py, benchmarks/surface_stress.py, docs/guide/stress.md). For a result of a
     varying ``P``, ``q`` constant on each cell, with the pressure of each step
     (`fretting.models.normal.CellSurfaceStress`), and no stick end fitted.
 
@@ -380,11 +382,12 @@ def _at_stick_ends(result: xr.Dataset, surface: SurfaceStress, bulk: np.ndarray,
     engine tallies it); the steps of copied cycles, which repeat a slip and its stick, fitted once."""
     q, slip, sigma = result.q.values, result.slip.values, result.sigma.values
     stuck, modulus = result.stick.values.astype(bool), result.attrs["E_star"] / result.attrs["a"]
+    fp0 = result.attrs["f"] * result.attrs["p0"]
     shear, fitted = surface.of_traction(q), {}
     for k in range(q.shape[0]):
         key = (slip[k].tobytes(), stuck[k].tobytes(), sigma[k])
         if key not in fitted:
-            fitted[key] = surface.stick_ends(slip[k], stuck[k], sigma[k], modulus)
+            fitted[key] = surface.stick_ends(slip[k], stuck[k], sigma[k], modulus, fp0)
         nodes, values = fitted[key]
         shear[k, nodes] = values
     return ClosedFormSurfaceStress(shear)(q, result.p.values, bulk, body)

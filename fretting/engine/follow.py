@@ -175,14 +175,17 @@ def specimen_surface(model, outcome, sigma):
 
     `sigma` [Pa] is the differential bulk tension after the increment; the specimen is the
     contact's (`Contact.specimen`). One product with the model's precomputed Hilbert matrix
-    (`Model.surface`) with the square-root profile at the stick ends fitted to the slip
+    (`Model.surface`) with the square-root profile at the stick ends, today's and those earlier turning
+    points left in the stick zone, fitted to the slip
     (`fretting.physics.surface.SurfaceStress.at_stick_ends`), the formula
     `fretting.analysis.nucleation.surface_stress` evaluates at the recorded steps.
     """
     surface, p = model.surface_at(outcome)
-    body, q = model.contact.specimen, model.traction(outcome)
+    contact, q = model.contact, model.traction(outcome)
     if isinstance(surface, SurfaceStress):  # nodal tractions' or closed form's: the stick ends from the slip
-        surface = surface.at_stick_ends(q, outcome.slip, outcome.ds == 0, sigma, model.contact.E_star / model.contact.a)
+        modulus, fp0 = contact.E_star / contact.a, contact.f * contact.p0
+        surface = surface.at_stick_ends(q, outcome.slip, outcome.ds == 0, sigma, modulus, fp0)
+    body = contact.specimen
     return surface(q, p, bulk_stress(sigma, body, specimen=body), body), np.abs(q)
 
 

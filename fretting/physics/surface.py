@@ -25,17 +25,31 @@ __all__ = [
     "SurfaceStress",
     "bulk_stress",
     "ellipse_stress",
+    "end_fit",
+    "fitted_nodes",
+    "gradients",
     "hilbert_matrix",
-    "slip_gradient_at_end",
+    "kink_fits",
+    "kinks",
 ]
 
 #: Nodes on either side of a stick end whose stress `SurfaceStress.at_stick_ends` takes from the slip's gradient.
 END_NODES = 4
-#: Nodes on either side of a stick end that the fit of the slip spans (`slip_gradient_at_end`).
+#: Nodes on either side of a stick end that the fit of the slip spans (`fitted_nodes`).
 FIT_NODES = 6
-#: Positions of the stick end that `slip_gradient_at_end` fits the slip with at once, over one and a half of the
-#: nodes' spacings; the vertex of the parabola through the least residual and its neighbours is the end.
+#: Positions of the stick end that `gradients` fits the slip with at once, over one and a half of the nodes'
+#: spacings (two at a kink); the vertex of the parabola through the least residual and its neighbours is the end.
 END_CANDIDATES = 48
+#: A kink of the slip inside a stick zone (`kinks`) is fitted where the nodal tractions would miss its stress by
+#: more than about this fraction of ``f p0``: ``modulus h^2 |d3s/dt3|`` over four stuck nodes above ``KINK f p0``.
+KINK = 1e-3
+#: A lesser peak of ``h^2 |d3s/dt3|`` within `FIT_NODES` of a kink's, under this fraction of it, is the kink's own
+#: (on an uneven mesh); one above it is another kink's, and the two are left to the nodal tractions (`kinks`).
+LOBE = 0.5
+#: A kink's fit is kept where it leaves less than this fraction of the slip's residual by ``1, u, u^2`` alone:
+#: more is left by two kinks the fit takes for one, or by a slip with none, such as one interpolated onto a
+#: refined mesh (`SurfaceStress.stick_ends`).
+KINK_RESIDUAL = 3e-3
 
 
 def bulk_stress(sigma, body, bulk=None, specimen=SPECIMEN):
@@ -94,7 +108,7 @@ class SurfaceStress:
         """``-(2/pi) PV int q(xi) / (x - xi) dxi`` [Pa] at the nodes, of `q` [Pa] there (shape (N,) or (steps, N))."""
         return (q * self._root) @ self._kernel
 
-    def at_stick_ends(self, q, slip, stuck, sigma, modulus):
+    def at_stick_ends(self, q, slip, stuck, sigma, modulus, fp0):
         """This stress of one step with the square-root profile at its stick ends, as `ClosedFormSurfaceStress`.
 
         A traction ``q = q_st + q_d`` of method 4 (eqs 9, 20 and A.4) gives ``-(2/pi) PV int q / (x - xi) dxi
@@ -102,9 +116,11 @@ class SurfaceStress:
         t^2) q_d = -(E_star / 2) sum n c_n T_n`` is ``-(E_star / 2) ds/dx``, and that of ``q_st`` is ``sigma /
         4``): the surface strain mismatch of the two bodies is the slip's gradient. Next to a stick end the
         traction's slope is unbounded and its nodal values miss it, while the slip there goes as ``|x -
-        c|^(3/2)`` into the slip zone, which `slip_gradient_at_end` fits. The nodes within `END_NODES` of each
-        stick end (between a node that stuck in the increment and one that slipped) take ``sigma / 2 -
-        modulus ds/dt``, the others `of_traction` of `q`.
+        c|^(3/2)`` into the slip zone, which `gradients` fits (`end_fit`). The same holds at a stick end that an
+        earlier load left inside today's stick zone (the end ``c*`` at a turning point, Mindlin and
+        Deresiewicz): the slip locked in there keeps its ``|x - c*|^(3/2)``, and the stress its square root
+        (`kinks` finds those ends, `kink_fits`). The nodes within `END_NODES` of each end take
+        ``sigma / 2 - modulus ds/dt``, the others `of_traction` of `q`.
 
         Parameters
         ----------
@@ -116,19 +132,32 @@ class SurfaceStress:
             Differential bulk tension [Pa].
         modulus : float
             ``E_star / a`` [Pa/m].
+        fp0 : float
+            ``f p0`` [Pa], the scale of the kinks worth fitting (`KINK`).
         """
         stress = self.of_traction(q)
-        nodes, values = self.stick_ends(slip, stuck, sigma, modulus)
+        nodes, values = self.stick_ends(slip, stuck, sigma, modulus, fp0)
         stress[nodes] = values
         return ClosedFormSurfaceStress(stress)
 
-    def stick_ends(self, slip, stuck, sigma, modulus):
-        """The nodes next to the stick ends of one step and their ``sigma / 2 - modulus ds/dt`` [Pa]
-        (`at_stick_ends`)."""
-        ends = np.flatnonzero(stuck[1:] != stuck[:-1]) + 1  # node above each stick end
-        fitted = [slip_gradient_at_end(self._t, slip, stuck, end, ends) for end in ends]
-        nodes = np.concatenate([np.zeros(0, dtype=int)] + [nodes for nodes, _ in fitted])
-        gradient = np.concatenate([np.zeros(0)] + [gradient for _, gradient in fitted])
+    def stick_ends(self, slip, stuck, sigma, modulus, fp0):
+        """The nodes next to the stick ends of one step, today's and the kinks earlier ones left, and their
+        ``sigma / 2 - modulus ds/dt`` [Pa] (`at_stick_ends`)."""
+        current = np.flatnonzero(stuck[1:] != stuck[:-1]) + 1  # node above each stick end
+        found = kinks(self._t, slip, stuck, current, KINK * fp0 / modulus)
+        fits = [fit for end in current if (fit := end_fit(self._t, stuck, end, current)) is not None]
+        today = len(fits)
+        fits += [fit for end in found for fit in kink_fits(self._t, end, np.concatenate([current, found]))]
+        fitted = gradients(self._t, slip, fits)
+        kept = {}  # kink -> the fit of least residual, where that is under KINK_RESIDUAL
+        for fit, (nodes, gradient, share) in zip(fits[today:], fitted[today:], strict=True):
+            if share < min(KINK_RESIDUAL, kept.get(fit[1], (0, 0, np.inf))[2]):
+                kept[fit[1]] = nodes, gradient, share
+        fitted = fitted[:today] + list(kept.values())
+        nodes = np.concatenate([np.zeros(0, dtype=int)] + [nodes for nodes, _, _ in fitted])
+        gradient = np.concatenate([np.zeros(0)] + [gradient for _, gradient, _ in fitted])
+        first = np.unique(nodes, return_index=True)[1]  # a node next to today's end and a kink: today's end's
+        nodes, gradient = nodes[first], gradient[first]
         return nodes, sigma / 2 - modulus * gradient
 
 
@@ -159,65 +188,169 @@ class ClosedFormSurfaceStress(SurfaceStress):
         return self
 
 
-def slip_gradient_at_end(t, slip, stuck, end, ends):
-    """``ds/dt`` [m] at the nodes next to the stick end below node `end`, fitting the slip with ``|t - c|^(3/2)``.
+def kinks(t, slip, stuck, ends, floor):
+    """Node indices above the kinks of the slip inside the stick zones: the stick ends earlier loads left.
+
+    Where a slip zone stopped growing (a turning point of the load), the slip locked in behind it goes as
+    ``A |t - c*|^(3/2)`` into the zone that slipped (`end_fit`), so that its third derivative is
+    unbounded there: ``h^2 |d3s/dt3|``, the divided difference over four consecutive stuck nodes of mean
+    spacing ``h``, peaks next to ``c*`` at about ``|A| sqrt(h)``, the size of the nodal tractions' error in
+    ``ds/dt`` there, where a smooth slip gives a value of order ``h^2``. A window whose value peaks above
+    `floor` [m] marks a kink at the node above its middle interval. It is taken where no peak of more than
+    `LOBE` of its own (a lesser one is its own, on an uneven mesh) nor any of today's stick `ends` (node
+    indices above them) lies within `FIT_NODES` nodes: the fit of `gradients` spans that many nodes on either
+    side with one end among them. Kinks nearer to one another than that, as turning points of nearly equal
+    loads leave, are left to the nodal tractions.
+    """
+    if t.size < 4:
+        return np.zeros(0, dtype=int)
+    first = np.diff(slip) / np.diff(t)
+    second = np.diff(first) / (t[2:] - t[:-2])
+    size = 6 * np.abs(np.diff(second)) / (t[3:] - t[:-3]) * ((t[3:] - t[:-3]) / 3) ** 2
+    size[~(stuck[:-3] & stuck[1:-2] & stuck[2:-1] & stuck[3:])] = 0.0
+    window = np.flatnonzero((size > floor) & (size >= np.r_[0.0, size[:-1]]) & (size >= np.r_[size[1:], 0.0]))
+    peak, height = window + 2, size[window]
+    near = np.abs(peak[:, None] - peak[None, :]) < FIT_NODES
+    rival = near & (height[None, :] >= LOBE * height[:, None]) & ~np.eye(peak.size, dtype=bool)
+    alone = np.abs(peak[:, None] - np.asarray(ends)[None, :]) >= FIT_NODES
+    return peak[~rival.any(axis=1) & alone.all(axis=1)]
+
+
+def end_fit(t, stuck, end, ends):
+    """The fit of the slip about today's stick end below node `end`: ``(nodes, end, side, low, high)`` for
+    `gradients`, or None where fewer than two of its nodes stick or three slip, or six in all (a zone narrower
+    than that is left to the nodal traction).
 
     About a stick end ``c`` the slip is the slip locked in before, smooth, plus ``A w^(3/2) + B w^(5/2)``
-    with ``w`` the distance into the slip zone (eq 19; Masing's rule for reversed zones). The slip of the
-    `FIT_NODES` nodes on either side of the end (those nearer to it than to the other `ends`, node indices
-    like `end`) is fitted by least squares with ``1, u, u^2, w^(3/2), w^(5/2)``, ``u = t - c``, with ``c``
-    the one of least residual from the stuck node half a spacing inward to the slipping node (the model's
-    ends are within that: `END_CANDIDATES`), and differentiated at the `END_NODES` nodes nearest on either side.
-
-    Returns
-    -------
-    tuple
-        Node indices (K,) and ``ds/dt`` [m] there; none where fewer than two nodes stick or three slip, or six
-        in all (a zone narrower than that is left to the nodal traction).
+    with ``w`` the distance into the slip zone (eq 19; Masing's rule for reversed zones), on the `side` (+1 or
+    -1 along ``t``) of the slipping node; the end lies between the stuck node, less half a spacing inward,
+    and the slipping node (the model's ends are within that): [`low`, `high`]. The nodes are `fitted_nodes`.
     """
-    nodes = np.arange(max(end - FIT_NODES, 0), min(end + FIT_NODES, t.size))
+    nodes = fitted_nodes(end, ends, t.size)
+    side = 1.0 if stuck[end - 1] else -1.0
+    slipping = np.count_nonzero(side * (nodes - end + 0.5) > 0)
+    if slipping < 3 or nodes.size - slipping < 2 or nodes.size < 6:
+        return None
+    inner = end - 1 if side > 0 else end  # the stuck node
+    inward = t[min(max(inner - int(side), 0), t.size - 1)] - t[inner]
+    low, high = sorted((t[inner] + inward / 2, t[end] if side > 0 else t[end - 1]))
+    return nodes, end, side, low, high
+
+
+def kink_fits(t, end, ends):
+    """The two fits of the slip about the kink below node `end` (`kinks`), one for the earlier slip zone on
+    either side (`gradients` keeps the one of least residual), the kink between nodes ``end - 2`` and ``end + 1``
+    (the window that found it) and with three of its `fitted_nodes` at least on either side; none where that
+    leaves no room."""
+    nodes = fitted_nodes(end, ends, t.size)
+    if nodes.size < 6:
+        return []
+    low, high = max(t[end - 2], t[nodes[2]]), min(t[end + 1], t[nodes[-3]])
+    return [(nodes, end, side, low, high) for side in (1.0, -1.0)] if low < high else []
+
+
+def fitted_nodes(end, ends, N):
+    """The `FIT_NODES` nodes on either side of the end below node `end`, of `N`, that lie nearer to it than to
+    the other `ends` (node indices like `end`)."""
+    nodes = np.arange(max(end - FIT_NODES, 0), min(end + FIT_NODES, N))
     others = ends[ends != end]
     if others.size:
         nodes = nodes[np.abs(nodes - end + 0.5) < np.abs(nodes[:, None] - others + 0.5).min(axis=1)]
-    side, h = (1.0 if stuck[end - 1] else -1.0), t[end] - t[end - 1]
-    slipping = np.count_nonzero(side * (nodes - end + 0.5) > 0)
-    if slipping < 3 or nodes.size - slipping < 2 or nodes.size < 6:
-        return np.zeros(0, dtype=int), np.zeros(0)
-    inner = end - 1 if side > 0 else end  # the stuck node
-    inward = t[min(max(inner - int(side), 0), t.size - 1)] - t[inner]
-    scale = np.abs(slip[nodes]).max() or 1.0  # [m]
-    y = slip[nodes] / scale
-    low, high = sorted((t[inner] + inward / 2, t[end] if side > 0 else t[end - 1]))
-    c = np.linspace(low, high, END_CANDIDATES)
-    residual = _fit(t[nodes], y, c, side, h)[3]
-    best = int(np.clip(np.argmin(residual), 1, END_CANDIDATES - 2))
-    r0, r1, r2 = residual[best - 1 : best + 2]
-    curvature = r0 - 2 * r1 + r2  # the vertex of the parabola through the least residual and its neighbours
-    shift = np.clip(0.5 * (r0 - r2) / curvature, -1.0, 1.0) if curvature > 0 else 0.0
-    coefficients, u, w, _ = _fit(t[nodes], y, c[best : best + 1] + shift * (c[1] - c[0]), side, h)
-    coefficients, u, w = coefficients[0] * scale, u[0], w[0]
-    near = np.abs(nodes - end + 0.5) < END_NODES
-    u, w = u[near], w[near]
-    gradient = (
-        coefficients[1]
-        + 2 * coefficients[2] * u
-        + side * (1.5 * coefficients[3] * np.sqrt(w) + 2.5 * coefficients[4] * w**1.5)
-    )
-    return nodes[near], gradient / h
+    return nodes
 
 
-def _fit(t, y, c, side, h):
-    """Least squares of `y` at `t` by ``1, u, u^2, w^(3/2), w^(5/2)`` with ``u = (t - c) / h``, ``w = max(side u, 0)``,
-    for each end ``c`` of `c` (C,): coefficients (C, 5), ``u`` and ``w`` (C, n), residuals (C,)."""
-    u = (t - c[:, None]) / h
-    w = np.maximum(side * u, 0.0)
-    basis = np.stack([np.ones_like(u), u, u**2, w**1.5, w**2.5], axis=-1)
-    transposed = basis.transpose(0, 2, 1)  # normal equations, of columns of order 1 over the fitted nodes
+def gradients(t, slip, fits):
+    """``ds/dt`` [m] at the nodes next to each end of `fits`, fitting the slip with ``|t - c|^(3/2)``.
+
+    Each fit ``(nodes, end, side, low, high)`` (`end_fit`, `kink_fits`) takes the slip at its `nodes` by least
+    squares with ``1, u, u^2, w^(3/2), w^(5/2)``, ``u = (t - c) / h``, ``w = max(side u, 0)``, ``h`` the spacing
+    at the end, for `END_CANDIDATES` ends ``c`` in [low, high]; the end is the vertex of the parabola through
+    the least residual and its neighbours, and the fit there is differentiated at the `END_NODES` nodes
+    nearest the end on either side. All fits of a step are solved at once.
+
+    Returns
+    -------
+    list
+        For each fit, its node indices (K,), ``ds/dt`` [m] there, and its residual over that of ``1, u, u^2``
+        alone (1 where that is none).
+    """
+    if not fits:
+        return []
+    rows = np.arange(len(fits))
+    index, known = np.zeros((rows.size, 2 * FIT_NODES), dtype=int), np.zeros((rows.size, 2 * FIT_NODES), dtype=bool)
+    for row, (nodes, *_) in enumerate(fits):
+        index[row, : nodes.size], known[row, : nodes.size] = nodes, True
+    end, side, low, high = (np.array(column) for column in list(zip(*fits, strict=True))[1:])
+    h = t[end] - t[end - 1]
+    y = np.where(known, slip[index], 0.0)
+    scale = np.abs(y).max(axis=1)
+    scale[scale == 0] = 1.0  # [m]
+    y = y / scale[:, None]
+    c = np.linspace(low, high, END_CANDIDATES, axis=1)
+    residual, quadratic = _residuals(t[index] - t[end, None], known, y, c - t[end, None], side, h)
+    best = np.clip(np.argmin(residual, axis=1), 1, END_CANDIDATES - 2)
+    r0, r1, r2 = residual[rows, best - 1], residual[rows, best], residual[rows, best + 1]
+    curvature = r0 - 2 * r1 + r2
+    shift = np.where(curvature > 0, np.clip(0.5 * (r0 - r2) / np.where(curvature > 0, curvature, 1.0), -1, 1), 0.0)
+    at = c[rows, best] + shift * (c[:, 1] - c[:, 0])
+    coefficients, u, w, residual = _fit(t[index], known, y, at[:, None], side, h)
+    _, a1, a2, a3, a4 = (coefficients[:, 0, k, None] * scale[:, None] for k in range(5))
+    u, w, slope = u[:, 0], w[:, 0], side[:, None]
+    gradient = (a1 + 2 * a2 * u + slope * (1.5 * a3 * np.sqrt(w) + 2.5 * a4 * w**1.5)) / h[:, None]
+    near = known & (np.abs(index - end[:, None] + 0.5) < END_NODES)
+    share = np.divide(residual[:, 0], quadratic, out=np.ones_like(quadratic), where=quadratic > 0)
+    return [(index[row, near[row]], gradient[row, near[row]], share[row]) for row in rows]
+
+
+def _residuals(t, known, y, c, side, h):
+    """The residuals (F, C) of `_fit` at each end of `c` (F, C), from the parts of `y` and of the columns ``w^(3/2),
+    w^(5/2)`` (``w = max(side (t - c) / h, 0)``) that ``1, t, t^2``, the same at every end, leave: one QR of
+    those per fit, then the two columns' Gram matrix ``W^T W - (Q^T W)^T Q^T W`` and ``W^T y`` per end; and
+    the residual of ``1, t, t^2`` alone (F,)."""
+    v = t / h[:, None]
+    Q = np.linalg.qr(np.stack([np.ones_like(v), v, v * v], axis=-1) * known[..., None])[0]  # (F, n, 3)
+    y = y - np.sum(Q * np.sum(Q * y[..., None], axis=1)[:, None, :], axis=2)
+    w = np.maximum(side[:, None, None] * (v[:, None, :] - c[:, :, None] / h[:, None, None]), 0.0) * known[:, None, :]
+    W = [w * np.sqrt(w)]
+    W.append(W[0] * w)
+    Qt = [[np.sum(Q[:, None, :, i] * column, axis=2) for i in range(3)] for column in W]  # (F, C) each
+    G = np.empty((*w.shape[:2], 2, 2))
+    for i, j in ((0, 0), (0, 1), (1, 1)):
+        G[..., i, j] = G[..., j, i] = np.sum(W[i] * W[j], axis=2) - sum(
+            a * b for a, b in zip(Qt[i], Qt[j], strict=True)
+        )
+    b = np.stack([np.sum(column * y[:, None, :], axis=2) for column in W], axis=-1)
+    quadratic = np.sum(y * y, axis=1)
+    return quadratic[:, None] - _explained(G, b), quadratic
+
+
+def _explained(G, b):
+    """``b^T G^+ b`` for the symmetric positive semi-definite 2 x 2 matrices `G` (..., 2, 2) and vectors `b` (..., 2):
+    the square norm of the least-squares fit of a target by two columns of Gram matrix `G` and inner products `b`
+    with the target (by the first alone where they are proportional, as with one node in the slip zone)."""
+    g00, g01, g11 = G[..., 0, 0], G[..., 0, 1], G[..., 1, 1]
+    det = g00 * g11 - g01 * g01
+    both = det > 1e-12 * g00 * g11
+    safe = np.where(both, det, 1.0)
+    pair = (g11 * b[..., 0] ** 2 - 2 * g01 * b[..., 0] * b[..., 1] + g00 * b[..., 1] ** 2) / safe
+    one = np.where(g00 > 0, b[..., 0] ** 2 / np.where(g00 > 0, g00, 1.0), 0.0)  # the columns proportional
+    return np.where(both, pair, one)
+
+
+def _fit(t, known, y, c, side, h):
+    """Least squares of `y` at `t` (F, n), rows `known`, by ``1, u, u^2, w^(3/2), w^(5/2)`` with ``u = (t - c) /
+    h``, ``w = max(side u, 0)``, for each end of `c` (F, C) of each of F fits (`side`, `h`: (F,)):
+    coefficients (F, C, 5), ``u`` and ``w`` (F, C, n), residuals (F, C)."""
+    u = (t[:, None, :] - c[:, :, None]) / h[:, None, None]
+    w = np.maximum(side[:, None, None] * u, 0.0)
+    basis = np.stack([np.ones_like(u), u, u**2, w**1.5, w**2.5], axis=-1) * known[:, None, :, None]
+    transposed = basis.swapaxes(-1, -2)  # normal equations, of columns of order 1 over the fitted nodes
+    target = np.broadcast_to(y[:, None, :, None], (*u.shape, 1))
     try:
-        coefficients = np.linalg.solve(transposed @ basis, transposed @ y[:, None])[..., 0]
+        coefficients = np.linalg.solve(transposed @ basis, transposed @ target)[..., 0]
     except np.linalg.LinAlgError:  # columns dependent at some end (a slip zone of three nodes): least norm
-        coefficients = (np.linalg.pinv(basis) @ y[:, None])[..., 0]
-    residual = np.sum(((basis @ coefficients[..., None])[..., 0] - y) ** 2, axis=1)
+        coefficients = (np.linalg.pinv(basis) @ target)[..., 0]
+    residual = np.sum(((basis @ coefficients[..., None])[..., 0] - y[:, None, :]) ** 2, axis=-1)
     return coefficients, u, w, residual
 
 
