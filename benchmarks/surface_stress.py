@@ -7,13 +7,15 @@ phase (McEwen's surface stress of their elliptical loads), with where it lies, `
 discretised model also the error of its nodal tractions alone (the stick flags cleared, so that no
 stick end is fitted: `fretting.physics.surface.SurfaceStress.at_stick_ends`). Then the same on
 Mindlin-Deresiewicz unloading, Q from 0 to 0.5 f P and back to 0.1 f P (McEwen's stress of
-``q_CM(0.5 f P) - 2 q_CM(0.2 f P)``), the largest error split by where it lies: within `NEAR` node
+``q_CM(0.5 f P) - 2 q_CM(0.2 f P)``), also on the varying-load model (the contact formed at P / 2 and
+pressed to P with no shear first), the largest error split by where it lies: within `NEAR` node
 spacings of the stick end the loading left (``c*``, now inside the stick zone, a kink of the locked-in
 slip: fitted, `fretting.physics.surface.kinks`), of the current stick end (``c'``, fitted), and
-elsewhere, and about ``c'`` with the exact slip fitted instead of the model's. Then on random walks of
-``Q``, against Masing's elliptical loads at the model's nodes, the largest error at each step (median,
-90th percentile and largest over the steps), with the kinks that earlier turning points left fitted
-where they stand apart and without them, and the steps the fit makes worse. Then the wall-clock time
+the contact's edges, elsewhere, and about ``c'`` with the exact slip fitted instead of the model's.
+Then on random walks of ``Q``, against Masing's elliptical loads at the model's nodes, the largest error
+at each step (median, 90th percentile and largest over the steps), with the kinks that earlier turning
+points left fitted where they stand apart and without them, and the steps the fit makes worse. Then the
+wall-clock time
 (best of `--repeats`) of `fretting.simulate`, whose engine tallies the per-cycle peaks of the surface
 stress, and of `surface_stress` on three histories, under the default model and the default grid: 20
 sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within 0.8 f P, and 200
@@ -66,19 +68,36 @@ def closed_form_error(tau, model):
     return result.attrs["model"], x.size, error.max() / CONTACT.p0, (x[error.argmax()] - e) / b, nodal
 
 
-#: Node spacings about a stick end within which `unloading_error` counts an error as that end's.
-NEAR = 3
+#: Node spacings about a stick end or an edge within which `unloading_error` counts an error as that point's (`near`):
+#: the fit of `fretting.physics.surface.gradients` spans as many.
+NEAR = 6
 
 
-def unloading_error(model):
+def near(x, point):
+    """The nodes `x` [m] within `NEAR` spacings, those of the nodes about it, of ``-point`` or ``point`` [m]."""
+    close = np.zeros(x.size, dtype=bool)
+    for at in (-point, point):
+        i = int(np.clip(np.searchsorted(x, at), 1, x.size - 1))
+        close |= np.abs(x - at) < NEAR * (x[i] - x[i - 1])
+    return close
+
+
+def unloading_error(model, grown=False):
     """Model, nodes and the largest errors [p0] of body 1's surface stress after Mindlin-Deresiewicz unloading
     from ``Q* = 0.5 f P`` to ``Q = 0.1 f P``: about the former stick end ``c*``, about the current one ``c'``,
-    elsewhere (`NEAR`), and about ``c'`` again with the model's slip at the last step replaced by the exact
-    one (``s_CM(Q*) - 2 s_CM((Q* - Q) / 2)``, `fretting.physics.closed_forms.cattaneo_mindlin_slip`), which
-    tells the fit's error from that of the model's slip."""
+    about the contact's edges, elsewhere (`NEAR` spacings), and about ``c'`` again with the model's slip at the
+    last step replaced by the exact one (``s_CM(Q*) - 2 s_CM((Q* - Q) / 2)``,
+    `fretting.physics.closed_forms.cattaneo_mindlin_slip`), which tells the fit's error from that of the
+    model's slip. `grown`: the contact formed at ``P / 2`` and pressed to ``P`` first with no shear, which
+    leaves no traction (the varying-load model, `fretting.models.normal`)."""
     fP, fp0 = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0
     Q_star, Q = 0.5 * fP, 0.1 * fP
-    result = fr.simulate(CONTACT, fr.History.piecewise_linear([0.0, Q_star, Q], None, 8), model)
+    if grown:
+        formed = fr.Contact(CONTACT.profile, CONTACT.E_star, CONTACT.f, CONTACT.P / 2)
+        P = [CONTACT.P / 2] + [CONTACT.P] * 3
+        result = fr.simulate(formed, fr.History.piecewise_linear([0.0, 0.0, Q_star, Q], None, 8, P=P), model)
+    else:
+        result = fr.simulate(CONTACT, fr.History.piecewise_linear([0.0, Q_star, Q], None, 8), model)
     x = result.x.values
     c_star, c = cf.stick_half_width(CONTACT, Q_star), cf.stick_half_width(CONTACT, (Q_star - Q) / 2)
     expected = -CONTACT.pressure(x) + fp0 * (partial_slip_stress(x, c_star) - 2 * partial_slip_stress(x, c))
@@ -88,16 +107,13 @@ def unloading_error(model):
         np.abs(nucleation.surface_stress(run, body=1).values[-1] - expected) / CONTACT.p0
         for run in (result, result.assign(slip=(result.slip.dims, slip)))
     ]
-    spacing = NEAR * np.diff(x).max()
-    former, current = np.abs(np.abs(x) - c_star) < spacing, np.abs(np.abs(x) - c) < spacing
+    former, current, edges = (near(x, point) for point in (c_star, c, CONTACT.a))
     model_slip, exact_slip = errors
-    elsewhere = model_slip[~(former | current)].max()
+    elsewhere = model_slip[~(former | current | edges)].max()
     return (
         result.attrs["model"],
         x.size,
-        model_slip[former].max(),
-        model_slip[current].max(),
-        elsewhere,
+        [model_slip[former].max(), model_slip[current].max(), model_slip[edges].max(), elsewhere],
         exact_slip[current].max(),
     )
 
@@ -146,12 +162,12 @@ def main():
                 f"{where:.4f}{alone}"
             )
     print("Mindlin-Deresiewicz unloading, 0.5 f P to 0.1 f P: largest error [p0] by where it lies")
-    for model in (None, fr.models.Mesh(), fr.models.Grid(), fr.models.Grid(1536)):
-        name, nodes, former, current, rest, fitted = unloading_error(model)
-        print(
-            f"{name:8s} {nodes:5d} nodes: {former:.2e} (c*), {current:.2e} (c'), {rest:.2e} (elsewhere); "
-            f"{fitted:.2e} (c', the exact slip fitted)"
-        )
+    models = [(model, False) for model in (None, fr.models.Mesh(), fr.models.Grid(), fr.models.Grid(1536))]
+    for model, grown in models + [(None, True)]:
+        name, nodes, errors, fitted = unloading_error(model, grown)
+        where = ", ".join(f"{e:.2e} ({w})" for e, w in zip(errors, ("c*", "c'", "edges", "elsewhere"), strict=True))
+        grew = " (the contact grown from P / 2 first)" if grown else ""
+        print(f"{name:8s} {nodes:5d} nodes{grew}: {where}; {fitted:.2e} (c', the exact slip fitted)")
     print("random walks of Q, 60 x 8 steps: largest error [p0] at a step, median / 90 % / largest over the steps")
     for model in (fr.models.Mesh(), fr.models.Grid(), fr.models.Grid(1536)):
         for seed in (1, 2, 3):

@@ -332,7 +332,7 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     (`fretting.physics.surface.SurfaceStress.at_stick_ends`; accuracy, and the ends left unfitted:
     tests/analysis/test_nucleation.py, benchmarks/surface_stress.py, docs/guide/stress.md). For a result of a
     varying ``P``, ``q`` constant on each cell, with the pressure of each step
-    (`fretting.models.normal.CellSurfaceStress`), and no stick end fitted.
+    (`fretting.models.normal.CellSurfaceStress`), the stick ends fitted among the cells in contact.
 
     Parameters
     ----------
@@ -355,13 +355,13 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     """
     body, role = body_role(result, body)
     bulk = body_bulk(result, body, bulk)[:, None]
+    t = (result.x.values - result.attrs["centre"]) / result.attrs["a"]
     if "p_step" in result:  # a varying P: the equal cells of fretting.models.normal, the pressure of each step
-        stress = CellSurfaceStress(result.sizes["x"])(result.q.values, result.p_step.values, bulk, body)
+        stress = _at_stick_ends(result, CellSurfaceStress(t), result.p_step.values, bulk, body)
     else:
-        t = (result.x.values - result.attrs["centre"]) / result.attrs["a"]
         ellipses = elliptical_traction(result)
         if ellipses is None:
-            stress = _at_stick_ends(result, SurfaceStress(t), bulk, body)
+            stress = _at_stick_ends(result, SurfaceStress(t), result.p.values, bulk, body)
         else:
             widths, centres, loads = ellipses
             surface = ClosedFormSurfaceStress(loads @ ellipse_stress(t, widths[:, None], centres[:, None]))
@@ -377,20 +377,24 @@ def surface_stress(result: xr.Dataset, body: int | None = None, bulk: ArrayLike 
     )
 
 
-def _at_stick_ends(result: xr.Dataset, surface: SurfaceStress, bulk: np.ndarray, body: int) -> np.ndarray:
+def _at_stick_ends(
+    result: xr.Dataset, surface: SurfaceStress, p: np.ndarray, bulk: np.ndarray, body: int
+) -> np.ndarray:
     """`surface` at each recorded step with its stick ends from the slip (`SurfaceStress.at_stick_ends`, as the
-    engine tallies it); the steps of copied cycles, which repeat a slip and its stick, fitted once."""
+    engine tallies it), under the pressure `p` [Pa] (one row, or one per step); the steps of copied cycles,
+    which repeat a slip and its stick, fitted once."""
     q, slip, sigma = result.q.values, result.slip.values, result.sigma.values
     stuck, modulus = result.stick.values.astype(bool), result.attrs["E_star"] / result.attrs["a"]
     fp0 = result.attrs["f"] * result.attrs["p0"]
-    shear, fitted = surface.of_traction(q), {}
+    rows = np.broadcast_to(p, q.shape)
+    shear, fitted = surface.away_from_ends(q, rows, slip, sigma[:, None], modulus), {}
     for k in range(q.shape[0]):
-        key = (slip[k].tobytes(), stuck[k].tobytes(), sigma[k])
+        key = (slip[k].tobytes(), stuck[k].tobytes(), sigma[k], surface.in_contact(rows[k]))
         if key not in fitted:
-            fitted[key] = surface.stick_ends(slip[k], stuck[k], sigma[k], modulus, fp0)
+            fitted[key] = surface.stick_ends(rows[k], slip[k], stuck[k], sigma[k], modulus, fp0)
         nodes, values = fitted[key]
         shear[k, nodes] = values
-    return ClosedFormSurfaceStress(shear)(q, result.p.values, bulk, body)
+    return ClosedFormSurfaceStress(shear)(q, p, bulk, body)
 
 
 def _recorded_peaks(result: xr.Dataset, body: int, bulk: ArrayLike | None) -> dict[str, np.ndarray]:

@@ -184,7 +184,7 @@ def specimen_surface(model, outcome, sigma):
     contact, q = model.contact, model.traction(outcome)
     if isinstance(surface, SurfaceStress):  # nodal tractions' or closed form's: the stick ends from the slip
         modulus, fp0 = contact.E_star / contact.a, contact.f * contact.p0
-        surface = surface.at_stick_ends(q, outcome.slip, outcome.ds == 0, sigma, modulus, fp0)
+        surface = surface.at_stick_ends(q, p, outcome.slip, outcome.ds == 0, sigma, modulus, fp0)
     body = contact.specimen
     return surface(q, p, bulk_stress(sigma, body, specimen=body), body), np.abs(q)
 

@@ -84,6 +84,7 @@ from fretting._compiled import njit
 from fretting.models.base import Model, ModelSpec, Outcome
 from fretting.models.method4 import extrapolated_end, on_the_point, stick_zones
 from fretting.models.solver import Increment, Stiffness, solve_increment
+from fretting.physics.surface import SurfaceStress
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
@@ -547,7 +548,7 @@ class NormalModel(Model):
     @functools.cached_property
     def surface(self):
         """The surface direct stress at the nodes (`CellSurfaceStress`) and the pressure of the contact's ``P`` [Pa]."""
-        return CellSurfaceStress(self.x.size), self.pressure_at(self.contact.P)
+        return CellSurfaceStress((self.x - self.contact.centre) / self.contact.a), self.pressure_at(self.contact.P)
 
     def surface_at(self, outcome):
         return self.surface[0], self.pressure_at(outcome.P)
@@ -713,21 +714,45 @@ def _trench_rows(first, w, c, G):
             G[i, j] = c[j] * -c[i] + row[j]
 
 
-class CellSurfaceStress:
-    """``sigma_xx`` [Pa] along the surface of either body at the nodes of `N` equal cells.
+class CellSurfaceStress(SurfaceStress):
+    """``sigma_xx`` [Pa] along the surface of either body at the centres `t` of equal cells, ``(x - centre) / a``.
 
     The formula of `fretting.physics.surface.SurfaceStress` (Johnson 1985, section 2.3) with the
     traction constant on each cell, whose principal value is exact:
     ``(2/pi) int_cell dxi / (xi - x_i) = (2/pi) ln|(k + 1/2) / (k - 1/2)|`` for the cell ``k``
-    cells from the node (zero on its own cell).
+    cells from the node (zero on its own cell). At the stick ends, as there, the slip's fitted gradient
+    (`SurfaceStress.at_stick_ends`), among the cells in contact under the step's pressure (`in_contact`).
     """
 
-    def __init__(self, N):
+    def __init__(self, t):
+        N = t.size
         k = np.arange(1 - N, N, dtype=float)
         column = 2 / np.pi * np.log(np.abs((k + 0.5) / (k - 0.5)))
+        self._t = t
         self._kernel = linalg.toeplitz(column[N - 1 :], column[N - 1 :: -1])  # [j, i]: cell j at node i
 
-    def __call__(self, q, p, bulk, body):
-        """``sigma_xx`` [Pa] of `body` (1 or 2) at the nodes, as `fretting.physics.surface.SurfaceStress`."""
-        sign = 1.0 if body == 1 else -1.0
-        return sign * (q @ self._kernel) - p + bulk
+    def of_traction(self, q):
+        """``-(2/pi) PV int q(xi) / (x - xi) dxi`` [Pa] at the cell centres, of `q` [Pa] constant on each cell."""
+        return q @ self._kernel
+
+    def away_from_ends(self, q, p, slip, sigma, modulus):
+        """`SurfaceStress.away_from_ends`: in contact ``sigma / 2 - modulus ds/dt`` (the module docstring's law of
+        the slip differentiated: ``ds/dx = (2 / (pi E_star)) PV int q / (x - xi) dxi + sigma / (2 E_star)``),
+        ``ds/dt`` by second-order differences over the cells in contact, where the traction's constant cells
+        leave ``of_traction`` off by several 1e-3 ``p0`` within ten cells of a stick end and 2e-2 ``p0`` at the
+        edges (benchmarks/surface_stress.py); outside, `of_traction`."""
+        stress = np.array(self.of_traction(q), dtype=float, ndmin=2)
+        rows = np.broadcast_to(np.asarray(p, dtype=float), stress.shape)
+        slips, tensions = np.broadcast_to(slip, stress.shape), np.broadcast_to(sigma, (stress.shape[0], 1))
+        for row, (pressure, s, tension) in enumerate(zip(rows, slips, tensions[:, 0], strict=True)):
+            lower, upper = self.in_contact(pressure)
+            if upper - lower >= 3:
+                gradient = np.gradient(s[lower:upper], self._t[lower:upper], edge_order=2)
+                stress[row, lower:upper] = tension / 2 - modulus * gradient
+        return stress.reshape(np.shape(q))
+
+    def in_contact(self, p):
+        """The first cell and the one past the last under the pressure `p` [Pa]: the relative displacement of the
+        surfaces outside has a square root at the contact's edges, which differences across them do not resolve."""
+        inside = np.flatnonzero(p > 0)
+        return (int(inside[0]), int(inside[-1]) + 1) if inside.size else (0, 0)

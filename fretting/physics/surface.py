@@ -31,6 +31,7 @@ __all__ = [
     "hilbert_matrix",
     "kink_fits",
     "kinks",
+    "stick_end_stress",
 ]
 
 #: Nodes on either side of a stick end whose stress `SurfaceStress.at_stick_ends` takes from the slip's gradient.
@@ -108,7 +109,7 @@ class SurfaceStress:
         """``-(2/pi) PV int q(xi) / (x - xi) dxi`` [Pa] at the nodes, of `q` [Pa] there (shape (N,) or (steps, N))."""
         return (q * self._root) @ self._kernel
 
-    def at_stick_ends(self, q, slip, stuck, sigma, modulus, fp0):
+    def at_stick_ends(self, q, p, slip, stuck, sigma, modulus, fp0):
         """This stress of one step with the square-root profile at its stick ends, as `ClosedFormSurfaceStress`.
 
         A traction ``q = q_st + q_d`` of method 4 (eqs 9, 20 and A.4) gives ``-(2/pi) PV int q / (x - xi) dxi
@@ -124,8 +125,8 @@ class SurfaceStress:
 
         Parameters
         ----------
-        q, slip : ndarray, shape (N,)
-            Shear traction on body 1 [Pa] and slip [m] at the nodes.
+        q, p, slip : ndarray, shape (N,)
+            Shear traction on body 1 [Pa], pressure [Pa] and slip [m] at the nodes.
         stuck : ndarray of bool, shape (N,)
             Nodes that did not slip in the increment.
         sigma : float
@@ -135,30 +136,30 @@ class SurfaceStress:
         fp0 : float
             ``f p0`` [Pa], the scale of the kinks worth fitting (`KINK`).
         """
-        stress = self.of_traction(q)
-        nodes, values = self.stick_ends(slip, stuck, sigma, modulus, fp0)
+        stress = self.away_from_ends(q, p, slip, sigma, modulus)
+        nodes, values = self.stick_ends(p, slip, stuck, sigma, modulus, fp0)
         stress[nodes] = values
         return ClosedFormSurfaceStress(stress)
 
-    def stick_ends(self, slip, stuck, sigma, modulus, fp0):
+    def away_from_ends(self, q, p, slip, sigma, modulus):
+        """``-(2/pi) PV int q(xi) / (x - xi) dxi`` [Pa] at the nodes away from the stick ends, of one step or of
+        each row of steps (`q`, `p`, `slip` of shape (N,) or (steps, N), `sigma` one value or one per row
+        (steps, 1), `modulus` as for `at_stick_ends`): `of_traction` of `q`."""
+        return self.of_traction(q)
+
+    def stick_ends(self, p, slip, stuck, sigma, modulus, fp0):
         """The nodes next to the stick ends of one step, today's and the kinks earlier ones left, and their
-        ``sigma / 2 - modulus ds/dt`` [Pa] (`at_stick_ends`)."""
-        current = np.flatnonzero(stuck[1:] != stuck[:-1]) + 1  # node above each stick end
-        found = kinks(self._t, slip, stuck, current, KINK * fp0 / modulus)
-        fits = [fit for end in current if (fit := end_fit(self._t, stuck, end, current)) is not None]
-        today = len(fits)
-        fits += [fit for end in found for fit in kink_fits(self._t, end, np.concatenate([current, found]))]
-        fitted = gradients(self._t, slip, fits)
-        kept = {}  # kink -> the fit of least residual, where that is under KINK_RESIDUAL
-        for fit, (nodes, gradient, share) in zip(fits[today:], fitted[today:], strict=True):
-            if share < min(KINK_RESIDUAL, kept.get(fit[1], (0, 0, np.inf))[2]):
-                kept[fit[1]] = nodes, gradient, share
-        fitted = fitted[:today] + list(kept.values())
-        nodes = np.concatenate([np.zeros(0, dtype=int)] + [nodes for nodes, _, _ in fitted])
-        gradient = np.concatenate([np.zeros(0)] + [gradient for _, gradient, _ in fitted])
-        first = np.unique(nodes, return_index=True)[1]  # a node next to today's end and a kink: today's end's
-        nodes, gradient = nodes[first], gradient[first]
-        return nodes, sigma / 2 - modulus * gradient
+        ``sigma / 2 - modulus ds/dt`` [Pa] (`at_stick_ends`), among the nodes `in_contact` under the pressure `p`."""
+        lower, upper = self.in_contact(p)
+        nodes, values = stick_end_stress(
+            self._t[lower:upper], slip[lower:upper], stuck[lower:upper], sigma, modulus, fp0
+        )
+        return nodes + lower, values
+
+    def in_contact(self, p):
+        """The first node and the one past the last whose surface strain is the slip's gradient under the pressure `p`
+        [Pa]: every node, the contact's own."""
+        return 0, self._t.size
 
 
 class ClosedFormSurfaceStress(SurfaceStress):
@@ -186,6 +187,27 @@ class ClosedFormSurfaceStress(SurfaceStress):
     def at_stick_ends(self, *step):
         """This stress itself: exact at the stick ends already."""
         return self
+
+
+def stick_end_stress(t, slip, stuck, sigma, modulus, fp0):
+    """`SurfaceStress.stick_ends` at the nodes `t`: the nodes next to the stick ends and their ``sigma / 2 - modulus
+    ds/dt`` [Pa]."""
+    current = np.flatnonzero(stuck[1:] != stuck[:-1]) + 1  # node above each stick end
+    found = kinks(t, slip, stuck, current, KINK * fp0 / modulus)
+    fits = [fit for end in current if (fit := end_fit(t, stuck, end, current)) is not None]
+    today = len(fits)
+    fits += [fit for end in found for fit in kink_fits(t, end, np.concatenate([current, found]))]
+    fitted = gradients(t, slip, fits)
+    kept = {}  # kink -> the fit of least residual, where that is under KINK_RESIDUAL
+    for fit, (nodes, gradient, share) in zip(fits[today:], fitted[today:], strict=True):
+        if share < min(KINK_RESIDUAL, kept.get(fit[1], (0, 0, np.inf))[2]):
+            kept[fit[1]] = nodes, gradient, share
+    fitted = fitted[:today] + list(kept.values())
+    nodes = np.concatenate([np.zeros(0, dtype=int)] + [nodes for nodes, _, _ in fitted])
+    gradient = np.concatenate([np.zeros(0)] + [gradient for _, gradient, _ in fitted])
+    first = np.unique(nodes, return_index=True)[1]  # a node next to today's end and a kink: today's end's
+    nodes, gradient = nodes[first], gradient[first]
+    return nodes, sigma / 2 - modulus * gradient
 
 
 def kinks(t, slip, stuck, ends, floor):

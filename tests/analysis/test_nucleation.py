@@ -209,6 +209,29 @@ def test_surface_stress_of_a_random_walk_on_a_grid_with_the_kinks_fitted(contact
     assert fitted.max() <= nodal.max()
 
 
+def test_surface_stress_of_the_varying_load_model_against_cattaneo_mindlin(contact):
+    """The contact formed at P / 2 and pressed to P with no shear (the varying-load model, which leaves no
+    traction), then Q to 0.5 f P: at every cell in contact the traction's part of the surface stress (the stress
+    with the model's own pressure added back, whose cells differ from Hertz's at the edges) is within 8e-4 f p0 of
+    Cattaneo-Mindlin's at P (measured 5.4e-4), from the slip's gradient in contact (`CellSurfaceStress`) and its
+    fitted square root at the stick ends; the traction's constant cells alone are off by more than 2e-2 f p0
+    there (measured 4.8e-2)."""
+    from fretting.models.normal import CellSurfaceStress
+
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    formed = fr.Contact(contact.profile, contact.E_star, contact.f, contact.P / 2)
+    P = [contact.P / 2, contact.P, contact.P]
+    result = fr.simulate(formed, fr.History.piecewise_linear([0.0, 0.0, 0.5 * fP], None, 8, P=P))
+    assert result.attrs["model"] == "varying"
+    x, p = result.x.values, result.p_step.values[-1]
+    inside = p > 0
+    expected = cattaneo_mindlin_stress(contact, 0.5 * fP, x) + contact.pressure(x)
+    error = np.abs(nu.surface_stress(result, body=1).values[-1] + p - expected)
+    assert error[inside].max() < 8e-4 * fp0
+    cells = CellSurfaceStress((x - contact.centre) / contact.a).of_traction(result.q.values[-1])
+    assert np.abs(cells - expected)[inside].max() > 2e-2 * fp0
+
+
 def test_surface_stress_of_in_phase_sigma_on_a_grid_carries_sigma_over_2(contact):
     """Q = 0.5 f P with sigma = 0.2 f p0 in phase on the default grid: the stress from the slip next to the stick
     ends, ``sigma / 2 - E_star ds/dx`` in body 1, within 2e-3 f p0 of Nowell-Hills' at every node (measured
