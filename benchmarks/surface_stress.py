@@ -17,9 +17,10 @@ at each step (median, 90th percentile and largest over the steps), with the kink
 points left fitted where they stand apart and without them, and the steps the fit makes worse. Then the
 wall-clock time
 (best of `--repeats`) of `fretting.simulate`, whose engine tallies the per-cycle peaks of the surface
-stress, and of `surface_stress` on three histories, under the default model and the default grid: 20
-sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within 0.8 f P, and 200
-cycles of in-phase Q and sigma. Run it on two checkouts to compare them:
+stress, and of `surface_stress` on four histories, under the default model and the default grid: 20
+sine cycles of 64 steps at 0.5 f P, a random walk of 400 segments of 8 steps within 0.8 f P, 200
+cycles of in-phase Q and sigma, and 20 cycles of Q and sigma 90 degrees out of phase (the default model
+there is the Galerkin mesh). Run it on two checkouts to compare them:
 
     python benchmarks/surface_stress.py [--repeats 3]
 """
@@ -146,6 +147,9 @@ def histories():
         "sine, 20 x 64 steps": fr.History.sinusoidal(0.5 * fP, cycles=20, steps_per_cycle=64),
         "random walk, 400 x 8 steps": fr.History.piecewise_linear(walk, None, 8),
         "in phase, 200 x 64 steps": fr.History.sinusoidal(0.5 * fP, 0.3 * fp0, cycles=200, steps_per_cycle=64),
+        "90-degree ellipse, 20 x 32 steps": fr.History.sinusoidal(
+            0.4 * fP, 0.3 * fp0, cycles=20, steps_per_cycle=32, phase_deg=90.0
+        ),
     }
 
 

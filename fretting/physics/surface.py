@@ -18,6 +18,7 @@ References
 
 import numpy as np
 
+from fretting._compiled import njit
 from fretting.physics.contact import SPECIMEN
 
 __all__ = [
@@ -326,37 +327,56 @@ def gradients(t, slip, fits):
 
 def _residuals(t, known, y, c, side, h):
     """The residuals (F, C) of `_fit` at each end of `c` (F, C), from the parts of `y` and of the columns ``w^(3/2),
-    w^(5/2)`` (``w = max(side (t - c) / h, 0)``) that ``1, t, t^2``, the same at every end, leave: one QR of
-    those per fit, then the two columns' Gram matrix ``W^T W - (Q^T W)^T Q^T W`` and ``W^T y`` per end; and
-    the residual of ``1, t, t^2`` alone (F,)."""
-    v = t / h[:, None]
-    Q = np.linalg.qr(np.stack([np.ones_like(v), v, v * v], axis=-1) * known[..., None])[0]  # (F, n, 3)
-    y = y - np.sum(Q * np.sum(Q * y[..., None], axis=1)[:, None, :], axis=2)
-    w = np.maximum(side[:, None, None] * (v[:, None, :] - c[:, :, None] / h[:, None, None]), 0.0) * known[:, None, :]
-    W = [w * np.sqrt(w)]
-    W.append(W[0] * w)
-    Qt = [[np.sum(Q[:, None, :, i] * column, axis=2) for i in range(3)] for column in W]  # (F, C) each
-    G = np.empty((*w.shape[:2], 2, 2))
-    for i, j in ((0, 0), (0, 1), (1, 1)):
-        G[..., i, j] = G[..., j, i] = np.sum(W[i] * W[j], axis=2) - sum(
-            a * b for a, b in zip(Qt[i], Qt[j], strict=True)
-        )
-    b = np.stack([np.sum(column * y[:, None, :], axis=2) for column in W], axis=-1)
-    quadratic = np.sum(y * y, axis=1)
-    return quadratic[:, None] - _explained(G, b), quadratic
+    w^(5/2)`` (``w = max(side (t - c) / h, 0)``) that ``1, t, t^2``, the same at every end, leave; and the
+    residual of ``1, t, t^2`` alone (F,) (`_residual_kernel`)."""
+    residual, quadratic = np.empty(c.shape), np.empty(c.shape[0])
+    _residual_kernel(t / h[:, None], known, y, c / h[:, None], side, residual, quadratic)
+    return residual, quadratic
 
 
-def _explained(G, b):
-    """``b^T G^+ b`` for the symmetric positive semi-definite 2 x 2 matrices `G` (..., 2, 2) and vectors `b` (..., 2):
-    the square norm of the least-squares fit of a target by two columns of Gram matrix `G` and inner products `b`
-    with the target (by the first alone where they are proportional, as with one node in the slip zone)."""
-    g00, g01, g11 = G[..., 0, 0], G[..., 0, 1], G[..., 1, 1]
+@njit
+def _residual_kernel(v, known, y, c, side, residual, quadratic):
+    """`_residuals` in ``v = t / h`` and ``c / h``, written to `residual` and `quadratic`: per fit, ``1, v, v^2``
+    made orthonormal over its `known` nodes (Gram-Schmidt, twice for rounding), `y` and then the two columns of
+    each end less their parts along them, and the two columns' least squares in closed form (`_explained`)."""
+    F, n = v.shape
+    Q, part, w0, w1 = np.zeros((3, n)), np.zeros(n), np.zeros(n), np.zeros(n)
+    for f in range(F):
+        for k in range(3):
+            for m in range(n):
+                Q[k, m] = v[f, m] ** k if known[f, m] else 0.0
+            for _ in range(2):
+                for j in range(k):
+                    Q[k] -= (Q[j] @ Q[k]) * Q[j]
+            norm = np.sqrt(Q[k] @ Q[k])
+            if norm > 0:
+                Q[k] /= norm
+        for m in range(n):
+            part[m] = y[f, m] if known[f, m] else 0.0
+        for k in range(3):
+            part -= (Q[k] @ part) * Q[k]
+        quadratic[f] = part @ part
+        for e in range(c.shape[1]):
+            for m in range(n):
+                w = max(side[f] * (v[f, m] - c[f, e]), 0.0) if known[f, m] else 0.0
+                w0[m] = w * np.sqrt(w)
+                w1[m] = w0[m] * w
+            for k in range(3):
+                w0 -= (Q[k] @ w0) * Q[k]
+                w1 -= (Q[k] @ w1) * Q[k]
+            explained = _explained(w0 @ w0, w0 @ w1, w1 @ w1, w0 @ part, w1 @ part)
+            residual[f, e] = quadratic[f] - explained
+
+
+@njit
+def _explained(g00, g01, g11, b0, b1):
+    """``b^T G^+ b`` for the symmetric positive semi-definite 2 x 2 matrix ``G`` and the vector ``b``: the square
+    norm of the least-squares fit of a target by two columns of Gram matrix ``G`` and inner products ``b`` with
+    the target (by the first alone where they are proportional, as with one node in the slip zone)."""
     det = g00 * g11 - g01 * g01
-    both = det > 1e-12 * g00 * g11
-    safe = np.where(both, det, 1.0)
-    pair = (g11 * b[..., 0] ** 2 - 2 * g01 * b[..., 0] * b[..., 1] + g00 * b[..., 1] ** 2) / safe
-    one = np.where(g00 > 0, b[..., 0] ** 2 / np.where(g00 > 0, g00, 1.0), 0.0)  # the columns proportional
-    return np.where(both, pair, one)
+    if det > 1e-12 * g00 * g11:
+        return (g11 * b0 * b0 - 2 * g01 * b0 * b1 + g00 * b1 * b1) / det
+    return b0 * b0 / g00 if g00 > 0 else 0.0
 
 
 def _fit(t, known, y, c, side, h):
