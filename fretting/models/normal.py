@@ -738,9 +738,9 @@ class CellSurfaceStress(SurfaceStress):
     def away_from_ends(self, q, p, slip, sigma, modulus):
         """`SurfaceStress.away_from_ends`: in contact ``sigma / 2 - modulus ds/dt`` (the module docstring's law of
         the slip differentiated: ``ds/dx = (2 / (pi E_star)) PV int q / (x - xi) dxi + sigma / (2 E_star)``),
-        ``ds/dt`` by second-order differences over the cells in contact, where the traction's constant cells
-        leave ``of_traction`` off by several 1e-3 ``p0`` within ten cells of a stick end and 2e-2 ``p0`` at the
-        edges (benchmarks/surface_stress.py); outside, `of_traction`."""
+        ``ds/dt`` by second-order differences over the cells in contact, where the principal value of the
+        traction's constant cells misses the square roots at the stick ends and the edges (accuracy:
+        benchmarks/surface_stress.py, tests/analysis/test_nucleation.py); outside, `of_traction`."""
         stress = np.array(self.of_traction(q), dtype=float, ndmin=2)
         rows = np.broadcast_to(np.asarray(p, dtype=float), stress.shape)
         slips, tensions = np.broadcast_to(slip, stress.shape), np.broadcast_to(sigma, (stress.shape[0], 1))
