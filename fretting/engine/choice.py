@@ -11,10 +11,12 @@ history moves, and its own conditions hold):
 3. method 4 on the Galerkin mesh adapted to the history (`Mesh()`): to the energy, then to the
    stick ends of the recorded steps, within the default's bounds of nodes and work, a fallback
    recorded and said where it passes them (`fretting.models.galerkin.model.Mesh.default_model`);
-4. where the history varies the normal load ``P``, which none of those follows, method 4 on cells
-   fixed in ``x`` over its largest contact (`Varying()`); so too where it prescribes the
-   displacement ``delta`` with a ``sigma`` off the in-phase line, whose ``Q`` of every step the mesh
-   cannot adapt to before the run (`Mesh.holds_for`).
+4. where the history varies the normal load ``P``, which none of those follows, on a Hertz contact
+   without ``sigma`` and without a prescribed displacement: the exact model of Jaeger's superposition
+   (`Jaeger()`); where the answer is known in closed form it is not solved for;
+5. otherwise where it varies ``P``, method 4 on cells fixed in ``x`` over its largest contact
+   (`Varying()`); so too where it prescribes the displacement ``delta`` with a ``sigma`` off the
+   in-phase line, whose ``Q`` of every step the mesh cannot adapt to before the run (`Mesh.holds_for`).
 
 Every other decision is the spec's own (`ModelSpec.model_for`, `continued`, `is_default`); the
 engine hands a spec its loop (`fretting.engine.follow.follow`) for the passes of an adaptation.
@@ -32,6 +34,7 @@ from fretting.models.collocation import Grid
 from fretting.models.exact import Exact
 from fretting.models.galerkin import Mesh
 from fretting.models.inphase import InPhase
+from fretting.models.jaeger import Jaeger
 from fretting.models.normal import Varying
 
 if TYPE_CHECKING:
@@ -54,7 +57,7 @@ __all__ = [
 ]
 
 #: The default models in the order they are tried (module docstring).
-DEFAULTS = (Exact(), InPhase(), Mesh(), Varying())
+DEFAULTS = (Exact(), InPhase(), Mesh(), Jaeger(), Varying())
 
 
 class ModelFallbackWarning(UserWarning):

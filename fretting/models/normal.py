@@ -97,6 +97,7 @@ __all__ = [
     "NormalModel",
     "NormalOutcome",
     "Varying",
+    "cell_centres",
     "flexibility",
     "slip_to_traction",
 ]
@@ -201,6 +202,14 @@ class Varying(ModelSpec):
         return cls(int(attrs["cells"]), float(attrs["half_width"]), float(attrs["load_part"]))
 
 
+def cell_centres(contact, N, A):
+    """``(h, x, t)``: the width [m] of `N` equal cells over ``[-A, A]`` about the centre of `contact` (`A` [m]),
+    their centres ``x`` [m] and ``t = (x - centre) / a`` [-]."""
+    h = 2 * A / N
+    x = (np.arange(N) + 0.5) * h - A + contact.centre
+    return h, x, (x - contact.centre) / contact.a
+
+
 def flexibility(N, h, E_star):
     """First column of the Toeplitz flexibility ``D`` [m/(N/m)] of `N` cells of width `h` [m].
 
@@ -244,12 +253,9 @@ class NormalModel(Model):
 
     def __init__(self, contact, spec):
         self.contact, self.spec = contact, spec
-        N, A = spec.cells, spec.half_width
-        self.h = 2 * A / N
-        self.x = (np.arange(N) + 0.5) * self.h - A + contact.centre
-        self.t = (self.x - contact.centre) / contact.a
+        self.h, self.x, self.t = cell_centres(contact, spec.cells, spec.half_width)
         self.friction_force = np.inf  # f P at each step: the engine checks the load of the step
-        self.column = flexibility(N, self.h, contact.E_star)
+        self.column = flexibility(spec.cells, self.h, contact.E_star)
         # m -> what the model keeps of the run of m central pairs (`_recent`), dropped with the model:
         self._punches, self._columns, self._stiffnesses, self._halves, self._bulk = {}, {}, {}, {}, {}
         self._kernel = np.concatenate([self.column[:0:-1], self.column])  # D_ij = kernel[N - 1 + i - j]

@@ -207,6 +207,12 @@ _DECLARED = {
         "N/m",
         "turning points of Q still remembered at the last step, oldest first (exact model of Q alone only)",
     ),
+    "state_bands": (
+        ("band",),
+        "1",
+        "memory of the exact model of a varying P at the last step: the edges of its bands over the contact's"
+        " half-width a, then the ratio of shear to normal load each band carries (Jaeger's superposition)",
+    ),
     "total_dissipation": ((), "J/m", "energy dissipated since the contact was formed, up to the last step"),
     "x": (("x",), "m", "position along the contact"),
     "theta": (("x",), "rad", "angle of each node, x = centre + a cos(theta): Galerkin mesh or exact model"),

@@ -1,5 +1,6 @@
-"""A varying normal load P(t) (issue 22): closed forms of Jaeger's superposition and Melan's shakedown,
-each on the default model (`fretting.models.Varying` is chosen where the history varies P).
+"""A varying normal load P(t) (issue 22): closed forms of Jaeger's superposition and Melan's shakedown, on method 4
+on cells (`fretting.models.Varying`) and, on Hertz without sigma, on the default there, the exact model
+(`fretting.models.Jaeger`; `MODELS`).
 
 Traction is compared within 1e-3 f p0 away (0.02 a) from the points where it has a square-root kink,
 as in tests/physics/test_closed_forms.py: the edges of the contacts met and the stick/slip boundaries.
@@ -33,14 +34,20 @@ def energy_scale(c):
 
 PROFILES = [fr.Hertz(0.05), fr.RoundedFlat(0.0002, 0.05)]
 
+#: The models of a varying P: method 4 on cells, and the default (on Hertz without sigma: Jaeger's superposition).
+MODELS = [pytest.param(Varying(), id="cells"), pytest.param(None, id="default")]
 
-@pytest.mark.parametrize("profile", PROFILES, ids=["hertz", "rounded-flat"])
-def test_proportional_loading_slips_nowhere_and_follows_the_pressure(profile):
+
+@pytest.mark.parametrize(
+    ("profile", "model"),
+    [(fr.Hertz(0.05), Varying()), (fr.Hertz(0.05), None), (fr.RoundedFlat(0.0002, 0.05), None)],
+    ids=["hertz-cells", "hertz-default", "rounded-flat"],
+)
+def test_proportional_loading_slips_nowhere_and_follows_the_pressure(profile, model):
     """Q = lambda (P - P0), lambda = 0.3 < f: no dissipation, q = lambda (p(P) - p(P0)) (Jaeger)."""
     formed = contact(profile)
     P0, lam = formed.P, 0.3
-    result = fr.simulate(formed, History.piecewise_linear([0.0, lam * P0], None, 16, P=[P0, 2 * P0]))
-    assert result.attrs["model"] == "varying"
+    result = fr.simulate(formed, History.piecewise_linear([0.0, lam * P0], None, 16, P=[P0, 2 * P0]), model=model)
     assert float(result.total_dissipation) == 0.0
     final = contact(profile, 2 * P0)
     x = result.x.values
@@ -51,12 +58,13 @@ def test_proportional_loading_slips_nowhere_and_follows_the_pressure(profile):
     np.testing.assert_allclose(ends, np.outer(result.a.values, [-1, 1]), rtol=1e-12)  # the edges grow stuck
 
 
-def test_cattaneo_mindlin_then_the_normal_load_up_and_down():
+@pytest.mark.parametrize("model", MODELS)
+def test_cattaneo_mindlin_then_the_normal_load_up_and_down(model):
     """CM at (P0, Q0): P up to 1.5 P0 and back slips nowhere and keeps the traction; down to 0.8 P0 gives CM there."""
     formed = contact(fr.Hertz(0.05))
     P0, Q0 = formed.P, 0.6 * F * formed.P
     history = History.piecewise_linear([0.0, Q0, Q0, Q0, Q0], None, 16, P=[P0, P0, 1.5 * P0, P0, 0.8 * P0])
-    result = fr.simulate(formed, history)
+    result = fr.simulate(formed, history, model=model)
     x, q, dissipation = result.x.values, result.q.values, result.dissipation.values
     start, up, back, down = history.vertex_step[1:]
     assert np.all(dissipation[start + 1 : back + 1] == 0)  # no slip until back at P0
@@ -110,20 +118,22 @@ def cycles(formed, Q_over_P, shift, count=4, steps=32, sigma_amplitude=0.0, befo
 
 
 @pytest.mark.slow
-def test_shakedown_in_phase_below_f():
+@pytest.mark.parametrize("model", MODELS)
+def test_shakedown_in_phase_below_f(model):
     """Qa / Pa = 0.67 f in phase: nothing dissipated after the first cycle (Melan; Barber, Davies & Hills 2011)."""
     formed = contact(fr.Hertz(0.05))
-    energy = fr.simulate(formed, cycles(formed, 0.67, 0.0)).cycle_dissipation.values
+    energy = fr.simulate(formed, cycles(formed, 0.67, 0.0), model=model).cycle_dissipation.values
     assert energy[0] > 0
     assert np.all(energy[1:] <= 1e-9 * energy[0])
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("model", MODELS)
 @pytest.mark.parametrize(("Q_over_P", "shift"), [(1.07, 0.0), (0.67, 0.3)])
-def test_no_shakedown_above_f_or_out_of_phase(Q_over_P, shift):
+def test_no_shakedown_above_f_or_out_of_phase(Q_over_P, shift, model):
     """Qa / Pa = 1.07 f, or Q shifted by 0.3 rad: a steady energy per cycle, that does not vanish."""
     formed = contact(fr.Hertz(0.05))
-    energy = fr.simulate(formed, cycles(formed, Q_over_P, shift)).cycle_dissipation.values
+    energy = fr.simulate(formed, cycles(formed, Q_over_P, shift), model=model).cycle_dissipation.values
     assert energy[-1] > 1e-2 * energy[0]
     np.testing.assert_allclose(energy[-1], energy[-2], rtol=1e-6)
 
@@ -179,7 +189,7 @@ def test_constant_P_is_bit_for_bit_the_history_without_P():
 def test_dataset_records_the_normal_load_and_a_split_run_continues_bit_for_bit():
     formed = contact(fr.Hertz(0.05))
     history = cycles(formed, 1.07, 0.3, count=2, steps=16)
-    whole = fr.simulate(formed, history)
+    whole = fr.simulate(formed, history, model=Varying())
     np.testing.assert_array_equal(whole.P.values, history.P)
     widths = [formed.profile.half_width(load, E_STAR)[0] for load in history.P]
     np.testing.assert_allclose(whole.a.values, widths, rtol=1e-12)
@@ -187,7 +197,7 @@ def test_dataset_records_the_normal_load_and_a_split_run_continues_bit_for_bit()
     np.testing.assert_allclose(whole.p_step.values.sum(axis=1) * h, history.P, rtol=1e-12)  # the pressure carries P
     np.testing.assert_allclose(whole.w.values.sum(axis=1) * h, whole.cycle_dissipation.values, rtol=1e-5)  # float32 w
     assert np.all(whole.p_step.values[:, np.abs(whole.x.values) > whole.a.values.max()] == 0)
-    first = fr.simulate(formed, history[:21])
+    first = fr.simulate(formed, history[:21], model=Varying().resolved_for(formed, history))
     later = fr.simulate(formed, history[20:], state=fr.final_state(first))
     np.testing.assert_array_equal(later.q.values, whole.q.values[20:])
     assert float(later.total_dissipation) == float(whole.total_dissipation)

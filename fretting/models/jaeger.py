@@ -1,0 +1,190 @@
+"""A varying normal load and shear on a Hertz contact, exactly: Jaeger's superposition at fixed nodes.
+
+Where ``P`` varies with ``Q`` and no ``sigma`` on a Hertz profile, every band of the contact remembers the ratio
+of the shear to the normal load it carries, and an increment moves that memory in closed form
+(`fretting.physics.superposition`; Jaeger 1998, Barber, Davies & Hills 2011). This model keeps the memory as
+the state's (`State.memory`, recorded as ``state_bands``: the band edges then their ratios) and gives the
+fields at nodes fixed in ``x``, the cells of `fretting.models.normal.Varying` over the history's largest
+contact: the slip and the traction there, the slip and the energy density of each increment integrated
+over its slipping phases, the stick zone and the energy of the increment exactly
+(docs/theory/normal-load.md#jaegers-superposition).
+
+Method 4 on those cells (`Varying`) converges to it (tests/physics/test_superposition.py,
+benchmarks/varying_accuracy.py), and runs where this model does not: with ``sigma``, on other profiles,
+under a prescribed displacement.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+
+from fretting.errors import GrossSlipError
+from fretting.models.base import Model, ModelSpec
+from fretting.models.normal import DEFAULT_CELLS, CellSurfaceStress, NormalOutcome, Varying, cell_centres
+from fretting.physics.profiles import Hertz
+from fretting.physics.superposition import Hertz2D, Memory, Superposition
+
+if TYPE_CHECKING:
+    from fretting.loading.history import History
+    from fretting.physics.contact import Contact
+
+__all__ = ["Jaeger", "JaegerModel"]
+
+
+@dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
+class Jaeger(ModelSpec):
+    """The exact model of a varying ``P`` and ``Q`` on a Hertz contact, its fields at `cells` cell centres.
+
+    Parameters
+    ----------
+    cells : int
+        Cells over ``[-A, A]``, even, at least 8 (as `Varying`'s).
+    half_width : float, optional
+        ``A`` [m], the half-width of the largest contact (resolved for a history by `resolved_for`).
+    """
+
+    cells: int = DEFAULT_CELLS
+    half_width: float | None = None
+
+    name: ClassVar[str] = "jaeger"
+    inputs: ClassVar[frozenset[str]] = frozenset({"Q", "sigma", "P"})
+    memory_variable: ClassVar[str] = "state_bands"
+    description: ClassVar[str] = (
+        "the exact model of a varying P and Q on Hertz: Jaeger's superposition of flat punches, at fixed nodes"
+    )
+
+    def __post_init__(self):
+        Varying(self.cells, self.half_width)  # the same cells: the same checks
+
+    @property
+    def resolved(self) -> bool:
+        return self.half_width is not None
+
+    def resolved_for(self, contact: Contact, history: History | None) -> Jaeger:
+        """This spec over the largest contact of `history` (`Varying.resolved_for`)."""
+        return (
+            self if self.resolved else Jaeger(self.cells, Varying(self.cells).resolved_for(contact, history).half_width)
+        )
+
+    def build(self, contact: Contact) -> JaegerModel:
+        return JaegerModel(contact, self)
+
+    def is_default(self) -> bool:
+        return self.cells == DEFAULT_CELLS
+
+    def attributes(self) -> dict:
+        spans = {} if self.half_width is None else {"half_width": float(self.half_width)}
+        return {"model": self.name, "cells": int(self.cells)} | spans
+
+    def holds_for(self, contact: Contact, history: History | None) -> str | None:
+        if not isinstance(contact.profile, Hertz):
+            return f"{contact.profile!r} is not a Hertz profile"
+        if history is not None and history.largest_loads()[1] > 0:
+            return "the history has a bulk tension sigma"
+        if history is not None and history.displaced:
+            return "it prescribes the displacement delta, whose gross slip this model does not follow"
+        return Varying(self.cells, self.half_width).holds_for(contact, history)
+
+    @classmethod
+    def from_record(cls, attrs: dict, theta: np.ndarray | None) -> Jaeger:
+        return cls(int(attrs["cells"]), float(attrs["half_width"]))
+
+
+class JaegerModel(Model):
+    """Jaeger's superposition on a Hertz contact, at the cell centres of a resolved `Jaeger` spec (module
+    docstring). Its memory (`Outcome.memory`) is `fretting.physics.superposition.Memory.flat`."""
+
+    theta = None
+    linear_algebra = False
+
+    def __init__(self, contact, spec):
+        if not isinstance(contact.profile, Hertz):
+            raise ValueError(f"{contact.profile!r}: Jaeger's superposition needs a Hertz profile")
+        self.contact, self.spec = contact, spec
+        self.h, self.x, self.t = cell_centres(contact, spec.cells, spec.half_width)
+        self.friction_force = np.inf  # f P at each step: the engine checks the load of the step
+        self.hertz = Hertz2D(contact.profile.R, contact.E_star, contact.f)
+
+    def _contact(self, state):
+        """The `Superposition` of `state`: its loads and its memory (None: the contact just formed)."""
+        P = self.contact.P if state.P is None else state.P
+        memory = Memory.from_flat(state.memory, self.hertz, self.contact.a) if state.memory else None
+        return Superposition(self.hertz, P, state.Q, memory)
+
+    def _outcome(self, superposition, ds, dissipation, density, stick):
+        memory, X = superposition.memory, self.x - self.contact.centre
+        end = memory.a if stick is None else stick
+        return NormalOutcome(
+            memory.traction(X),
+            ds,
+            memory.slip(X),
+            dissipation,
+            memory=memory.flat(self.contact.a),
+            zones=[(-end / self.contact.a, end / self.contact.a)],
+            P=superposition.P,
+            density=density,
+        )
+
+    def at_rest(self, state):
+        zero = np.zeros(self.x.size)
+        return self._outcome(self._contact(state), zero, 0.0, zero, None)
+
+    def increment(self, state, loads, guess=None):
+        """The increment to the loads ``Q``, ``P`` [N/m] (`Superposition.advance`): its slip and energy density at
+        the nodes, summed over its slipping phases (`Phase.at`); exactly zero slip where a node stuck. The
+        loads' ``sigma`` must be zero."""
+        if loads.sigma:
+            raise ValueError(f"sigma = {loads.sigma!r} Pa: Jaeger's superposition holds without a bulk tension")
+        superposition, P = self._contact(state), loads.normal(self.contact)
+        try:
+            step = superposition.advance(P, loads.Q)
+        except ValueError:
+            raise GrossSlipError(None, loads.Q, loads.sigma, self.contact.f * P) from None
+        ds, density = np.zeros(self.x.size), np.zeros(self.x.size)
+        for phase in step.phases:
+            slip, w = phase.at(self.x - self.contact.centre)
+            ds += slip
+            density += w
+        return self._outcome(superposition, ds, step.energy, density, step.stick)
+
+    def traction(self, outcome):
+        """Shear traction [Pa] at the nodes (the memory's, exact)."""
+        return outcome.g
+
+    def stick_zones(self, outcome, state):
+        """The stick zone ``[-c, c]`` in ``t`` of the increment: the innermost end of its slip zones (the contact
+        where it slipped nowhere)."""
+        return outcome.zones
+
+    def delta_Q(self, outcome):
+        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of the memory (`Memory.delta_Q`)."""
+        return Memory.from_flat(outcome.memory, self.hertz, self.contact.a).delta_Q()
+
+    def delta_sigma(self, outcome):
+        """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2]: zero, the slip being even in ``x``."""
+        return 0.0
+
+    def dissipation_density(self, ds):
+        """``f p |ds|`` [J/m^2] under the contact's own load (`energy_density`: under an increment's)."""
+        return self.contact.f * self.pressure_at(self.contact.P) * np.abs(ds)
+
+    def energy_density(self, outcome):
+        return outcome.density
+
+    def pressure_at(self, P):
+        """Hertz's pressure [Pa] at the nodes under the load `P` [N/m]."""
+        a = float(self.hertz.half_width(P))
+        X = self.x - self.contact.centre
+        return self.hertz.E_star / (2 * self.hertz.R) * np.sqrt(np.maximum(a * a - X * X, 0.0))
+
+    @functools.cached_property
+    def surface(self):
+        """The surface direct stress at the nodes (`CellSurfaceStress`) and the pressure of the contact's ``P`` [Pa]."""
+        return CellSurfaceStress(self.t), self.pressure_at(self.contact.P)
+
+    def surface_at(self, outcome):
+        return self.surface[0], self.pressure_at(outcome.P)
