@@ -90,7 +90,7 @@ def unloading_error(model, grown=False):
     last step replaced by the exact one (``s_CM(Q*) - 2 s_CM((Q* - Q) / 2)``,
     `fretting.physics.closed_forms.cattaneo_mindlin_slip`), which tells the fit's error from that of the
     model's slip. `grown`: the contact formed at ``P / 2`` and pressed to ``P`` first with no shear, which
-    leaves no traction (the varying-load model, `fretting.models.normal`)."""
+    leaves no traction (a varying ``P``: `fretting.models.Varying`, or the default there, `fretting.models.Jaeger`)."""
     fP, fp0 = CONTACT.f * CONTACT.P, CONTACT.f * CONTACT.p0
     Q_star, Q = 0.5 * fP, 0.1 * fP
     if grown:
@@ -167,7 +167,7 @@ def main():
             )
     print("Mindlin-Deresiewicz unloading, 0.5 f P to 0.1 f P: largest error [p0] by where it lies")
     models = [(model, False) for model in (None, fr.models.Mesh(), fr.models.Grid(), fr.models.Grid(1536))]
-    for model, grown in models + [(None, True)]:
+    for model, grown in models + [(fr.models.Varying(), True), (None, True)]:  # the default grown: Jaeger's
         name, nodes, errors, fitted = unloading_error(model, grown)
         where = ", ".join(f"{e:.2e} ({w})" for e, w in zip(errors, ("c*", "c'", "edges", "elsewhere"), strict=True))
         grew = " (the contact grown from P / 2 first)" if grown else ""
