@@ -1,5 +1,6 @@
 """The exact model of a varying P and Q on Hertz (fretting.models.Jaeger): the default where it applies, method 4
-on cells converging to it at every step, its energy density, and a run continued from its state bit for bit."""
+on cells converging to it at every step, its energy density, a run continued from its state and one stepped
+increment by increment, bit for bit."""
 
 import numpy as np
 import pytest
@@ -8,7 +9,7 @@ from varying_accuracy import SCENES, central_zone, compare
 
 import fretting as fr
 from fretting.engine.choice import choose_model
-from fretting.engine.recorder import final_state
+from fretting.engine.recorder import final_state, recorded_spec
 from fretting.models import Jaeger, Varying
 
 
@@ -105,3 +106,17 @@ def test_a_run_continued_from_its_state_is_the_same_bit_for_bit(contact, recede,
     for name in ("stick_start", "stick_end", "dissipation"):  # of the increments: the continued run's step 0 is at rest
         np.testing.assert_array_equal(later[name].values[1:], whole[name].values[k + 1 :], err_msg=name)
     assert float(later.total_dissipation) == float(whole.total_dissipation)
+
+
+def test_stepping_one_increment_at_a_time_equals_simulate(contact, recede):
+    """`fretting.Stepper` given the result's spec and each step's loads: the slip and energy of every step of the
+    run, bit for bit."""
+    history, whole = recede
+    stepper = fr.Stepper(contact, recorded_spec(whole))
+    slips, energy = [], []
+    for Q, P in zip(history.Q, history.P, strict=True):
+        outcome = stepper.step(Q, 0.0, P=P)
+        slips.append(stepper.state.slip)
+        energy.append(outcome.dissipation)
+    np.testing.assert_array_equal(np.array(slips), whole.slip.values)
+    np.testing.assert_array_equal(np.array(energy), whole.dissipation.values)
