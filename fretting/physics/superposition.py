@@ -78,7 +78,7 @@ def _arccosh(x, c, width):
 def J(c, a):
     """``int_c^a sqrt(a^2 - x^2) arccosh(x / c) dx`` [m^2] for ``0 < c <= a`` (arrays), by Gauss-Legendre in
     ``x = c + (a - c) sin^2(theta)``, which makes both ends smooth."""
-    c, width = np.asarray(c)[..., None], (np.asarray(a) - np.asarray(c))[..., None]
+    c, width = np.asarray(c)[..., None], np.maximum(np.asarray(a) - np.asarray(c), 0.0)[..., None]  # a >= c, rounded
     x = c + width * _SIN**2
     root = _COS * np.sqrt(width * (x + c + width))  # sqrt(a^2 - x^2): a - x = width cos^2, a + x = x + c + width
     return np.sum(_WPHI * root * _arccosh(x, c, width * _SIN**2) * 2 * width * _SIN * _COS, axis=-1)
