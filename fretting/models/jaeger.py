@@ -3,13 +3,13 @@
 Where ``P`` varies with ``Q`` and no ``sigma`` on a Hertz profile, every band of the contact remembers the ratio
 of the shear to the normal load it carries, and an increment moves that memory in closed form
 (`fretting.physics.superposition`; Jaeger 1998, Barber, Davies & Hills 2011). This model keeps the memory as
-the state's (`State.memory`, recorded as ``state_bands``: the band edges then their ratios) and gives the
+the state's (`State.memory`, recorded as ``state_bands``: the band edges over ``a``, then their ratios) and gives the
 fields at nodes fixed in ``x``, the cells of `fretting.models.normal.Varying` over the history's largest
 contact: the slip and the traction there, the slip and the energy density of each increment integrated
 over its slipping phases, the stick zone and the energy of the increment exactly
 (docs/theory/normal-load.md#jaegers-superposition).
 
-Method 4 on those cells (`Varying`) converges to it (tests/physics/test_superposition.py,
+Method 4 on those cells (`Varying`) converges to it at every step (tests/models/test_jaeger.py,
 benchmarks/varying_accuracy.py), and runs where this model does not: with ``sigma``, on other profiles,
 under a prescribed displacement.
 """
