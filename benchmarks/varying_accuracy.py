@@ -123,7 +123,7 @@ class ExactRun:
     """Jaeger's solution at every step of a history, as the arrays `compare` reads."""
 
     def __init__(self, contact, history):
-        jaeger = Superposition(Hertz2D(contact.profile.R, contact.E_star, contact.f), contact.P)
+        jaeger = Superposition(Hertz2D(contact.profile, contact.E_star, contact.f), contact.P)
         self.memory, self.stick, self.energy = [jaeger.memory], [jaeger.memory.a], [0.0]
         for P, Q in zip(history.P[1:], history.Q[1:], strict=True):
             step = jaeger.advance(float(P), float(Q))

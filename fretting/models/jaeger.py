@@ -107,7 +107,7 @@ class JaegerModel(Model):
         self.contact, self.spec = contact, spec
         self.h, self.x, self.t = cell_centres(contact, spec.cells, spec.half_width)
         self.friction_force = np.inf  # f P at each step: the engine checks the load of the step
-        self.hertz = Hertz2D(contact.profile.R, contact.E_star, contact.f)
+        self.hertz = Hertz2D(contact.profile, contact.E_star, contact.f)
 
     def _contact(self, state):
         """The `Superposition` of `state`: its loads and its memory (None: the contact just formed)."""
@@ -176,10 +176,8 @@ class JaegerModel(Model):
         return outcome.density
 
     def pressure_at(self, P):
-        """Hertz's pressure [Pa] at the nodes under the load `P` [N/m]."""
-        a = float(self.hertz.half_width(P))
-        X = self.x - self.contact.centre
-        return self.hertz.E_star / (2 * self.hertz.R) * np.sqrt(np.maximum(a * a - X * X, 0.0))
+        """Hertz's pressure [Pa] at the nodes under the load `P` [N/m] (`Hertz2D.pressure`)."""
+        return self.hertz.pressure(self.x - self.contact.centre, P)
 
     @functools.cached_property
     def surface(self):

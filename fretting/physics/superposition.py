@@ -46,20 +46,29 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fretting.physics.profiles import Hertz
+
 __all__ = ["Memory", "Phase", "Step", "Superposition"]
 
-#: Gauss-Legendre points of each quadrature (`J`, `Bands.energy`, `Phase.at`): their integrands are smooth
-#: in the variables used, and the energy of a history changes by rounding from 24 points to 96.
+#: Gauss-Legendre points of each quadrature (`J`, `Bands.energy`, `Phase.at`, `Memory.delta_Q`): their integrands
+#: are smooth in the variables used, so that half as many change the energy by rounding only
+#: (tests/physics/test_superposition.py).
 POINTS = 48
 
 #: Rate of ``Q`` off the ratio of the band at a receding edge [of ``|dQ| + f |dP|``] below which nothing slips,
 #: and the fraction of an increment within which its end counts as reached: rounding of the loads.
 ROUNDING = 1e-12
 
-_U, _W = np.polynomial.legendre.leggauss(POINTS)
-_PHI = (_U + 1) * np.pi / 4  # [0, pi/2]
-_SIN, _COS = np.sin(_PHI), np.cos(_PHI)
-_WPHI = _W * np.pi / 4
+
+def rule(n):
+    """``(u, w, sin, cos, w_phi)``: the `n` Gauss-Legendre points ``u`` and weights ``w`` on [-1, 1], and
+    ``sin``, ``cos`` of ``phi = pi (u + 1) / 4`` on [0, pi/2] with the weights there, ``w_phi``."""
+    u, w = np.polynomial.legendre.leggauss(n)
+    phi = (u + 1) * np.pi / 4
+    return u, w, np.sin(phi), np.cos(phi), w * np.pi / 4
+
+
+_U, _W, _SIN, _COS, _WPHI = rule(POINTS)
 
 
 def _F(x, c):
@@ -86,19 +95,31 @@ def J(c, a):
 
 @dataclass(frozen=True)
 class Hertz2D:
-    """The geometry of a plane Hertz contact: radius `R` [m], modulus `E_star` [Pa], friction `f`."""
+    """A plane Hertz contact: its `profile` (`fretting.physics.profiles.Hertz`, whose half-width and load it
+    uses), modulus `E_star` [Pa] and friction `f`."""
 
-    R: float
+    profile: Hertz
     E_star: float
     f: float
 
+    @property
+    def R(self) -> float:
+        return self.profile.R
+
     def half_width(self, P):
         """Half-width [m] of the contact under the load `P` [N/m] (arrays)."""
-        return np.sqrt(4 * np.asarray(P) * self.R / (np.pi * self.E_star))
+        return self.profile.half_width(P, self.E_star)[0]
 
     def load(self, c):
-        """``P(c) = pi c^2 E_star / (4 R)`` [N/m], the load at which the contact reaches `c` [m] (arrays)."""
-        return np.pi * np.asarray(c) ** 2 * self.E_star / (4 * self.R)
+        """``P(c)`` [N/m], the load at which the contact reaches the half-width `c` [m] (arrays)."""
+        return self.profile.load(c, self.E_star)
+
+    def pressure(self, x, P):
+        """Hertz's ``p = (E_star / 2R) sqrt(a^2 - x^2)`` [Pa] at `x` [m] from the centre under the load `P` [N/m],
+        as ``a^2 - x^2 = 4 R (P - P(|x|)) / (pi E_star)``: without cancellation where ``x`` nears the edge."""
+        return (
+            self.E_star / (2 * self.R) * np.sqrt(np.maximum(4 * self.R * (P - self.load(x)) / (np.pi * self.E_star), 0))
+        )
 
 
 @dataclass(frozen=True)
@@ -125,11 +146,6 @@ class Memory:
         values = np.asarray(values, dtype=float)
         n = values.size // 2
         return cls(values[: n + 1] * scale, values[n + 1 :], hertz)
-
-    def pressure(self, x):
-        """Hertz's ``p = (E_star / 2R) sqrt(a^2 - x^2)`` [Pa]."""
-        h = self.hertz
-        return h.E_star / (2 * h.R) * np.sqrt(np.maximum(self.a**2 - np.asarray(x) ** 2, 0.0))
 
     def traction(self, x):
         """``q(x)`` [Pa]: ``(E_star / 2R) sum lambda_j [sqrt(c_j+1^2 - x^2) - sqrt(max(c_j, |x|)^2 - x^2)]``."""
@@ -259,7 +275,7 @@ class Phase:
             c = lo + span * _SIN**2  # both ends smooth: arccosh(|x|/c) and p vanish as square roots
             dc = _WPHI * 2 * span * _SIN * _COS
             rate = jump * c * _arccosh(Xl, c, Xl - c) / h.R * dc
-            p = h.E_star / (2 * h.R) * np.sqrt(np.maximum(4 * h.R * (self.P(c) - h.load(Xl)) / (np.pi * h.E_star), 0))
+            p = h.pressure(Xl, self.P(c))
             ds[live] += s * np.sum(rate, axis=1)
             w[live] += h.f * np.sum(p * rate, axis=1)
         return ds, w

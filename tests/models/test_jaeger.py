@@ -5,7 +5,7 @@ increment by increment, bit for bit."""
 import numpy as np
 import pytest
 from harness import hertz_contact, rounded_flat_contact
-from varying_accuracy import SCENES, central_zone, compare
+from varying_accuracy import SCENES, PackageRun, compare
 
 import fretting as fr
 from fretting.engine.choice import choose_model
@@ -44,7 +44,7 @@ def test_cells_converge_to_it_at_every_step(contact, recede):
     ends, slip, traction and energy of benchmarks/varying_accuracy.py, each the worst over the steps, at least
     halved, and within the targets at 1536 cells but for the slip of a step (its zone a few cells wide)."""
     history, exact = recede
-    reference = Reference(exact)
+    reference = PackageRun(exact)
     worst = [
         compare(fr.simulate(contact, history, model=Varying(cells)), reference, contact)[0] for cells in (384, 1536)
     ]
@@ -52,29 +52,6 @@ def test_cells_converge_to_it_at_every_step(contact, recede):
         assert worst[1][name] < worst[0][name] / 2, name
     assert worst[1]["stick"] < 1e-3 and worst[1]["traction"] < 1e-3 and worst[1]["energy"] < 1e-4
     assert worst[1]["slip"] < worst[0]["slip"]
-
-
-class Reference:
-    """A result of the exact model read as `varying_accuracy.compare`'s reference."""
-
-    def __init__(self, result):
-        self.result, self.x = result, result.x.values
-        self.energy = np.cumsum(result.dissipation.values)
-
-    def slip(self, k, x):
-        return np.interp(x, self.x, self.result.slip.values[k] - self.result.slip.values[k - 1])
-
-    def traction(self, k, x):
-        return np.interp(x, self.x, self.result.q.values[k])
-
-    def ends(self, k):
-        return central_zone(self.result, k)
-
-    def avoid(self, k, f):
-        r = self.result
-        return np.concatenate(
-            [r.stick_end.values[: k + 1, 0], -r.stick_end.values[: k + 1, 0], r.a.values[:k], -r.a.values[:k]]
-        )
 
 
 def test_energy_density_sums_to_the_energy(contact, recede):
