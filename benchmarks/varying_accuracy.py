@@ -11,10 +11,11 @@ Histories (`SCENES`), on the Hertz contact of `harness.hertz_contact` and the ro
 - ``recede``: Cattaneo-Mindlin at ``Q = 0.45 f P0``, the load down to ``0.6 P0`` (the contact recedes past
   the slip zones), ``Q`` reversed, the load up to ``1.3 P0`` (it grows over them again) and back.
 
-Reference. With ``sigma = 0`` on Hertz: Jaeger's superposition, exact to rounding in its stick ends, slip,
-traction and energy (`fretting.physics.superposition`, which the default runs there: `fretting.models.Jaeger`).
-Otherwise method 4 on `FINE` cells with parts a quarter of the default's, shown converged by the run on
-`FINER` cells: the change between the two is printed, and must lie well below the targets.
+Reference. With ``sigma = 0``: Jaeger's superposition (`fretting.physics.superposition`, which the default runs
+there: `fretting.models.Jaeger`), exact to rounding in its stick ends, slip, traction and energy on Hertz, and on
+the rounded flat to the convergence of its quadratures (tests/physics/test_superposition.py). With ``sigma``:
+method 4 on `FINE` cells with parts a quarter of the default's, shown converged by the run on `FINER` cells:
+the change between the two is printed, and must lie well below the targets.
 
 Figures, each the worst over the steps of a history (`compare`): stick ends [a of the step's contact],
 each end of the stick zone about the centre (with ``sigma`` it is not symmetric);
@@ -25,9 +26,9 @@ their signed positions and the former edges and stick ends the memory keeps (exa
 jumps by more than `KINK` f; self-reference: every stick end and contact edge of the steps so far); the
 energy dissipated up to each step, over the reference's total for the history. Targets: `TARGETS`.
 
-Rows: ``cells``, method 4 on the cells of `Varying` (`--cells`, `--load-part`: the default's with ``sigma`` and on
-the rounded flat); on Hertz without ``sigma`` also the default, which there is the exact model (its stick ends
-differ from the reference's by where `ExactRun` reads them: from the slip, at `SLIVER`).
+Rows: ``cells``, method 4 on the cells of `Varying` (`--cells`, `--load-part`: the default's with ``sigma``);
+without ``sigma`` also the default, which there is the exact model (its stick ends differ from the reference's
+by where `ExactRun` reads them: from the slip, at `SLIVER`).
 
     python benchmarks/varying_accuracy.py [--scenes walk0,inphase,...] [--flat-scenes walk,...] [--cells 768]
         [--load-part 0.0025] [--no-fine] [--no-finer] [--page ../docs/validation/varying-load.md]
@@ -44,7 +45,7 @@ from harness import hertz_contact, rounded_flat_contact
 import fretting as fr
 from fretting.analysis.accuracy import BAND
 from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART, Varying
-from fretting.physics.superposition import Hertz2D, Superposition
+from fretting.physics.superposition import Superposition, geometry
 
 #: Targets at every step: stick ends [a], slip [of the step's largest], traction [f p0], energy [relative].
 TARGETS = {"stick": 1e-3, "slip": 1e-3, "traction": 1e-3, "energy": 1e-4}
@@ -109,7 +110,7 @@ def recede(contact):
     return _history(path.P, path.Q, 0 * path.Q)
 
 
-#: name: (history builder, on Hertz with sigma = 0: exact reference)
+#: name: (history builder, sigma = 0: the exact reference)
 SCENES = {
     "walk0": (lambda c: walk(c, sigma=False), True),
     "walk": (walk, False),
@@ -123,7 +124,7 @@ class ExactRun:
     """Jaeger's solution at every step of a history, as the arrays `compare` reads."""
 
     def __init__(self, contact, history):
-        jaeger = Superposition(Hertz2D(contact.profile, contact.E_star, contact.f), contact.P)
+        jaeger = Superposition(geometry(contact.profile, contact.E_star, contact.f), contact.P)
         self.memory, self.stick, self.energy = [jaeger.memory], [jaeger.memory.a], [0.0]
         for P, Q in zip(history.P[1:], history.Q[1:], strict=True):
             step = jaeger.advance(float(P), float(Q))
@@ -278,7 +279,7 @@ def main(argv=None):
             history = build(contact)
             say(f"{profile} {name}: {len(history) - 1} steps")
             result, seconds = run(contact, history, args.cells, args.load_part)
-            if exact and profile == "hertz":
+            if exact:
                 reference = ExactRun(contact, history)
                 say(line("cells vs exact", *compare(result, reference, contact), seconds))
                 if not args.no_fine:

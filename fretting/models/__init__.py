@@ -6,7 +6,8 @@ The specs a user picks a model with:
 - `InPhase`: the exact model of in-phase ``Q`` and ``sigma`` on a Hertz contact (Nowell-Hills with Masing's rule);
 - `Mesh`: method 4 by P1 Galerkin on a mesh in ``theta``, given or adapted to a relative accuracy;
 - `Grid`: method 4 by Gauss-Chebyshev collocation on a fixed number of nodes;
-- `Jaeger`: the exact model of a varying normal load ``P`` and ``Q`` on a Hertz contact (Jaeger's superposition);
+- `Jaeger`: the exact model of a varying normal load ``P`` and ``Q`` without ``sigma`` on a symmetric contact that
+  grows with the load (Jaeger's superposition);
 - `Varying`: method 4 on cells fixed in ``x``, for a history that varies the normal load ``P``.
 """
 

@@ -1,6 +1,7 @@
-"""A varying normal load and shear on a Hertz contact, exactly: Jaeger's superposition at fixed nodes.
+"""A varying normal load and shear on a symmetric contact, exactly: Jaeger's superposition at fixed nodes.
 
-Where ``P`` varies with ``Q`` and no ``sigma`` on a Hertz profile, every band of the contact remembers the ratio
+Where ``P`` varies with ``Q`` and no ``sigma`` on a symmetric profile whose contact grows with the load (Hertz, the
+rounded flat), every band of the contact remembers the ratio
 of the shear to the normal load it carries, and an increment moves that memory in closed form
 (`fretting.physics.superposition`; Jaeger 1998, Barber, Davies & Hills 2011). This model keeps the memory as
 the state's (`State.memory`, recorded as ``state_bands``: the band edges over ``a``, then their ratios) and gives the
@@ -25,8 +26,7 @@ import numpy as np
 from fretting.errors import GrossSlipError
 from fretting.models.base import Model, ModelSpec
 from fretting.models.normal import DEFAULT_CELLS, CellSurfaceStress, NormalOutcome, Varying, cell_centres
-from fretting.physics.profiles import Hertz
-from fretting.physics.superposition import Hertz2D, Memory, Superposition
+from fretting.physics.superposition import Memory, Superposition, geometry
 
 if TYPE_CHECKING:
     from fretting.loading.history import History
@@ -37,7 +37,8 @@ __all__ = ["Jaeger", "JaegerModel"]
 
 @dataclass(frozen=True, eq=False, repr=False)  # ModelSpec.__repr__
 class Jaeger(ModelSpec):
-    """The exact model of a varying ``P`` and ``Q`` on a Hertz contact, its fields at `cells` cell centres.
+    """The exact model of a varying ``P`` and ``Q`` on a symmetric contact that grows with the load, its fields at
+    `cells` cell centres.
 
     Parameters
     ----------
@@ -54,7 +55,7 @@ class Jaeger(ModelSpec):
     inputs: ClassVar[frozenset[str]] = frozenset({"Q", "sigma", "P"})
     memory_variable: ClassVar[str] = "state_bands"
     description: ClassVar[str] = (
-        "the exact model of a varying P and Q on Hertz: Jaeger's superposition of flat punches, at fixed nodes"
+        "the exact model of a varying P and Q without sigma: Jaeger's superposition of flat punches, at fixed nodes"
     )
 
     def __post_init__(self):
@@ -81,8 +82,8 @@ class Jaeger(ModelSpec):
         return {"model": self.name, "cells": int(self.cells)} | spans
 
     def holds_for(self, contact: Contact, history: History | None) -> str | None:
-        if not isinstance(contact.profile, Hertz):
-            return f"{contact.profile!r} is not a Hertz profile"
+        if not (contact.profile.SYMMETRIC and contact.profile.VANISHING_EDGES):
+            return f"{contact.profile!r} is not a symmetric profile whose contact grows with the load"
         if history is not None and history.largest_loads()[1] > 0:
             return "the history has a bulk tension sigma"
         if history is not None and history.displaced:
@@ -95,35 +96,36 @@ class Jaeger(ModelSpec):
 
 
 class JaegerModel(Model):
-    """Jaeger's superposition on a Hertz contact, at the cell centres of a resolved `Jaeger` spec (module
+    """Jaeger's superposition on a symmetric contact, at the cell centres of a resolved `Jaeger` spec (module
     docstring). Its memory (`Outcome.memory`) is `fretting.physics.superposition.Memory.flat`."""
 
     theta = None
     linear_algebra = False
 
     def __init__(self, contact, spec):
-        if not isinstance(contact.profile, Hertz):
-            raise ValueError(f"{contact.profile!r}: Jaeger's superposition needs a Hertz profile")
         self.contact, self.spec = contact, spec
         self.h, self.x, self.t = cell_centres(contact, spec.cells, spec.half_width)
         self.friction_force = np.inf  # f P at each step: the engine checks the load of the step
-        self.hertz = Hertz2D(contact.profile, contact.E_star, contact.f)
+        self.geometry = geometry(contact.profile, contact.E_star, contact.f)
 
     def _contact(self, state):
         """The `Superposition` of `state`: its loads and its memory (None: the contact just formed)."""
         P = self.contact.P if state.P is None else state.P
-        memory = Memory.from_flat(state.memory, self.hertz, self.contact.a) if state.memory else None
-        return Superposition(self.hertz, P, state.Q, memory)
+        memory = Memory.from_flat(state.memory, self.geometry, self.contact.a) if state.memory else None
+        return Superposition(self.geometry, P, state.Q, memory)
 
     def _outcome(self, superposition, ds, dissipation, density, stick):
-        memory, X = superposition.memory, self.x - self.contact.centre
+        """The fields of the memory as the state keeps it (`Memory.flat`): a run continued from the state gives the
+        same at its first step."""
+        flat, X = superposition.memory.flat(self.contact.a), self.x - self.contact.centre
+        memory = Memory.from_flat(flat, self.geometry, self.contact.a)
         end = memory.a if stick is None else stick
         return NormalOutcome(
             memory.traction(X),
             ds,
             memory.slip(X),
             dissipation,
-            memory=memory.flat(self.contact.a),
+            memory=flat,
             zones=[(-end / self.contact.a, end / self.contact.a)],
             P=superposition.P,
             density=density,
@@ -162,7 +164,7 @@ class JaegerModel(Model):
 
     def delta_Q(self, outcome):
         """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of the memory (`Memory.delta_Q`)."""
-        return Memory.from_flat(outcome.memory, self.hertz, self.contact.a).delta_Q()
+        return Memory.from_flat(outcome.memory, self.geometry, self.contact.a).delta_Q()
 
     def delta_sigma(self, outcome):
         """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2]: zero, the slip being even in ``x``."""
@@ -176,8 +178,8 @@ class JaegerModel(Model):
         return outcome.density
 
     def pressure_at(self, P):
-        """Hertz's pressure [Pa] at the nodes under the load `P` [N/m] (`Hertz2D.pressure`)."""
-        return self.hertz.pressure(self.x - self.contact.centre, P)
+        """The pressure [Pa] at the nodes under the load `P` [N/m] (`Geometry.pressure`)."""
+        return self.geometry.pressure(self.x - self.contact.centre, P)
 
     @functools.cached_property
     def surface(self):

@@ -285,12 +285,10 @@ class RoundedFlat(Profile):
         return np.sqrt(np.clip((a - self.b) * (a + self.b), 0, None))
 
     def load_slope(self, a: ArrayLike, E_star: float) -> np.ndarray:
-        """``dP/da = E_star (2a (2e - sin 2e) + 4 b sqrt(a^2 - b^2) / a) / (4R)``, `load` differentiated
-        with ``de/da = b / (a sqrt(a^2 - b^2))``; zero for ``a <= b``."""
-        a = np.asarray(a, dtype=float)
-        root = self._root(a)
-        e = np.arctan2(root, self.b)
-        return E_star * (2 * a * _x_minus_sin(2 * e) + 4 * self.b * root / a) / (4 * self.R)
+        """``dP/da = E_star a e / R`` [N/m^2]: `load` differentiated with ``de/da = b / (a sqrt(a^2 - b^2))``,
+        ``E_star (2a (2e - sin 2e) + 4 b sqrt(a^2 - b^2) / a) / (4R)``, whose terms in ``sin 2e = 2 b sqrt(a^2 -
+        b^2) / a^2`` cancel; zero for ``a <= b``."""
+        return E_star * np.asarray(a, dtype=float) * np.arctan2(self._root(a), self.b) / self.R
 
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:
         if P == 0:  # the flat touches at no load (the corrective contact at the onset of gross slip)

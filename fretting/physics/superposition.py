@@ -1,15 +1,22 @@
-"""Jaeger's superposition: a Hertz contact under a varying normal load ``P`` and shear ``Q`` (``sigma = 0``), exactly.
+"""Jaeger's superposition: a symmetric contact under a varying normal load ``P`` and shear ``Q`` (``sigma = 0``),
+exactly.
 
-Memory (Jaeger 1998; Barber, Davies & Hills 2011). The plane Hertz pressure grows by flat punches,
-``dp/dP = 1 / (pi sqrt(a^2 - x^2))`` at the current half-width ``a`` (``P(a) = pi a^2 E_star / (4 R)``).
-Any even traction is a superposition of such punches, ``q(x) = int_{|x|}^{a} lambda(c) P'(c) dc /
-(pi sqrt(c^2 - x^2))``: the band ``c`` of the contact remembers ``lambda(c)``, the ratio of the shear
-to the normal load it carries. A punch of half-width ``c`` moves the surfaces rigidly inside
-``|x| < c``, so the slip at ``x`` depends on ``lambda`` below ``|x|`` alone, and ``|q| <= f p`` wherever
+Memory (Jaeger 1998; Barber, Davies & Hills 2011). The pressure of a symmetric convex profile grows by flat
+punches, ``dp = P'(a) da / (pi sqrt(a^2 - x^2))`` as the half-width grows from ``a`` (``P(a)``: the profile's
+`load`, ``P'``: its `load_slope`). Any even traction is a superposition of such punches, ``q(x) =
+int_{|x|}^{a} lambda(c) P'(c) dc / (pi sqrt(c^2 - x^2))``: the band ``c`` of the contact remembers ``lambda(c)``,
+the ratio of the shear to the normal load it carries. A punch of half-width ``c`` moves the surfaces rigidly
+inside ``|x| < c``, so the slip at ``x`` depends on ``lambda`` below ``|x|`` alone, and ``|q| <= f p`` wherever
 ``|lambda| <= f``; ``q = s f p`` on ``|x| > c`` exactly where ``lambda = s f`` there (Abel inversion).
-``lambda`` is piecewise constant (`Memory`: bands), so the traction (``int c / sqrt(c^2 - x^2) dc =
-sqrt(c^2 - x^2)``), the slip gradient ``ds/dx = (sign x / R) int_0^{|x|} lambda(c) c dc / sqrt(x^2 - c^2)``
-(the Hilbert transform of a flat punch) and the slip ``s(x) - s(0)`` are closed forms.
+``lambda`` is piecewise constant (`Memory`: bands), so the traction is a sum of differences of the profile's
+pressures (``p_c``: the pressure of the contact of half-width ``c``), and the slip gradient is
+``ds/dx = (sign x) int lambda(c) m(c) dc / sqrt(x^2 - c^2)`` over ``c < |x|`` (the Hilbert transform of a flat
+punch), with ``m(c) = 2 P'(c) / (pi E_star)`` [m] (``c / R`` on Hertz).
+
+The bands start at ``b``, the half-width at no load (0 on Hertz, the flat's on a rounded flat, whose corners
+alone carry the growing load). A slip zone ``lambda = s f`` on ``(c, a)`` leaves ``q = s f (p - p_c)``, the
+Cattaneo-Mindlin traction of the profile: its stick end ``c`` cannot pass ``b`` before the shear reaches
+``f P`` (Ciavarella, Hills & Monno 1998), where gross slip begins.
 
 An increment to ``(P', Q')``, the loads straight between, is a sequence of phases (`Superposition.advance`),
 each of which the memory follows in closed form:
@@ -21,34 +28,38 @@ each of which the memory follows in closed form:
   ``dQ`` at a constant ``P``);
 - slipping (`Superposition._slipping`, `Phase`): ``lambda = s f`` on ``(c, a)``, the bands entering
   included, and ``c`` falls from the inner end of the slip zone of sign ``s`` already at the edge (else
-  from the edge) so that ``Q - s f P = g(c) = int_0^c lambda dP(c) - s f P(c)`` (`Bands`), linear in the
+  from the edge) so that ``Q - s f P = g(c) = int_b^c lambda dP(c) - s f P(c)`` (`Bands`), linear in the
   increment's fraction, as long as ``s (dQ - s f dP) > 0``: to the increment's end, or until a receding
   edge overtakes ``c`` (stuck again).
 
 Slip and energy. Moving the inner end from ``c`` to ``c - dc`` changes ``lambda`` there by ``s f -
-lambda(c)``, and ``d/dc int_c^x sqrt(t^2 - c^2) dt = -c arccosh(x / c)``, so a point ``|x| > c`` in
-contact slips by ``ds = (s f - lambda(c)) c arccosh(|x| / c) dc / R``. The energy of a slipping phase
-is ``int f p |ds| dx`` with Hertz's pressure ``p`` at the load of each ``c`` (``P`` and ``c`` tied by
-``g``):
+lambda(c)``, so a point ``|x| > c`` in contact slips by ``ds = (s f - lambda(c)) m(c) arccosh(|x| / c) dc``.
+The energy of a slipping phase is ``int f p |ds| dx`` with the pressure ``p`` at the load of each ``c``
+(``P`` and ``c`` tied by ``g``), and as ``int_c^t arccosh(x / c) dx / sqrt(t^2 - x^2) = (pi / 2) ln(t / c)``,
+``int_c^a p arccosh(x / c) dx = (1/2) int_c^a P'(t) ln(t / c) dt`` (`Geometry.punch_energy`):
 
-    W = int (2 f / R) |s f - lambda(c)| c int_c^a p(x) arccosh(x / c) dx dc,
+    W = int 2 f |s f - lambda(c)| m(c) (1/2) int_c^a(c) P'(t) ln(t / c) dt dc,
 
-by Gauss-Legendre quadrature in ``c`` between the band edges and in ``x = c + (a - c) sin^2(theta)``
-(`J`), and at a point ``x`` the slip and the energy density are the same integrals over ``c`` alone
-(`Phase.at`): exact to rounding, as are the stick end ``c`` and the memory
-(tests/physics/test_superposition.py: Cattaneo-Mindlin and Mindlin's energy, Jaeger's proportional
-loading, the limit of sums over ever finer parts, and method 4 on cells converging to it).
+by Gauss-Legendre quadrature in ``c`` between the band edges, at a point ``x`` the slip and the energy density
+are the same integrals over ``c`` alone (`Phase.at`), and by the same swap of integrals ``delta_Q`` is
+``sum_j lambda_j int m(c) ln(a / c) dc`` over the bands (`Memory.delta_Q`). On Hertz, the slip, the punch
+energy and ``delta_Q`` are closed forms (`HertzGeometry`); on another profile, Gauss-Legendre quadratures in
+variables that make their square roots smooth (`Geometry`). Exact to rounding on Hertz, to the quadrature's
+convergence elsewhere (tests/physics/test_superposition.py: Cattaneo-Mindlin and Mindlin's energy on both
+profiles, Jaeger's proportional loading, the limit of sums over ever finer parts, the quadratures against the
+closed forms, and method 4 on cells converging to it).
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 
-from fretting.physics.profiles import Hertz
+from fretting.physics.profiles import Hertz, Profile
 
-__all__ = ["Memory", "Phase", "Step", "Superposition"]
+__all__ = ["Geometry", "HertzGeometry", "Memory", "Phase", "Step", "Superposition", "geometry"]
 
 #: Gauss-Legendre points of each quadrature (`J`, `Bands.energy`, `Phase.at`, `Memory.delta_Q`): their integrands
 #: are smooth in the variables used, so that half as many change the energy by rounding only
@@ -93,43 +104,155 @@ def J(c, a):
     return np.sum(_WPHI * root * _arccosh(x, c, width * _SIN**2) * 2 * width * _SIN * _COS, axis=-1)
 
 
-@dataclass(frozen=True)
-class Hertz2D:
-    """A plane Hertz contact: its `profile` (`fretting.physics.profiles.Hertz`, whose half-width and load it
-    uses), modulus `E_star` [Pa] and friction `f`."""
+#: Newton iterations at most of `Geometry.half_width`: from the right of a convex load they fall monotonically to
+#: the root, quadratically but near the flat's edge, where ``P ~ (a - b)^(3/2)`` takes a third off each.
+NEWTON = 200
 
-    profile: Hertz
+
+@dataclass(frozen=True)
+class Geometry:
+    """A symmetric contact whose width grows with the load: its `profile` (``load``, ``load_slope``, ``pressure``,
+    the latter evaluated elementwise at arrays of half-widths and loads), modulus `E_star` [Pa] and friction `f`;
+    the integrals of the module by Gauss-Legendre quadrature."""
+
+    profile: Profile
     E_star: float
     f: float
+
+    def __post_init__(self):
+        if not (self.profile.SYMMETRIC and self.profile.VANISHING_EDGES):
+            raise ValueError(f"{self.profile!r}: Jaeger's superposition needs a symmetric contact that grows with P")
+
+    @functools.cached_property
+    def b(self) -> float:
+        """The half-width [m] of the contact at no load, where the bands begin."""
+        return float(self.profile.half_width(0.0, self.E_star)[0])
+
+    def load(self, c):
+        """``P(c)`` [N/m], the load at which the contact reaches the half-width `c` [m] (arrays)."""
+        return self.profile.load(c, self.E_star)
+
+    def slope(self, c):
+        """``m(c) = 2 P'(c) / (pi E_star)`` [m]: the slip at ``|x| > c`` per ``arccosh(|x| / c)`` of a band ``dc``
+        of ``lambda = 1``, per ``dc`` (arrays)."""
+        return 2 * self.profile.load_slope(c, self.E_star) / (np.pi * self.E_star)
+
+    def half_width(self, P):
+        """Half-width [m] of the contact under the load `P` [N/m] (arrays): Newton's iteration on `load` from the
+        half-width of the largest ``P``, the profile's; ``b`` where ``P <= 0``."""
+        P = np.asarray(P, dtype=float)
+        top = float(np.max(P, initial=0.0))
+        if top <= 0:
+            return np.full(P.shape, self.b)
+        a = np.full(P.shape, float(self.profile.half_width(top, self.E_star)[0]))
+        live = P > 0
+        for _ in range(NEWTON):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = np.where(live, (self.load(a) - P) / self.profile.load_slope(a, self.E_star), 0.0)
+            a = np.maximum(a - step, self.b)
+            if np.all(np.abs(step) <= 4 * np.finfo(float).eps * a):
+                break
+        return np.where(live, a, self.b)
+
+    def within(self, x, c):
+        """``p_c(x)`` [Pa]: the pressure at `x` [m] from the centre of the contact of half-width `c` [m] (arrays,
+        broadcast; zero outside it and where it carries no load)."""
+        X, c = np.broadcast_arrays(np.abs(np.asarray(x, dtype=float)), np.asarray(c, dtype=float))
+        load = self.load(c)
+        inside = (X < c) & (load > 0)
+        p = np.zeros(X.shape)
+        p[inside] = self.profile.pressure(X[inside] / c[inside], c[inside], 0.0, load[inside], self.E_star)
+        return p
+
+    def pressure(self, x, P):
+        """The pressure [Pa] at `x` [m] from the centre under the load `P` [N/m] (arrays, broadcast)."""
+        return self.within(x, self.half_width(P))
+
+    def slip(self, c, x):
+        """``int_c^x m(t) arccosh(x / t) dt`` [m] (zero for ``x <= c``; arrays, broadcast): the slip at ``x`` of the
+        bands from `c` up to ``x`` of ``lambda = 1``, by Gauss-Legendre in ``t = c + (x - c) sin^2(theta)``, which
+        makes the root of ``arccosh`` at ``t = x`` and that of ``P'`` at ``t = b`` smooth."""
+        c, x = np.broadcast_arrays(np.maximum(c, self.b), np.abs(np.asarray(x, dtype=float)))
+        S, live = np.zeros(x.shape), x > c
+        c, x = c[live][:, None], x[live][:, None]
+        t = c + (x - c) * _SIN**2
+        dt = _WPHI * 2 * (x - c) * _SIN * _COS
+        S[live] = np.sum(self.slope(t) * _arccosh(x, t, (x - c) * _COS**2) * dt, axis=-1)
+        return S
+
+    def punch_energy(self, c, a):
+        """``int_c^a p_a(x) arccosh(x / c) dx = (1/2) int_c^a P'(t) ln(t / c) dt`` [N] for ``b <= c <= a`` (arrays;
+        module docstring), by Gauss-Legendre in ``t = c + (a - c) sin^2(theta)``."""
+        c = np.asarray(c, dtype=float)[..., None]
+        width = np.maximum(np.asarray(a, dtype=float)[..., None] - c, 0.0)
+        t = c + width * _SIN**2
+        dt = _WPHI * 2 * width * _SIN * _COS
+        return np.sum(self.profile.load_slope(t, self.E_star) * np.log1p(width * _SIN**2 / c) * dt, axis=-1) / 2
+
+    def compliance(self, low, high, a):
+        """``int_low^high m(c) ln(a / c) dc`` [m^2] (arrays): the ``delta_Q`` of a band of ``lambda = 1`` of the
+        contact of half-width `a` [m], by Gauss-Legendre in ``c = low + (high - low) sin^2(theta)``."""
+        low = np.asarray(low, dtype=float)[..., None]
+        width = np.asarray(high, dtype=float)[..., None] - low
+        c = low + width * _SIN**2
+        return np.sum(self.slope(c) * np.log(a / c) * _WPHI * 2 * width * _SIN * _COS, axis=-1)
+
+
+class HertzGeometry(Geometry):
+    """A plane Hertz contact (`fretting.physics.profiles.Hertz`), whose integrals are closed forms: ``m(c) = c /
+    R``, ``p_c(x) = (E_star / 2R) sqrt(c^2 - x^2)``."""
 
     @property
     def R(self) -> float:
         return self.profile.R
 
     def half_width(self, P):
-        """Half-width [m] of the contact under the load `P` [N/m] (arrays)."""
-        return self.profile.half_width(P, self.E_star)[0]
+        return self.profile.half_width(np.maximum(P, 0.0), self.E_star)[0]
 
-    def load(self, c):
-        """``P(c)`` [N/m], the load at which the contact reaches the half-width `c` [m] (arrays)."""
-        return self.profile.load(c, self.E_star)
+    def within(self, x, c):
+        x = np.asarray(x, dtype=float)
+        return self.E_star / (2 * self.R) * np.sqrt(np.maximum(np.square(c) - x * x, 0.0))
 
     def pressure(self, x, P):
-        """Hertz's ``p = (E_star / 2R) sqrt(a^2 - x^2)`` [Pa] at `x` [m] from the centre under the load `P` [N/m],
-        as ``a^2 - x^2 = 4 R (P - P(|x|)) / (pi E_star)``: without cancellation where ``x`` nears the edge."""
+        """Hertz's ``p = (E_star / 2R) sqrt(a^2 - x^2)`` [Pa], as ``a^2 - x^2 = 4 R (P - P(|x|)) / (pi E_star)``:
+        without cancellation where ``x`` nears the edge."""
         return (
             self.E_star / (2 * self.R) * np.sqrt(np.maximum(4 * self.R * (P - self.load(x)) / (np.pi * self.E_star), 0))
         )
 
+    def slip(self, c, x):
+        """``int_c^x sqrt(t^2 - c^2) dt / R`` (`_F`), zero for ``x <= c``."""
+        c, x = np.broadcast_arrays(np.asarray(c, dtype=float), np.abs(np.asarray(x, dtype=float)))
+        return np.where(x > c, _F(np.maximum(x, c), c), 0.0) / self.R
+
+    def punch_energy(self, c, a):
+        """``(E_star / 2R) J(c, a)``."""
+        return self.E_star / (2 * self.R) * J(c, a)
+
+    def compliance(self, low, high, a):
+        """``(L(high) - L(low)) / R`` with ``L(c) = c^2 ln(a / c) / 2 + c^2 / 4``."""
+
+        def L(c):
+            c = np.asarray(c, dtype=float)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return np.where(c > 0, c * c * np.log(a / np.where(c > 0, c, 1.0)) / 2 + c * c / 4, 0.0)
+
+        return (L(high) - L(low)) / self.R
+
+
+def geometry(profile, E_star, f) -> Geometry:
+    """The `Geometry` of a contact of `profile`, `E_star` [Pa] and `f`: its closed forms on Hertz."""
+    return (HertzGeometry if isinstance(profile, Hertz) else Geometry)(profile, E_star, f)
+
 
 @dataclass(frozen=True)
 class Memory:
-    """``lambda``, piecewise constant: `ratio` on the bands between consecutive `edges` [m] (the last: the
-    contact's edge), of a contact of geometry `hertz`."""
+    """``lambda``, piecewise constant: `ratio` on the bands between consecutive `edges` [m] (the first: ``b``; the
+    last: the contact's edge), of a contact of `geometry`."""
 
     edges: np.ndarray
     ratio: np.ndarray
-    hertz: Hertz2D
+    geometry: Geometry
 
     @property
     def a(self) -> float:
@@ -141,38 +264,29 @@ class Memory:
         return tuple(float(v) for v in np.concatenate([self.edges / scale, self.ratio]))
 
     @classmethod
-    def from_flat(cls, values, hertz, scale):
+    def from_flat(cls, values, geometry, scale):
         """The memory of `flat` `values`, its edges in units of `scale` [m]."""
         values = np.asarray(values, dtype=float)
         n = values.size // 2
-        return cls(values[: n + 1] * scale, values[n + 1 :], hertz)
+        return cls(values[: n + 1] * scale, values[n + 1 :], geometry)
 
     def traction(self, x):
-        """``q(x)`` [Pa]: ``(E_star / 2R) sum lambda_j [sqrt(c_j+1^2 - x^2) - sqrt(max(c_j, |x|)^2 - x^2)]``."""
-        t = np.abs(np.asarray(x, dtype=float))[..., None]
-        low, high = self.edges[:-1], self.edges[1:]
-        part = np.sqrt(np.maximum(high**2 - t**2, 0)) - np.sqrt(np.maximum(np.maximum(low, t) ** 2 - t**2, 0))
-        return self.hertz.E_star / (2 * self.hertz.R) * (part @ self.ratio)
+        """``q(x) = sum lambda_j (p_c_j+1(x) - p_c_j(x))`` [Pa] at `x` [m] (`Geometry.within`)."""
+        p = self.geometry.within(np.asarray(x, dtype=float)[..., None], self.edges)
+        return np.diff(p, axis=-1) @ self.ratio
 
     def slip(self, x):
-        """``s(x) - s(0)`` [m], the relative tangential displacement of the surfaces (even in ``x``); outside
-        the contact, that of the free surfaces."""
+        """``s(x) - s(0)`` [m], the relative tangential displacement of the surfaces at `x` [m] (even in ``x``;
+        outside the contact, that of the free surfaces): ``sum lambda_j (S(c_j) - S(min(c_j+1, |x|)))`` with
+        ``S(c)`` the `Geometry.slip` from ``c`` up to ``|x|``."""
         t = np.abs(np.asarray(x, dtype=float))[..., None]
-        low, high = self.edges[:-1], self.edges[1:]
-        inner = np.where(t > low, _F(np.maximum(t, low), low), 0.0)
-        outer = np.where(t > high, _F(np.maximum(t, high), high), 0.0)
-        return (inner - outer) @ self.ratio / self.hertz.R
+        S = self.geometry.slip(np.minimum(self.edges, t), t)
+        return -np.diff(S, axis=-1) @ self.ratio
 
     def delta_Q(self):
-        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] over the contact: ``(2 / (pi R)) sum_j lambda_j (K(c_j) -
-        K(c_j+1))`` with ``K(c) = int_c^a sqrt(t^2 - c^2) arccos(t / a) dt`` (the slip's ``int_c^x`` and the
-        punch's ``int_t^a`` swapped), by Gauss-Legendre in ``t = c + (a - c) sin^2(theta)``."""
-        c, a = self.edges[:, None], self.a
-        width = a - c
-        t = c + width * _SIN**2
-        arccos = 2 * np.arcsin(_COS * np.sqrt(width / (2 * a)))  # arccos(t / a), a - t = width cos^2
-        K = np.sum(_WPHI * _SIN * np.sqrt(width * (t + c)) * arccos * 2 * width * _SIN * _COS, axis=1)
-        return float(2 / (np.pi * self.hertz.R) * self.ratio @ (K[:-1] - K[1:]))
+        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] over the contact: ``sum_j lambda_j int m(c) ln(a / c) dc`` over
+        the bands (module docstring; `Geometry.compliance`)."""
+        return float(self.ratio @ self.geometry.compliance(self.edges[:-1], self.edges[1:], self.a))
 
     def kinks(self, jump):
         """Band edges inside the contact where ``lambda`` jumps by more than `jump`: the traction kinks [m]."""
@@ -181,12 +295,12 @@ class Memory:
 
 class Bands:
     """The bands ``(edges, ratio)`` of the memory below the inner end ``c0 = edges[-1]`` of a slip zone of
-    ``lambda = limit`` (``s f``), and the relation ``g(c) = int_0^c lambda dP(c) - limit P(c) = Q - limit P``
+    ``lambda = limit`` (``s f``), and the relation ``g(c) = int_b^c lambda dP(c) - limit P(c) = Q - limit P``
     that places its inner end ``c`` (module docstring)."""
 
-    def __init__(self, edges, ratio, limit, hertz):
-        self.edges, self.ratio, self.limit, self.hertz = edges, ratio, limit, hertz
-        self.loads = hertz.load(edges)
+    def __init__(self, edges, ratio, limit, geometry):
+        self.edges, self.ratio, self.limit, self.geometry = edges, ratio, limit, geometry
+        self.loads = geometry.load(edges)
         self.cumulative = np.concatenate([[0.0], np.cumsum(np.diff(self.loads) * ratio)])
 
     def band(self, c):
@@ -194,12 +308,12 @@ class Bands:
         return np.clip(np.searchsorted(self.edges, c, side="right") - 1, 0, self.ratio.size - 1)
 
     def below(self, P):
-        """``int_0^c lambda dP(c)`` [N/m] at the half-width ``c <= c0`` of the load `P` [N/m] (arrays)."""
+        """``int_b^c lambda dP(c)`` [N/m] at the half-width ``c <= c0`` of the load `P` [N/m] (arrays)."""
         k = np.clip(np.searchsorted(self.loads, P, side="right") - 1, 0, self.ratio.size - 1)
         return self.cumulative[k] + self.ratio[k] * (P - self.loads[k])
 
     def g(self, c):
-        load = self.hertz.load(c)
+        load = self.geometry.load(c)
         return self.below(load) - self.limit * load
 
     def inverse(self, G):
@@ -212,7 +326,7 @@ class Bands:
         k = falling.size - np.searchsorted(falling[::-1], s * G, side="left") - 1  # the last edge with s g >= s G
         band = np.minimum(k, self.ratio.size - 1)
         load = (G - self.cumulative[band] + self.ratio[band] * self.loads[band]) / (self.ratio[band] - self.limit)
-        c = np.clip(self.hertz.half_width(np.maximum(load, 0.0)), self.edges[band], self.edges[band + 1])
+        c = np.clip(self.geometry.half_width(np.maximum(load, 0.0)), self.edges[band], self.edges[band + 1])
         return np.where(k == self.ratio.size, self.edges[-1], c)
 
     def pieces(self, c1, c0):
@@ -237,23 +351,32 @@ class Phase:
     G0: float
     K: float
 
+    @property
+    def end(self) -> float | None:
+        """The innermost ``c`` [m] at which the phase slipped: the lower end of its innermost piece below the limit
+        (None: its inner end passed bands at the limit alone, or moved by rounding only; where it comes to rest on
+        the lower edge of such bands, they did not slip)."""
+        return next((low for low, _, _ in self.bands.pieces(self.c1, self.c0)), None)
+
     def P(self, c):
         """The load [N/m] at which the inner end is at `c` [m] (arrays)."""
         return self.P0 + (self.bands.g(c) - self.G0) / self.K * self.dP
 
     def energy(self):
-        """``int (2 f / R) |s f - lambda(c)| c (E_star / 2R) J(c, a(c)) dc`` [J/m] (module docstring)."""
-        h, total = self.bands.hertz, 0.0
+        """``int 2 f |s f - lambda(c)| m(c) (1/2) int_c^a(c) P'(t) ln(t / c) dt dc`` [J/m] (module docstring)."""
+        h, total = self.bands.geometry, 0.0
         for low, high, jump in self.bands.pieces(self.c1, self.c0):
             c = low + (high - low) * (_U + 1) / 2
-            total += jump * (high - low) / 2 * float(np.sum(_W * c * J(c, h.half_width(self.P(c)))))
-        return 2 * h.f / h.R * h.E_star / (2 * h.R) * total
+            total += (
+                jump * (high - low) / 2 * float(np.sum(_W * h.slope(c) * h.punch_energy(c, h.half_width(self.P(c)))))
+            )
+        return 2 * h.f * total
 
     def at(self, x):
         """``(ds, w)``: the slip [m] and the energy density [J/m^2] of the phase at the points `x` [m] from the
         centre: ``ds = int s (s f - lambda) c arccosh(|x| / c) dc / R`` over the ``c < |x|`` passed while
         ``x`` is in contact, ``w`` the same of ``f p |ds|`` (module docstring)."""
-        h, s = self.bands.hertz, np.sign(self.bands.limit)
+        h, s = self.bands.geometry, np.sign(self.bands.limit)
         X = np.abs(np.asarray(x, dtype=float))
         low, high = np.full(X.size, self.c1), np.minimum(X, self.c0)
         if self.dP:  # x in contact while P(c) >= P(|x|): P moves with c one way or the other
@@ -274,7 +397,7 @@ class Phase:
             Xl, lo, span = X[live, None], lo[live, None], (hi - lo)[live, None]
             c = lo + span * _SIN**2  # both ends smooth: arccosh(|x|/c) and p vanish as square roots
             dc = _WPHI * 2 * span * _SIN * _COS
-            rate = jump * c * _arccosh(Xl, c, Xl - c) / h.R * dc
+            rate = jump * h.slope(c) * _arccosh(Xl, c, Xl - c) * dc
             p = h.pressure(Xl, self.P(c))
             ds[live] += s * np.sum(rate, axis=1)
             w[live] += h.f * np.sum(p * rate, axis=1)
@@ -283,8 +406,8 @@ class Phase:
 
 @dataclass(frozen=True)
 class Step:
-    """What one increment of `Superposition.advance` did: the innermost end of its slip zones [m] (None: it slipped
-    nowhere), its energy [J/m] and its slipping phases."""
+    """What one increment of `Superposition.advance` did: the innermost point at which it slipped [m] (`Phase.end`;
+    None: it slipped nowhere), its energy [J/m] and its slipping phases."""
 
     stick: float | None
     energy: float
@@ -292,12 +415,13 @@ class Step:
 
 
 class Superposition:
-    """A plane Hertz contact of geometry `hertz` under the loads `P`, `Q` [N/m] with the `memory` they left (None:
-    formed at `P` without shear), advanced by increments (module docstring)."""
+    """A contact of `geometry` under the loads `P`, `Q` [N/m] with the `memory` they left (None: formed at `P`
+    without shear), advanced by increments (module docstring)."""
 
-    def __init__(self, hertz, P, Q=0.0, memory=None):
-        self.hertz, self.P, self.Q = hertz, float(P), float(Q)
-        self.memory = memory or Memory(np.array([0.0, float(hertz.half_width(P))]), np.array([0.0]), hertz)
+    def __init__(self, geometry, P, Q=0.0, memory=None):
+        self.geometry, self.P, self.Q = geometry, float(P), float(Q)
+        edges = np.array([geometry.b, float(geometry.half_width(P))])
+        self.memory = memory or Memory(edges, np.array([0.0]), geometry)
 
     def _set(self, edges, ratio):
         """The memory of bands `edges`, `ratio`, bands of no width dropped and neighbours of equal ratio merged
@@ -305,7 +429,7 @@ class Superposition:
         wide = np.diff(edges) > 0
         edges, ratio = np.append(edges[:-1][wide], edges[-1]), ratio[wide]
         keep = np.concatenate([[True], ratio[1:] != ratio[:-1]])
-        self.memory = Memory(np.append(edges[:-1][keep], edges[-1]), ratio[keep], self.hertz)
+        self.memory = Memory(np.append(edges[:-1][keep], edges[-1]), ratio[keep], self.geometry)
 
     def advance(self, P, Q):
         """The increment to `P`, `Q` [N/m] along the straight path from the present loads (module docstring): a
@@ -324,7 +448,7 @@ class Superposition:
                     )
                 if phase.c1 < phase.c0:
                     phases.append(phase)
-                    ends.append(min(phase.c1, self.memory.a))
+                    ends += [] if phase.end is None else [min(phase.end, self.memory.a)]
         self.P, self.Q = float(P), float(Q)
         return Step(min(ends) if ends else None, sum(phase.energy() for phase in phases), tuple(phases))
 
@@ -336,14 +460,14 @@ class Superposition:
     def _fraction(self, c):
         """The fraction of the increment at which ``P`` reaches the load of the half-width `c` [m] (inf: never)."""
         P0, _, dP, _ = self._path
-        return (self.hertz.load(c) - P0) / dP if dP else np.inf
+        return (self.geometry.load(c) - P0) / dP if dP else np.inf
 
     def _stuck(self, tau):
         """Follow the increment from `tau` while nothing slips; returns the fraction reached and the sign of the
         slip that starts there (0: none, the increment done)."""
         _, _, dP, dQ = self._path
-        f, edges, ratio = self.hertz.f, self.memory.edges, self.memory.ratio
-        a1 = float(self.hertz.half_width(self._at(1.0)[0]))
+        f, edges, ratio = self.geometry.f, self.memory.edges, self.memory.ratio
+        a1 = float(self.geometry.half_width(self._at(1.0)[0]))
         if dP > 0:
             r = dQ / dP
             if abs(r) > f:
@@ -366,16 +490,16 @@ class Superposition:
         """Follow the increment from `tau` while a slip zone of sign `s` grows inwards from the edge; returns the
         fraction reached (1, or earlier where the contact recedes past its inner end) and the `Phase`."""
         P0, Q0, dP, dQ = self._path
-        f, edges, ratio = self.hertz.f, self.memory.edges, self.memory.ratio
+        f, edges, ratio = self.geometry.f, self.memory.edges, self.memory.ratio
         run = ratio[-1] == s * f  # the slip zone of sign s already at the edge goes on from its inner end
         c0 = float(edges[-2] if run else edges[-1])
         inner = np.count_nonzero(edges < c0)
-        bands = Bands(np.append(edges[:inner], c0), ratio[:inner], s * f, self.hertz)
+        bands = Bands(np.append(edges[:inner], c0), ratio[:inner], s * f, self.geometry)
         K = dQ - s * f * dP  # the rate of Q - s f P, which the slip zone's growth carries
         end = min(1.0, self._overtaken(bands, tau)) if dP < 0 else 1.0
         G0 = Q0 - s * f * P0
         c1 = float(bands.inverse(G0 + end * K))
-        a1 = float(self.hertz.half_width(self._at(end)[0]))
+        a1 = float(self.geometry.half_width(self._at(end)[0]))
         if end < 1:  # the contact receded past the slip zone: the bands below its edge carry the shear
             keep = np.count_nonzero(bands.edges < a1)
             self._set(np.append(bands.edges[:keep], a1), bands.ratio[:keep])

@@ -1,6 +1,6 @@
-"""The exact model of a varying P and Q on Hertz (fretting.models.Jaeger): the default where it applies, method 4
-on cells converging to it at every step, its energy density, a run continued from its state and one stepped
-increment by increment, bit for bit."""
+"""The exact model of a varying P and Q (fretting.models.Jaeger), on Hertz and on a rounded flat: the default where
+it applies, method 4 on cells converging to it at every step, its energy density, a run continued from its state
+and one stepped increment by increment, bit for bit."""
 
 import numpy as np
 import pytest
@@ -13,9 +13,9 @@ from fretting.engine.recorder import final_state, recorded_spec
 from fretting.models import Jaeger, Varying
 
 
-@pytest.fixture(scope="module")
-def contact():
-    return hertz_contact()
+@pytest.fixture(scope="module", params=["hertz", "flat"])
+def contact(request):
+    return {"hertz": hertz_contact, "flat": rounded_flat_contact}[request.param]()
 
 
 @pytest.fixture(scope="module")
@@ -27,14 +27,15 @@ def recede(contact):
 
 
 def test_the_default_is_exact_where_jaeger_applies(contact):
-    """A varying P with Q on Hertz: Jaeger's superposition; with sigma, on a rounded flat or under a prescribed
+    """A varying P with Q on Hertz or on a rounded flat: Jaeger's superposition; with sigma or under a prescribed
     displacement: method 4 on cells."""
     history = SCENES["recede"][0](contact)
     assert choose_model(contact, history) == Jaeger().resolved_for(contact, history)
     walk = SCENES["walk"][0](contact)
     assert choose_model(contact, walk).name == "varying"
     flat = rounded_flat_contact()
-    assert choose_model(flat, SCENES["recede"][0](flat)).name == "varying"
+    assert choose_model(flat, SCENES["recede"][0](flat)).name == "jaeger"
+    assert choose_model(flat, SCENES["walk"][0](flat)).name == "varying"
     assert choose_model(contact, history.displacements()).name == "varying"
     assert "bulk tension" in Jaeger().refusal(contact, walk)
 
