@@ -17,7 +17,6 @@ under a prescribed displacement.
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
@@ -25,7 +24,7 @@ import numpy as np
 
 from fretting.errors import GrossSlipError
 from fretting.models.base import Model, ModelSpec
-from fretting.models.normal import DEFAULT_CELLS, CellSurfaceStress, NormalOutcome, Varying, cell_centres
+from fretting.models.normal import DEFAULT_CELLS, CellFields, NormalOutcome, Varying, cell_centres
 from fretting.physics.superposition import Memory, Superposition, geometry
 
 if TYPE_CHECKING:
@@ -95,7 +94,7 @@ class Jaeger(ModelSpec):
         return cls(int(attrs["cells"]), float(attrs["half_width"]))
 
 
-class JaegerModel(Model):
+class JaegerModel(CellFields, Model):
     """Jaeger's superposition on a symmetric contact, at the cell centres of a resolved `Jaeger` spec (module
     docstring). Its memory (`Outcome.memory`) is `fretting.physics.superposition.Memory.flat`."""
 
@@ -170,21 +169,6 @@ class JaegerModel(Model):
         """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2]: zero, the slip being even in ``x``."""
         return 0.0
 
-    def dissipation_density(self, ds):
-        """``f p |ds|`` [J/m^2] under the contact's own load (`energy_density`: under an increment's)."""
-        return self.contact.f * self.pressure_at(self.contact.P) * np.abs(ds)
-
-    def energy_density(self, outcome):
-        return outcome.density
-
     def pressure_at(self, P):
         """The pressure [Pa] at the nodes under the load `P` [N/m] (`Geometry.pressure`)."""
         return self.geometry.pressure(self.x - self.contact.centre, P)
-
-    @functools.cached_property
-    def surface(self):
-        """The surface direct stress at the nodes (`CellSurfaceStress`) and the pressure of the contact's ``P`` [Pa]."""
-        return CellSurfaceStress(self.t), self.pressure_at(self.contact.P)
-
-    def surface_at(self, outcome):
-        return self.surface[0], self.pressure_at(outcome.P)

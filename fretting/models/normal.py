@@ -236,7 +236,27 @@ class NormalOutcome(Outcome):
     locked: np.ndarray | None = None
 
 
-class NormalModel(Model):
+class CellFields:
+    """The energy density and the surface stress of a model of a varying ``P`` on the cells of `cell_centres`
+    (`t`), from its `pressure_at(P)` [Pa] at them: `NormalModel`'s and `fretting.models.jaeger.JaegerModel`'s."""
+
+    def dissipation_density(self, ds):
+        """``f p |ds|`` [J/m^2] under the contact's own load (`energy_density`: under an increment's)."""
+        return self.contact.f * self.pressure_at(self.contact.P) * np.abs(ds)
+
+    def energy_density(self, outcome):
+        return outcome.density
+
+    @functools.cached_property
+    def surface(self):
+        """The surface direct stress at the nodes (`CellSurfaceStress`) and the pressure of the contact's ``P`` [Pa]."""
+        return CellSurfaceStress(self.t), self.pressure_at(self.contact.P)
+
+    def surface_at(self, outcome):
+        return self.surface[0], self.pressure_at(outcome.P)
+
+
+class NormalModel(CellFields, Model):
     """A contact whose normal load varies, on the cells of a resolved `Varying` spec (module docstring).
 
     Attributes
@@ -543,21 +563,6 @@ class NormalModel(Model):
         m = self.pairs(outcome.P)
         x = self.x[self.cells(m)] - self.contact.centre
         return float(np.pi / 4 * np.dot(self.punch(m), outcome.slip[self.cells(m)] * x))
-
-    def dissipation_density(self, ds):
-        """``f p |ds|`` [J/m^2] under the contact's own load (`energy_density`: under an increment's)."""
-        return self.contact.f * self.pressure_at(self.contact.P) * np.abs(ds)
-
-    def energy_density(self, outcome):
-        return outcome.density
-
-    @functools.cached_property
-    def surface(self):
-        """The surface direct stress at the nodes (`CellSurfaceStress`) and the pressure of the contact's ``P`` [Pa]."""
-        return CellSurfaceStress((self.x - self.contact.centre) / self.contact.a), self.pressure_at(self.contact.P)
-
-    def surface_at(self, outcome):
-        return self.surface[0], self.pressure_at(outcome.P)
 
 
 def _recent(kept, key, compute, limit=math.inf, size=None, alone=False):
