@@ -12,9 +12,9 @@ history moves, and its own conditions hold):
    stick ends of the recorded steps, within the default's bounds of nodes and work, a fallback
    recorded and said where it passes them (`fretting.models.galerkin.model.Mesh.default_model`);
 4. where the history varies the normal load ``P``, which none of those follows, on a symmetric contact
-   that grows with the load (Hertz, the rounded flat) without ``sigma`` and without a prescribed
-   displacement: the exact model of Jaeger's superposition (`Jaeger()`); where the answer is known in
-   closed form it is not solved for;
+   that grows with the load (Hertz, the rounded flat) without ``sigma``, under force or displacement
+   control: the exact model of Jaeger's superposition (`Jaeger()`); where the answer is known in closed
+   form it is not solved for;
 5. otherwise where it varies ``P``, method 4 on cells fixed in ``x`` over its largest contact
    (`Varying()`); so too where it prescribes the displacement ``delta`` with a ``sigma`` off the
    in-phase line, whose ``Q`` of every step the mesh cannot adapt to before the run (`Mesh.holds_for`).

@@ -232,7 +232,7 @@ class ModelSpec(abc.ABC):
 #: slide (`Model.slides`).
 UNFOLLOWED = (
     "under displacement control fretting.models.Exact (Q alone), Grid, Mesh and Varying (Q and sigma) follow "
-    "gross slip under a constant P"
+    "gross slip, and Varying and Jaeger (P and Q) under a varying P"
 )
 
 

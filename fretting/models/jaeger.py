@@ -11,8 +11,8 @@ over its slipping phases, the stick zone and the energy of the increment exactly
 (docs/theory/normal-load.md#jaegers-superposition).
 
 Method 4 on those cells (`Varying`) converges to it at every step (tests/models/test_jaeger.py,
-benchmarks/varying_accuracy.py), and runs where this model does not: with ``sigma``, on other profiles,
-under a prescribed displacement.
+benchmarks/varying_accuracy.py), and runs where this model does not: with ``sigma`` and on other profiles.
+Under a prescribed displacement the contact may slide whole (`JaegerModel.slide`), as on the cells.
 """
 
 from __future__ import annotations
@@ -85,8 +85,6 @@ class Jaeger(ModelSpec):
             return f"{contact.profile!r} is not a symmetric profile whose contact grows with the load"
         if history is not None and history.largest_loads()[1] > 0:
             return "the history has a bulk tension sigma"
-        if history is not None and history.displaced:
-            return "it prescribes the displacement delta, whose gross slip this model does not follow"
         return Varying(self.cells, self.half_width).holds_for(contact, history)
 
     @classmethod
@@ -113,57 +111,87 @@ class JaegerModel(CellFields, Model):
         memory = Memory.from_flat(state.memory, self.geometry, self.contact.a) if state.memory else None
         return Superposition(self.geometry, P, state.Q, memory)
 
-    def _outcome(self, superposition, ds, dissipation, density, stick):
-        """The fields of the memory as the state keeps it (`Memory.flat`): a run continued from the state gives the
-        same at its first step."""
+    def _outcome(self, superposition, ds, dissipation, density, zone, slid):
+        """The fields of the memory as the state keeps it (`Memory.flat`), so that a run continued from the state
+        gives the same at its first step, the slip offset by the uniform slide `slid` [m] of the contact; `zone`:
+        the half-width [m] of the stick zone (None: none is left, the contact slides)."""
         flat, X = superposition.memory.flat(self.contact.a), self.x - self.contact.centre
         memory = Memory.from_flat(flat, self.geometry, self.contact.a)
-        end = memory.a if stick is None else stick
         return NormalOutcome(
             memory.traction(X),
             ds,
-            memory.slip(X),
+            memory.slip(X) + slid,
             dissipation,
+            slid=slid,
             memory=flat,
-            zones=[(-end / self.contact.a, end / self.contact.a)],
+            zones=[] if zone is None else [(-zone / self.contact.a, zone / self.contact.a)],
             P=superposition.P,
             density=density,
         )
 
     def at_rest(self, state):
-        zero = np.zeros(self.x.size)
-        return self._outcome(self._contact(state), zero, 0.0, zero, None)
+        superposition, zero = self._contact(state), np.zeros(self.x.size)
+        return self._outcome(superposition, zero, 0.0, zero, superposition.memory.a, state.slid)
 
     def increment(self, state, loads, guess=None):
         """The increment to the loads ``Q``, ``P`` [N/m] (`Superposition.advance`): its slip and energy density at
-        the nodes, summed over its slipping phases (`Phase.at`); exactly zero slip where a node stuck. The
-        loads' ``sigma`` must be zero."""
+        the nodes, summed over its slipping phases (`Phase.at`); exactly zero slip where a node stuck. At ``|Q| =
+        f P``, the contact on the point of sliding (`slide`). The loads' ``sigma`` must be zero."""
+        if abs(loads.Q) >= self.sliding_force(loads.normal(self.contact)):
+            return self.slide(state, loads, 0.0)
+        return self._advanced(state, loads, loads.Q, 0.0)
+
+    #: The contact follows gross slip under displacement control (`slide`).
+    slides = True
+
+    def slide(self, state, loads, du):
+        """`Outcome` of gross slip: the increment to ``Q = +-f P`` of the loads' ``P``, where every band of the
+        memory is at the limit, then the uniform slide `du` [m] (the sign of ``Q``) of the contact. The slide
+        dissipates ``f P |du|`` under the step's end load, or ``f (P_begin + P_end) |du| / 2`` (the trapezoidal rule
+        in ``P``) where the contact slid that way already at the step's beginning, as `Varying` takes it."""
+        P = loads.normal(self.contact)
+        return self._advanced(state, loads, np.copysign(self.sliding_force(P), loads.Q), du)
+
+    def _advanced(self, state, loads, Q, du):
+        """The increment from `state` to `Q` [N/m] and the loads' ``P``, then slid by `du` [m] (`slide`)."""
         if loads.sigma:
             raise ValueError(f"sigma = {loads.sigma!r} Pa: Jaeger's superposition holds without a bulk tension")
         superposition, P = self._contact(state), loads.normal(self.contact)
         try:
-            step = superposition.advance(P, loads.Q)
+            step = superposition.advance(P, Q)
         except ValueError:
             raise GrossSlipError(None, loads.Q, loads.sigma, self.contact.f * P) from None
+        X = self.x - self.contact.centre
         ds, density = np.zeros(self.x.size), np.zeros(self.x.size)
         for phase in step.phases:
-            slip, w = phase.at(self.x - self.contact.centre)
+            slip, w = phase.at(X)
             ds += slip
             density += w
-        return self._outcome(superposition, ds, step.energy, density, step.stick)
+        energy, zone = step.energy, superposition.memory.a if step.stick is None else step.stick
+        if du:
+            P_begin = self.contact.P if state.P is None else state.P
+            already = np.sign(Q) * state.Q >= self.sliding_force(P_begin)
+            p = self.pressure_at(P)
+            ds += np.where(p > 0, du, 0.0)
+            mean = (self.pressure_at(P_begin) + p) / 2 if already else p
+            density += self.contact.f * mean * np.where(p > 0, abs(du), 0.0)
+            energy += self.contact.f * ((P_begin + P) / 2 if already else P) * abs(du)
+            zone = None
+        return self._outcome(superposition, ds, energy, density, zone, state.slid + du)
 
     def traction(self, outcome):
         """Shear traction [Pa] at the nodes (the memory's, exact)."""
         return outcome.g
 
     def stick_zones(self, outcome, state):
-        """The stick zone ``[-c, c]`` in ``t`` of the increment: the innermost end of its slip zones (the contact
-        where it slipped nowhere)."""
+        """The stick zone ``[-c, c]`` in ``t`` of the increment: the innermost point that slipped (the contact where
+        it slipped nowhere; none where it slid whole)."""
         return outcome.zones
 
     def delta_Q(self, outcome):
-        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m] of the memory (`Memory.delta_Q`)."""
-        return Memory.from_flat(outcome.memory, self.geometry, self.contact.a).delta_Q()
+        """``int s / (pi sqrt(a^2 - x^2)) dx`` [m]: the memory's (`Memory.delta_Q`, of ``s - s(0)``) and the uniform
+        slide of the contact, ``s(0)``."""
+        return Memory.from_flat(outcome.memory, self.geometry, self.contact.a).delta_Q() + outcome.slid
 
     def delta_sigma(self, outcome):
         """``int s x / (4 sqrt(a^2 - x^2)) dx`` [m^2]: zero, the slip being even in ``x``."""

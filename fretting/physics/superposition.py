@@ -67,7 +67,8 @@ __all__ = ["Geometry", "HertzGeometry", "Memory", "Phase", "Step", "Superpositio
 POINTS = 48
 
 #: Rate of ``Q`` off the ratio of the band at a receding edge [of ``|dQ| + f |dP|``] below which nothing slips,
-#: and the fraction of an increment within which its end counts as reached: rounding of the loads.
+#: the fraction of an increment within which its end counts as reached, and the share of ``f P`` within which
+#: the shear counts as at it (`Bands.inverse`): rounding of the loads.
 ROUNDING = 1e-12
 
 
@@ -296,10 +297,11 @@ class Memory:
 class Bands:
     """The bands ``(edges, ratio)`` of the memory below the inner end ``c0 = edges[-1]`` of a slip zone of
     ``lambda = limit`` (``s f``), and the relation ``g(c) = int_b^c lambda dP(c) - limit P(c) = Q - limit P``
-    that places its inner end ``c`` (module docstring)."""
+    that places its inner end ``c`` (module docstring); `allowance` [N/m]: the rounding of ``Q - limit P`` within
+    which a shear past ``f P`` counts as at it, the point of sliding."""
 
-    def __init__(self, edges, ratio, limit, geometry):
-        self.edges, self.ratio, self.limit, self.geometry = edges, ratio, limit, geometry
+    def __init__(self, edges, ratio, limit, geometry, allowance=0.0):
+        self.edges, self.ratio, self.limit, self.geometry, self.allowance = edges, ratio, limit, geometry, allowance
         self.loads = geometry.load(edges)
         self.cumulative = np.concatenate([[0.0], np.cumsum(np.diff(self.loads) * ratio)])
 
@@ -316,12 +318,19 @@ class Bands:
         load = self.geometry.load(c)
         return self.below(load) - self.limit * load
 
+    def held(self, G):
+        """``G = Q - limit P`` [N/m] (arrays), past the point of sliding within the `allowance` held at it. Raises
+        ValueError where it is past it by more (gross slip)."""
+        G, s = np.asarray(G, dtype=float), np.sign(self.limit)
+        if np.any(s * G > self.allowance):
+            raise ValueError("gross sliding: the shear passes f P, no stick zone is left")
+        return s * np.minimum(s * G, 0.0)
+
     def inverse(self, G):
         """The largest ``c`` [m] with ``g(c) = G`` [N/m] (arrays; ``s g`` falls as ``c`` grows, flat over a band at
-        the limit). Raises ValueError where none is left (gross slip)."""
-        G, s = np.asarray(G, dtype=float), np.sign(self.limit)
-        if np.any(s * G > 0):
-            raise ValueError("gross sliding: the shear passes f P, no stick zone is left")
+        the limit; ``b`` at ``G = 0``, the point of sliding, to the `allowance`). Raises ValueError where none is
+        left (gross slip)."""
+        G, s = self.held(G), np.sign(self.limit)
         falling = s * self.g(self.edges)
         k = falling.size - np.searchsorted(falling[::-1], s * G, side="left") - 1  # the last edge with s g >= s G
         band = np.minimum(k, self.ratio.size - 1)
@@ -470,8 +479,10 @@ class Superposition:
         a1 = float(self.geometry.half_width(self._at(1.0)[0]))
         if dP > 0:
             r = dQ / dP
-            if abs(r) > f:
+            if abs(r) > f * (1 + ROUNDING):
                 return tau, np.sign(r)
+            if abs(r) >= f * (1 - ROUNDING):  # at the limit to rounding: the band joins a slip zone at the edge
+                r = np.sign(r) * f
             self._set(np.append(edges, a1), np.append(ratio, r))
             return 1.0, 0
         slope = dQ - ratio[-1] * dP
@@ -494,10 +505,15 @@ class Superposition:
         run = ratio[-1] == s * f  # the slip zone of sign s already at the edge goes on from its inner end
         c0 = float(edges[-2] if run else edges[-1])
         inner = np.count_nonzero(edges < c0)
-        bands = Bands(np.append(edges[:inner], c0), ratio[:inner], s * f, self.geometry)
+        allowance = ROUNDING * f * max(P0, P0 + dP)
+        bands = Bands(np.append(edges[:inner], c0), ratio[:inner], s * f, self.geometry, allowance)
         K = dQ - s * f * dP  # the rate of Q - s f P, which the slip zone's growth carries
-        end = min(1.0, self._overtaken(bands, tau)) if dP < 0 else 1.0
         G0 = Q0 - s * f * P0
+        if inner == 0:  # every band at the limit: on the point of sliding, held to the end within the allowance
+            bands.held(G0 + K)
+            self._set(np.array([c0, float(self.geometry.half_width(P0 + dP))]), np.array([s * f]))
+            return 1.0, Phase(bands, c0, c0, P0, dP, G0, K)
+        end = min(1.0, self._overtaken(bands, tau)) if dP < 0 else 1.0
         c1 = float(bands.inverse(G0 + end * K))
         a1 = float(self.geometry.half_width(self._at(end)[0]))
         if end < 1:  # the contact receded past the slip zone: the bands below its edge carry the shear

@@ -102,6 +102,10 @@ def whole_cells(contact):
 
 
 def test_gross_slip_under_a_varying_load_slides_at_f_P(contact, slid):
+    assert_slides_at_f_P(contact, slid)
+
+
+def assert_slides_at_f_P(contact, slid):
     """In and out of gross slip both ways: ``Q = +-f P`` of the step's load at every sliding step, and each
     step that slides from a sliding state dissipates ``f (P_begin + P_end) |du| / 2`` (``du`` the uniform slip
     increment, taken at the middle node; the trapezoidal rule in P of ``int f p |ds| dx``) to 1e-12."""

@@ -1,9 +1,10 @@
 """The exact model of a varying P and Q (fretting.models.Jaeger), on Hertz and on a rounded flat: the default where
 it applies, method 4 on cells converging to it at every step, its energy density, a run continued from its state
-and one stepped increment by increment, bit for bit."""
+and one stepped increment by increment, bit for bit; under displacement control, in and out of gross slip."""
 
 import numpy as np
 import pytest
+from engine.test_displacement_varying_load import L, assert_slides_at_f_P, prescribed, sliding_cycle
 from harness import hertz_contact, rounded_flat_contact
 from varying_accuracy import SCENES, PackageRun, compare
 
@@ -27,8 +28,8 @@ def recede(contact):
 
 
 def test_the_default_is_exact_where_jaeger_applies(contact):
-    """A varying P with Q on Hertz or on a rounded flat: Jaeger's superposition; with sigma or under a prescribed
-    displacement: method 4 on cells."""
+    """A varying P with Q on Hertz or on a rounded flat, under force or displacement control: Jaeger's
+    superposition; with sigma: method 4 on cells."""
     history = SCENES["recede"][0](contact)
     assert choose_model(contact, history) == Jaeger().resolved_for(contact, history)
     walk = SCENES["walk"][0](contact)
@@ -36,7 +37,7 @@ def test_the_default_is_exact_where_jaeger_applies(contact):
     flat = rounded_flat_contact()
     assert choose_model(flat, SCENES["recede"][0](flat)).name == "jaeger"
     assert choose_model(flat, SCENES["walk"][0](flat)).name == "varying"
-    assert choose_model(contact, history.displacements()).name == "varying"
+    assert choose_model(contact, history.displacements()).name == "jaeger"
     assert "bulk tension" in Jaeger().refusal(contact, walk)
 
 
@@ -98,3 +99,64 @@ def test_stepping_one_increment_at_a_time_equals_simulate(contact, recede):
         energy.append(outcome.dissipation)
     np.testing.assert_array_equal(np.array(slips), whole.slip.values)
     np.testing.assert_array_equal(np.array(energy), whole.dissipation.values)
+
+
+@pytest.fixture(scope="module")
+def datum(contact):
+    """`contact` with the datum of tests/engine/test_displacement_varying_load.py: displacement control."""
+    return fr.Contact(contact.profile, contact.E_star, contact.f, contact.P, datum=L)
+
+
+@pytest.fixture(scope="module")
+def slid(datum):
+    """`sliding_cycle`: ``delta`` to twice the transition displacement and back under a varying P, by default."""
+    return fr.simulate(datum, sliding_cycle(datum))
+
+
+def test_force_and_displacement_control_agree(datum):
+    """``P = P0 (1 + 0.3 sin)``, ``Q = 0.5 f P0 sin`` under force control, then its recorded delta prescribed with
+    the same P: the Q found at every step is the history's to 1e-14 of ``f P0`` (Brent's bracket), the slip and
+    each step's energy the same to 1e-12 (`delta_Q` of the memory is the displacement's slip part)."""
+    fP, t = datum.f * datum.P, np.linspace(0.0, 2 * np.pi, 25)
+    history = fr.History(0.5 * fP * np.sin(t), np.zeros(t.size), [0, t.size - 1], None, datum.P * (1 + 0.3 * np.sin(t)))
+    forced = fr.simulate(datum, history)
+    assert forced.attrs["model"] == "jaeger" and 1 in forced.regime.values
+    moved = fr.simulate(datum, prescribed(history, forced.delta.values))
+    assert moved.attrs["model"] == "jaeger"
+    assert np.max(np.abs(moved.Q.values - forced.Q.values)) < 1e-14 * fP
+    assert np.max(np.abs(moved.slip.values - forced.slip.values)) < 1e-12 * np.abs(forced.slip.values).max()
+    energy = forced.dissipation.values
+    assert np.max(np.abs(moved.dissipation.values - energy)) < 1e-12 * energy.max()
+
+
+def test_under_displacement_control_it_slides_at_f_P(datum, slid):
+    """By default, the gross slip of the cells' test: ``Q = +-f P`` at every sliding step under a rising and a
+    falling P, and the trapezoidal rule in P of a slide's energy (`assert_slides_at_f_P`)."""
+    assert slid.attrs["model"] == "jaeger"
+    assert_slides_at_f_P(datum, slid)
+
+
+def test_cells_converge_to_it_under_displacement_control(datum, slid):
+    """`Varying` on 128 then 512 cells, the same cycle: the regime of every step the default's, and the largest
+    distance from it of ``Q`` [f P0] and of the energy up to a step [of the history's] at least halved."""
+    fP, total = datum.f * datum.P, slid.dissipation.values.sum()
+    distances = []
+    for cells in (128, 512):
+        cells_run = fr.simulate(datum, sliding_cycle(datum), Varying(cells))
+        assert np.array_equal(cells_run.regime.values, slid.regime.values)
+        energy = np.cumsum(cells_run.dissipation.values) - np.cumsum(slid.dissipation.values)
+        distances.append((np.abs(cells_run.Q.values - slid.Q.values).max() / fP, np.abs(energy).max() / total))
+    assert distances[1][0] < distances[0][0] / 2 and distances[1][1] < distances[0][1] / 2
+
+
+@pytest.mark.parametrize("k", [6, 14, 30])
+def test_a_slide_split_anywhere_resumes_bit_for_bit(datum, slid, k):
+    """Split at the first slide, at the first step stuck again, in the middle of a slide: the same ``Q``, ``delta``
+    and slip at every later step, and the same energy and regime of every later increment."""
+    history = sliding_cycle(datum)
+    first = fr.simulate(datum, history[: k + 1], Jaeger().resolved_for(datum, history))
+    later = fr.simulate(datum, history[k:], state=final_state(first))
+    for name in ("Q", "delta", "slip"):
+        np.testing.assert_array_equal(later[name].values, slid[name].values[k:], err_msg=name)
+    for name in ("dissipation", "regime"):
+        np.testing.assert_array_equal(later[name].values[1:], slid[name].values[k + 1 :], err_msg=name)
