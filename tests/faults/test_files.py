@@ -42,15 +42,40 @@ def digest(path):
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
+#: The files of `folder`: the histories, the uninterrupted result and the earlier result.
+FOLDER_FILES = ("long.toml", "earlier.toml", "whole.h5", "out.h5")
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    """``cycles -> folder`` holding `FOLDER_FILES` for `sine` of `cycles`, each run once in this module
+    (by the same commands, from the same relative names, as a test's folder would)."""
+    made = {}
+
+    def folder_of(cycles):
+        if cycles not in made:
+            where = tmp_path_factory.mktemp(f"sine_{cycles}")
+            (where / "long.toml").write_text(sine(cycles))
+            (where / "earlier.toml").write_text(EARLIER)
+            with contextlib.chdir(where):
+                assert run("run", "long.toml", "-o", "whole.h5", *NODES) == 0
+                assert run("run", "earlier.toml", "-o", "out.h5", *NODES) == 0
+            assert sorted(path.name for path in where.iterdir()) == sorted(FOLDER_FILES)
+            made[cycles] = where
+        return made[cycles]
+
+    return folder_of
+
+
 @pytest.fixture
-def folder(request, tmp_path, monkeypatch):
+def folder(request, tmp_path, monkeypatch, runs):
     """A working folder with the history ``long.toml`` (`sine` of 20 cycles, or of the parameter), its
-    uninterrupted result ``whole.h5`` and an earlier result ``out.h5`` in the place the faulty runs write."""
+    uninterrupted result ``whole.h5`` and an earlier result ``out.h5`` in the place the faulty runs write:
+    copies of the files `runs` wrote, a fresh folder for each test."""
     monkeypatch.chdir(tmp_path)
-    (tmp_path / "long.toml").write_text(sine(getattr(request, "param", 20)))
-    (tmp_path / "earlier.toml").write_text(EARLIER)
-    assert run("run", "long.toml", "-o", "whole.h5", *NODES) == 0
-    assert run("run", "earlier.toml", "-o", "out.h5", *NODES) == 0
+    source = runs(getattr(request, "param", 20))
+    for name in FOLDER_FILES:
+        shutil.copy2(source / name, tmp_path / name)
     return tmp_path
 
 
