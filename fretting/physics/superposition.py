@@ -106,8 +106,11 @@ def J(c, a):
 
 
 #: Newton iterations at most of `Geometry.half_width`: from the right of a convex load they fall monotonically to
-#: the root, quadratically but near the flat's edge, where ``P ~ (a - b)^(3/2)`` takes a third off each.
+#: the root (from its left, the first step crosses it), quadratically but near the flat's edge, where
+#: ``P ~ (a - b)^(3/2)`` takes a third off each; and the loads whose half-widths, interpolated, start the
+#: iteration for more loads than these.
 NEWTON = 200
+STARTS = 64
 
 
 @dataclass(frozen=True)
@@ -139,21 +142,28 @@ class Geometry:
         return 2 * self.profile.load_slope(c, self.E_star) / (np.pi * self.E_star)
 
     def half_width(self, P):
-        """Half-width [m] of the contact under the load `P` [N/m] (arrays): Newton's iteration on `load` from the
-        half-width of the largest ``P``, the profile's; ``b`` where ``P <= 0``."""
+        """Half-width [m] of the contact under the load `P` [N/m] (arrays): Newton's iteration on `load`, each load
+        until its step is rounding, from the half-width of the largest ``P`` (the profile's) or, for more than
+        `STARTS` loads, from the interpolation of `STARTS` of them across their range; ``b`` where ``P <= 0``."""
         P = np.asarray(P, dtype=float)
-        top = float(np.max(P, initial=0.0))
-        if top <= 0:
-            return np.full(P.shape, self.b)
-        a = np.full(P.shape, float(self.profile.half_width(top, self.E_star)[0]))
-        live = P > 0
+        a, live = np.full(P.shape, self.b), P > 0
+        if not live.any():
+            return a
+        loads = P[live]
+        if loads.size > STARTS:
+            table = np.linspace(loads.min(), loads.max(), STARTS)
+            root = np.interp(loads, table, self.half_width(table))
+        else:
+            root = np.full(loads.size, float(self.profile.half_width(loads.max(), self.E_star)[0]))
+        moving = np.arange(loads.size)
         for _ in range(NEWTON):
-            with np.errstate(divide="ignore", invalid="ignore"):
-                step = np.where(live, (self.load(a) - P) / self.profile.load_slope(a, self.E_star), 0.0)
-            a = np.maximum(a - step, self.b)
-            if np.all(np.abs(step) <= 4 * np.finfo(float).eps * a):
+            step = (self.load(root[moving]) - loads[moving]) / self.profile.load_slope(root[moving], self.E_star)
+            root[moving] = np.maximum(root[moving] - step, self.b)
+            moving = moving[np.abs(step) > 4 * np.finfo(float).eps * root[moving]]
+            if moving.size == 0:
                 break
-        return np.where(live, a, self.b)
+        a[live] = root
+        return a
 
     def within(self, x, c):
         """``p_c(x)`` [Pa]: the pressure at `x` [m] from the centre of the contact of half-width `c` [m] (arrays,
