@@ -167,17 +167,28 @@ class JaegerModel(CellFields, Model):
             slip, w = phase.at(X)
             ds += slip
             density += w
-        energy, zone = step.energy, superposition.memory.a if step.stick is None else step.stick
-        if du:
-            P_begin = self.contact.P if state.P is None else state.P
-            already = np.sign(Q) * state.Q >= self.sliding_force(P_begin)
-            p = self.pressure_at(P)
-            ds += np.where(p > 0, du, 0.0)
-            mean = (self.pressure_at(P_begin) + p) / 2 if already else p
-            density += self.contact.f * mean * np.where(p > 0, abs(du), 0.0)
-            energy += self.contact.f * ((P_begin + P) / 2 if already else P) * abs(du)
-            zone = None
-        return self._outcome(superposition, ds, energy, density, zone, state.slid + du)
+        if not du:
+            zone = superposition.memory.a if step.stick is None else step.stick
+            return self._outcome(superposition, ds, step.energy, density, zone, state.slid)
+        slide, slide_density, slide_energy = self._slid(state, P, Q, du)
+        energy = step.energy + slide_energy
+        return self._outcome(superposition, ds + slide, energy, density + slide_density, None, state.slid + du)
+
+    def _slid(self, state, P, Q, du):
+        """``(ds, w, W)`` of the uniform slide `du` [m] of the contact at the load `P` [N/m] in the direction of `Q`:
+        ``du`` at the nodes in contact, ``f p |du|`` [J/m^2] there and ``f P |du|`` [J/m], the pressure and the load
+        the mean of the step's ends where the contact slid that way at its beginning (`slide`)."""
+        P_begin = self.contact.P if state.P is None else state.P
+        already = np.sign(Q) * state.Q >= self.sliding_force(P_begin)
+        p = self.pressure_at(P)
+        inside = p > 0
+        mean = (self.pressure_at(P_begin) + p) / 2 if already else p
+        load = (P_begin + P) / 2 if already else P
+        return (
+            np.where(inside, du, 0.0),
+            self.contact.f * mean * np.where(inside, abs(du), 0.0),
+            self.contact.f * load * abs(du),
+        )
 
     def traction(self, outcome):
         """Shear traction [Pa] at the nodes (the memory's, exact)."""
