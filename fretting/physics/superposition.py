@@ -42,10 +42,10 @@ The energy of a slipping phase is ``int f p |ds| dx`` with the pressure ``p`` at
 
 by Gauss-Legendre quadrature in ``c`` between the band edges, at a point ``x`` the slip and the energy density
 are the same integrals over ``c`` alone (`Phase.at`), and by the same swap of integrals ``delta_Q`` is
-``sum_j lambda_j int m(c) ln(a / c) dc`` over the bands (`Memory.delta_Q`). On Hertz, the slip, the punch
-energy and ``delta_Q`` are closed forms (`HertzGeometry`); on another profile, Gauss-Legendre quadratures in
-variables that make their square roots smooth (`Geometry`). Exact to rounding on Hertz, to the quadrature's
-convergence elsewhere (tests/physics/test_superposition.py: Cattaneo-Mindlin and Mindlin's energy on both
+``sum_j lambda_j int m(c) ln(a / c) dc`` over the bands (`Memory.delta_Q`). On Hertz, the slip of the
+bands and ``delta_Q`` are closed forms (`HertzGeometry`); otherwise, and for the punch energy, Gauss-Legendre
+quadratures in variables that make their square roots smooth (`Geometry`). Exact to rounding on Hertz, to the
+quadratures' convergence elsewhere (tests/physics/test_superposition.py: Cattaneo-Mindlin and Mindlin's energy on both
 profiles, Jaeger's proportional loading, the limit of sums over ever finer parts, the quadratures against the
 closed forms, and method 4 on cells converging to it).
 """
@@ -61,7 +61,7 @@ from fretting.physics.profiles import Hertz, Profile
 
 __all__ = ["Geometry", "HertzGeometry", "Memory", "Phase", "Step", "Superposition", "geometry"]
 
-#: Gauss-Legendre points of each quadrature (`J`, `Bands.energy`, `Phase.at`, `Memory.delta_Q`): their integrands
+#: Gauss-Legendre points of each quadrature (`Geometry`'s, `Phase.energy`, `Phase.at`): their integrands
 #: are smooth in the variables used, so that half as many change the energy by rounding only
 #: (tests/physics/test_superposition.py).
 POINTS = 48
@@ -96,13 +96,10 @@ def _arccosh(x, c, width):
     return np.log1p((width + np.sqrt(width * (x + c))) / c)
 
 
-def J(c, a):
-    """``int_c^a sqrt(a^2 - x^2) arccosh(x / c) dx`` [m^2] for ``0 < c <= a`` (arrays), by Gauss-Legendre in
-    ``x = c + (a - c) sin^2(theta)``, which makes both ends smooth."""
-    c, width = np.asarray(c)[..., None], np.maximum(np.asarray(a) - np.asarray(c), 0.0)[..., None]  # a >= c, rounded
-    x = c + width * _SIN**2
-    root = _COS * np.sqrt(width * (x + c + width))  # sqrt(a^2 - x^2): a - x = width cos^2, a + x = x + c + width
-    return np.sum(_WPHI * root * _arccosh(x, c, width * _SIN**2) * 2 * width * _SIN * _COS, axis=-1)
+def _stretched(low, width):
+    """``(t, dt)``: the Gauss-Legendre nodes of ``[low, low + width]`` in ``t = low + width sin^2(theta)``, which
+    makes a square root at either end smooth, and their weights in ``t`` (arrays, the nodes on a last axis)."""
+    return low + width * _SIN**2, _WPHI * 2 * width * _SIN * _COS
 
 
 #: Newton iterations at most of `Geometry.half_width`: from the right of a convex load they fall monotonically to
@@ -186,8 +183,7 @@ class Geometry:
         c, x = np.broadcast_arrays(np.maximum(c, self.b), np.abs(np.asarray(x, dtype=float)))
         S, live = np.zeros(x.shape), x > c
         c, x = c[live][:, None], x[live][:, None]
-        t = c + (x - c) * _SIN**2
-        dt = _WPHI * 2 * (x - c) * _SIN * _COS
+        t, dt = _stretched(c, x - c)
         S[live] = np.sum(self.slope(t) * _arccosh(x, t, (x - c) * _COS**2) * dt, axis=-1)
         return S
 
@@ -195,23 +191,23 @@ class Geometry:
         """``int_c^a p_a(x) arccosh(x / c) dx = (1/2) int_c^a P'(t) ln(t / c) dt`` [N] for ``b <= c <= a`` (arrays;
         module docstring), by Gauss-Legendre in ``t = c + (a - c) sin^2(theta)``."""
         c = np.asarray(c, dtype=float)[..., None]
-        width = np.maximum(np.asarray(a, dtype=float)[..., None] - c, 0.0)
-        t = c + width * _SIN**2
-        dt = _WPHI * 2 * width * _SIN * _COS
+        width = np.maximum(np.asarray(a, dtype=float)[..., None] - c, 0.0)  # a >= c, but for rounding
+        t, dt = _stretched(c, width)
         return np.sum(self.profile.load_slope(t, self.E_star) * np.log1p(width * _SIN**2 / c) * dt, axis=-1) / 2
 
     def compliance(self, low, high, a):
         """``int_low^high m(c) ln(a / c) dc`` [m^2] (arrays): the ``delta_Q`` of a band of ``lambda = 1`` of the
         contact of half-width `a` [m], by Gauss-Legendre in ``c = low + (high - low) sin^2(theta)``."""
         low = np.asarray(low, dtype=float)[..., None]
-        width = np.asarray(high, dtype=float)[..., None] - low
-        c = low + width * _SIN**2
-        return np.sum(self.slope(c) * np.log(a / c) * _WPHI * 2 * width * _SIN * _COS, axis=-1)
+        c, dc = _stretched(low, np.asarray(high, dtype=float)[..., None] - low)
+        return np.sum(self.slope(c) * np.log(a / c) * dc, axis=-1)
 
 
 class HertzGeometry(Geometry):
-    """A plane Hertz contact (`fretting.physics.profiles.Hertz`), whose integrals are closed forms: ``m(c) = c /
-    R``, ``p_c(x) = (E_star / 2R) sqrt(c^2 - x^2)``."""
+    """A plane Hertz contact (`fretting.physics.profiles.Hertz`), whose slip of the bands and ``delta_Q`` are closed
+    forms (``m(c) = c / R``, ``p_c(x) = (E_star / 2R) sqrt(c^2 - x^2)``): the slip is evaluated at every node of
+    every step, and the quadrature of ``delta_Q`` would meet the logarithm at ``c = b = 0``. The punch energy is
+    `Geometry`'s, whose integrand ``t ln(t / c)`` is smooth."""
 
     @property
     def R(self) -> float:
@@ -235,10 +231,6 @@ class HertzGeometry(Geometry):
         """``int_c^x sqrt(t^2 - c^2) dt / R`` (`_F`), zero for ``x <= c``."""
         c, x = np.broadcast_arrays(np.asarray(c, dtype=float), np.abs(np.asarray(x, dtype=float)))
         return np.where(x > c, _F(np.maximum(x, c), c), 0.0) / self.R
-
-    def punch_energy(self, c, a):
-        """``(E_star / 2R) J(c, a)``."""
-        return self.E_star / (2 * self.R) * J(c, a)
 
     def compliance(self, low, high, a):
         """``(L(high) - L(low)) / R`` with ``L(c) = c^2 ln(a / c) / 2 + c^2 / 4``."""
@@ -414,8 +406,7 @@ class Phase:
             if live.size == 0:
                 continue
             Xl, lo, span = X[live, None], lo[live, None], (hi - lo)[live, None]
-            c = lo + span * _SIN**2  # both ends smooth: arccosh(|x|/c) and p vanish as square roots
-            dc = _WPHI * 2 * span * _SIN * _COS
+            c, dc = _stretched(lo, span)  # both ends smooth: arccosh(|x|/c) and p vanish as square roots
             rate = jump * h.slope(c) * _arccosh(Xl, c, Xl - c) * dc
             p = h.pressure(Xl, self.P(c))
             ds[live] += s * np.sum(rate, axis=1)
@@ -467,7 +458,8 @@ class Superposition:
                     )
                 if phase.c1 < phase.c0:
                     phases.append(phase)
-                    ends += [] if phase.end is None else [min(phase.end, self.memory.a)]
+                    end = phase.end
+                    ends += [] if end is None else [min(end, self.memory.a)]
         self.P, self.Q = float(P), float(Q)
         return Step(min(ends) if ends else None, sum(phase.energy() for phase in phases), tuple(phases))
 
