@@ -23,20 +23,20 @@ def contact(request):
 def recede(contact):
     """Cattaneo-Mindlin, the load lowered past the slip zones, Q reversed, the load raised over them and back
     (benchmarks/varying_accuracy.py), and the default's result."""
-    history = SCENES["recede"][0](contact)
+    history = SCENES["recede"](contact)
     return history, fr.simulate(contact, history)
 
 
 def test_the_default_is_exact_where_jaeger_applies(contact):
     """A varying P with Q on Hertz or on a rounded flat, under force or displacement control: Jaeger's
     superposition; with sigma: method 4 on cells."""
-    history = SCENES["recede"][0](contact)
+    history = SCENES["recede"](contact)
     assert choose_model(contact, history) == Jaeger().resolved_for(contact, history)
-    walk = SCENES["walk"][0](contact)
+    walk = SCENES["walk"](contact)
     assert choose_model(contact, walk).name == "varying"
     flat = rounded_flat_contact()
-    assert choose_model(flat, SCENES["recede"][0](flat)).name == "jaeger"
-    assert choose_model(flat, SCENES["walk"][0](flat)).name == "varying"
+    assert choose_model(flat, SCENES["recede"](flat)).name == "jaeger"
+    assert choose_model(flat, SCENES["walk"](flat)).name == "varying"
     assert choose_model(contact, history.displacements()).name == "jaeger"
     assert "bulk tension" in Jaeger().refusal(contact, walk)
 
