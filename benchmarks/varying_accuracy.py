@@ -19,8 +19,9 @@ the change between the two is printed, and must lie well below the targets.
 
 Figures, each the worst over the steps of a history (`compare`): stick ends [a of the step's contact],
 each end of the stick zone about the centre (with ``sigma`` it is not symmetric);
-the slip increment of the step at the nodes in contact at both of its ends, over its largest (over the
-history's largest where the step slips by less than `SLIVER` of that); the
+the slip increment of the step at the nodes in contact at both of its ends (against the self-reference, those
+between its own nodes in contact at both: beyond them its ``slip`` is the free surfaces' relative displacement),
+over its largest (over the history's largest where the step slips by less than `SLIVER` of that); the
 traction [f p0], leaving out `accuracy.BAND` a about the contact edges, the reference's stick ends at
 their signed positions and the former edges and stick ends the memory keeps (exact: where ``lambda``
 jumps by more than `KINK` f; self-reference: every stick end and contact edge of the steps so far); the
@@ -181,8 +182,13 @@ class PackageRun:
         self._x = result.x.values
 
     def slip(self, k, x):
+        """The slip increment [m] of step `k` at the points `x` [m], interpolated between the run's nodes in contact
+        at both ends of the step; NaN beyond them, where the run has no slip to compare (the ``slip`` of a node
+        out of contact is the relative displacement of the free surfaces there)."""
         r = self.result
-        return np.interp(x, self._x, r.slip.values[k] - r.slip.values[k - 1])
+        inside = np.abs(self._x) < min(r.a.values[k], r.a.values[k - 1])
+        ds = r.slip.values[k, inside] - r.slip.values[k - 1, inside]
+        return np.interp(x, self._x[inside], ds, left=np.nan, right=np.nan)
 
     def traction(self, k, x):
         return np.interp(x, self._x, self.result.q.values[k])
@@ -217,13 +223,14 @@ def compare(result, reference, contact):
     where = dict.fromkeys(TARGETS, 0)
     own = PackageRun(result)
     history_slip = max(
-        np.max(np.abs(reference.slip(k, x[np.abs(x) < min(a[k], a[k - 1])])), initial=0.0)
+        np.nanmax(np.abs(reference.slip(k, x[np.abs(x) < min(a[k], a[k - 1])])), initial=0.0)
         for k in range(1, result.sizes["step"])
     )
     for k in range(1, result.sizes["step"]):
         figures = {"stick": max(abs(u - v) for u, v in zip(own.ends(k), reference.ends(k), strict=True)) / a[k]}
-        both = np.abs(x) < min(a[k], a[k - 1])
+        both = np.flatnonzero(np.abs(x) < min(a[k], a[k - 1]))
         expected = reference.slip(k, x[both])
+        both, expected = both[~np.isnan(expected)], expected[~np.isnan(expected)]  # where the reference has a slip
         largest = np.max(np.abs(expected), initial=0.0)
         found = result.slip.values[k, both] - result.slip.values[k - 1, both]
         figures["slip"] = np.max(np.abs(found - expected)) / (
