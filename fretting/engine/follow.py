@@ -101,11 +101,14 @@ def displaced(model, state, loads, step=None):
     if (held.delta, held.sigma, held.P) == (loads.delta, loads.sigma, loads.P):
         return replace(loads, Q=held.Q)
     sliding = model.sliding_force(loads.normal(contact))
+    tried = {}  # Q: missed(Q), for Brent's method, which asks again for the bracket's ends
 
     def missed(Q):
         """``delta(Q) - delta`` [m] of the trial increment to `Q` [N/m] under the step's ``sigma`` and ``P``."""
-        trial = model.increment(state, Loads(Q, loads.sigma, loads.P))
-        return contact.displacement(Q, model.delta_Q(trial), loads.P) - loads.delta
+        if Q not in tried:
+            trial = model.increment(state, Loads(Q, loads.sigma, loads.P))
+            tried[Q] = contact.displacement(Q, model.delta_Q(trial), loads.P) - loads.delta
+        return tried[Q]
 
     begin = min(max(held.Q, -sliding), sliding)  # the state's Q, or the step's friction force where P fell
     start = missed(begin)
