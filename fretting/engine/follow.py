@@ -68,7 +68,12 @@ def displaced(model, state, loads, step=None):
     ``delta_Q(Q)`` that of the model's increment from `state` to ``Q`` with the loads' ``sigma`` and
     ``P``: a trial increment, which leaves `state` as it is (models are pure). ``delta(Q)`` increases
     with ``Q``, so ``Q`` is bracketed between the state's ``Q`` and ``+-(1 - BRACKET)`` times the
-    friction force of the step's ``P`` and found by Brent's method to the precision of a float.
+    friction force of the step's ``P`` and found by Brent's method to the precision of a float. Its
+    slip part ``delta_Q`` does not fall as ``Q`` grows either, so the ``Q`` that would meet ``delta``
+    if nothing more slipped, ``(C_L + C) dQ = ddelta``, lies at or past the one sought: the nearer
+    end of the bracket where it is nearer than the friction force (a small step then solves no trial
+    close to sliding); where rounding leaves it short, the search goes on from it. Each trial's
+    ``delta`` is kept for the step (Brent's method asks again for the bracket's ends).
     Loads that hold the state's ``delta``, ``sigma`` and ``P`` hold its ``Q``. The increment to the
     loads returned is the force-controlled one (`advance`), so the memory is carried as under force
     control. `step` names the step in an error.
@@ -115,6 +120,9 @@ def displaced(model, state, loads, step=None):
     if start == 0:
         return replace(loads, Q=begin)
     end = math.copysign(sliding * (1 - BRACKET), -start)
+    stuck = begin - start / contact.compliance_under(loads.P)  # meets delta if nothing more slips
+    if abs(stuck - begin) < abs(end - begin):  # the nearer end, where it brackets Q
+        begin, start, end = (stuck, missed(stuck), end) if missed(stuck) * start > 0 else (begin, start, stuck)
     eps = np.finfo(float).eps
     if missed(end) * start > 0:
         if not model.slides:

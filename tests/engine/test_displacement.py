@@ -9,7 +9,7 @@ import pytest
 from scipy.integrate import quad
 
 import fretting as fr
-from fretting.engine import runner
+from fretting.engine import follow, runner
 from fretting.engine.recorder import final_state
 from fretting.loading.history_file import HistoryFileError
 from fretting.physics.closed_forms import cattaneo_mindlin_compliance, mindlin_deresiewicz_energy
@@ -82,6 +82,29 @@ def test_force_and_displacement_control_agree_with_bulk_tension(contact):
     spec = fr.models.Grid(48)
     forced = fr.simulate(contact, history, spec)
     moved = fr.simulate(contact, displaced_twin(history, forced.delta.values), spec)
+    assert np.max(np.abs(moved.Q.values - forced.Q.values)) < 1e-9 * fP
+
+
+def test_a_step_tries_no_shear_beyond_what_meets_its_delta_without_slip(contact, monkeypatch):
+    """Each step's trials lie between the state's Q and the Q that would meet its delta with no more slip
+    (docs/theory/displacement.md#solve), where that is nearer than the friction force: on sinusoids of Q
+    and sigma within 0.5 f P, no trial comes near f P, where most of the contact slips (the bracket's
+    end at (1 - 1e-9) f P was tried at every step before); the Q found is force control's."""
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    history = fr.History.sinusoidal(0.5 * fP, 0.3 * fp0, 90.0, cycles=1, steps_per_cycle=24)
+    spec = fr.models.Grid(48)
+    forced = fr.simulate(contact, history, spec)
+    tried = []
+
+    class Trial(follow.Loads):
+        def __init__(self, Q, *loads):
+            tried.append(Q)
+            super().__init__(Q, *loads)
+
+    monkeypatch.setattr(follow, "Loads", Trial)
+    moved = fr.simulate(contact, displaced_twin(history, forced.delta.values), spec)
+    assert len(tried) >= 2 * (len(history) - 1)  # a bracket's two ends a step at least
+    assert np.max(np.abs(tried)) < 0.6 * fP
     assert np.max(np.abs(moved.Q.values - forced.Q.values)) < 1e-9 * fP
 
 
