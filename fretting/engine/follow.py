@@ -60,8 +60,9 @@ BRACKET = 1e-9
 
 
 def displaced(model, state, loads, step=None):
-    """`loads` (`Loads`) with the ``Q`` [N/m] that meets their prescribed displacement ``delta`` [m]
-    from `state`; `loads` as they are where ``delta`` is None.
+    """``(loads, trial)``: `loads` (`Loads`) with the ``Q`` [N/m] that meets their prescribed displacement
+    ``delta`` [m] from `state`, and the `Outcome` of the trial increment to that ``Q`` (None where none was
+    solved: `advance` solves it); `loads` as they are where ``delta`` is None.
 
     ``delta(Q) = (C_L + C) Q + delta_Q(Q)`` (`fretting.physics.contact.Contact.displacement`, eq D4
     of docs/theory/displacement.md), ``C_L`` of the half-width under the step's ``P`` and
@@ -73,7 +74,8 @@ def displaced(model, state, loads, step=None):
     if nothing more slipped, ``(C_L + C) dQ = ddelta``, lies at or past the one sought: the nearer
     end of the bracket where it is nearer than the friction force (a small step then solves no trial
     close to sliding); where rounding leaves it short, the search goes on from it. Each trial's
-    ``delta`` is kept for the step (Brent's method asks again for the bracket's ends).
+    ``delta`` is kept for the step (Brent's method asks again for the bracket's ends), and the increment
+    to the ``Q`` found is that trial: the step solves it once.
     Loads that hold the state's ``delta``, ``sigma`` and ``P`` hold its ``Q``. The increment to the
     loads returned is the force-controlled one (`advance`), so the memory is carried as under force
     control. `step` names the step in an error.
@@ -91,7 +93,7 @@ def displaced(model, state, loads, step=None):
         Where ``delta`` is not reached below the friction force by a model that does not slide.
     """
     if loads.delta is None:
-        return loads
+        return loads, None
     contact = model.contact
     where = "" if step is None else f"step {step}: "
     if contact.displacement_compliance is None:
@@ -104,21 +106,24 @@ def displaced(model, state, loads, step=None):
         raise HistoryError(f"{where}{error}") from None
     held = state.loads
     if (held.delta, held.sigma, held.P) == (loads.delta, loads.sigma, loads.P):
-        return replace(loads, Q=held.Q)
+        return replace(loads, Q=held.Q), None
     sliding = model.sliding_force(loads.normal(contact))
-    tried = {}  # Q: missed(Q), for Brent's method, which asks again for the bracket's ends
+    tried = {}  # Q: (missed(Q), the trial increment's Outcome)
 
     def missed(Q):
         """``delta(Q) - delta`` [m] of the trial increment to `Q` [N/m] under the step's ``sigma`` and ``P``."""
         if Q not in tried:
             trial = model.increment(state, Loads(Q, loads.sigma, loads.P))
-            tried[Q] = contact.displacement(Q, model.delta_Q(trial), loads.P) - loads.delta
-        return tried[Q]
+            tried[Q] = contact.displacement(Q, model.delta_Q(trial), loads.P) - loads.delta, trial
+        return tried[Q][0]
+
+    def found(Q):
+        return replace(loads, Q=float(Q)), tried[Q][1] if Q in tried else None
 
     begin = min(max(held.Q, -sliding), sliding)  # the state's Q, or the step's friction force where P fell
     start = missed(begin)
     if start == 0:
-        return replace(loads, Q=begin)
+        return found(begin)
     end = math.copysign(sliding * (1 - BRACKET), -start)
     stuck = begin - start / contact.compliance_under(loads.P)  # meets delta if nothing more slips
     if abs(stuck - begin) < abs(end - begin):  # the nearer end, where it brackets Q
@@ -129,24 +134,24 @@ def displaced(model, state, loads, step=None):
             raise GrossSlipError(step, math.copysign(sliding, end), loads.sigma, sliding, UNFOLLOWED)
         limit = math.copysign(sliding, end)
         if missed(limit) * start > 0:
-            return replace(loads, Q=limit)  # gross slip
+            return found(limit)  # gross slip
         begin, end = end, limit
-    Q = brentq(missed, begin, end, xtol=eps * sliding, rtol=4 * eps)
-    return replace(loads, Q=float(Q))
+    return found(brentq(missed, begin, end, xtol=eps * sliding, rtol=4 * eps))
 
 
-def slid(model, state, loads):
+def slid(model, state, loads, reached=None):
     """`Outcome` of gross slip from `state` to `loads` (``Q = +-friction_force``, found by `displaced`):
     the increment to ``+-f P``, then the uniform slide ``du`` [m] that meets ``loads.delta``
     (`Model.slide`). ``du`` has the sign of ``Q``, or is 0: where Brent's method found ``Q`` at ``+-f P``
-    within its tolerance, or the step holds the state's delta."""
+    within its tolerance, or the step holds the state's delta. `reached`: the increment to ``+-f P``, where
+    solved already."""
     contact, force = model.contact, loads.force()
-    reached = model.increment(state, force)
+    reached = model.increment(state, force) if reached is None else reached
     du = loads.delta - contact.displacement(loads.Q, model.delta_Q(reached), loads.P)
     return model.slide(state, force, du if du * loads.Q > 0 else 0.0)
 
 
-def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=True, stress=True):
+def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=True, stress=True, solved=None):
     """(outcome, state after) of the increment of `model` from `state` to `loads` (`Loads`; with a
     prescribed ``delta``, its ``Q`` found by `displaced`: the model is given the loads without it).
 
@@ -156,7 +161,8 @@ def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=Tru
     progress (its energy density and peaks); False where only the slip matters (mesh adaptation).
     `stress`: tally the specimen's surface stress peaks (False: NaN, not known, as for a run that
     skips steps). ``loads.P`` None: the contact's normal load, which the models of a constant ``P``
-    are given no other.
+    are given no other. `solved`: the `Outcome` of the increment to `loads`, where `displaced` solved it
+    as a trial (models are pure: the same increment, whose answer does not depend on `guess`).
     """
     Q, sigma = loads.Q, loads.sigma
     sliding = model.sliding_force(loads.normal(model.contact))  # no stick zone from here on
@@ -166,7 +172,10 @@ def advance(model, state, loads, step=None, guess=None, at_rest=False, tally=Tru
     if at_rest:
         return model.at_rest(state), state
     try:
-        outcome = slid(model, state, loads) if sliding_whole else model.increment(state, loads.force(), guess)
+        if sliding_whole:
+            outcome = slid(model, state, loads, solved)
+        else:
+            outcome = model.increment(state, loads.force(), guess) if solved is None else solved
     except GrossSlipError:  # within rounding of the friction force: the increment found no stick zone
         raise GrossSlipError(step, Q, sigma, sliding) from None
     if not outcome.dissipation >= 0:
@@ -339,9 +348,9 @@ class _Run:
                 self.model.prepare(state, self.loads[ahead])
                 self.prepared = int(ahead[-1]) + 1
             guess = None if self.guess is None else self.guess(step)
-            loads = displaced(self.model, state, self._at(step), step)
+            loads, trial = displaced(self.model, state, self._at(step), step)
             at_rest = step == 0 and loads == state.loads
-            outcome, state = advance(self.model, state, loads, step, guess, at_rest, self.tally, self.stress)
+            outcome, state = advance(self.model, state, loads, step, guess, at_rest, self.tally, self.stress, trial)
             if self.observe is not None and not at_rest:
                 self.observe(step, outcome)
             steps.append((outcome, state))
