@@ -5,6 +5,7 @@ each slide's energy by the trapezoidal rule in P, split runs resumed bit for bit
 
 import numpy as np
 import pytest
+from displacement_speed import prescribed, sliding_cycle
 from scipy.integrate import quad
 
 import fretting as fr
@@ -21,13 +22,6 @@ SPEC = fr.models.Varying(64)
 @pytest.fixture(scope="module")
 def contact():
     return fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5, datum=L)
-
-
-def prescribed(history, delta):
-    """`history` with the displacements `delta` [m] prescribed at its steps instead of its Q."""
-    return fr.History(
-        np.full(len(history), np.nan), history.sigma, history.vertex_step, history.cycle, history.P, delta
-    )
 
 
 def test_the_compliance_is_that_of_the_half_width_under_the_load(contact):
@@ -79,16 +73,6 @@ def test_a_datum_the_contact_reaches_is_a_one_line_error(contact):
     history = fr.History([np.nan] * 3, [0.0] * 3, [0, 2], None, [1e5, 2e5, 3e5], [0.0, 1e-7, 2e-7])
     with pytest.raises(fr.HistoryError, match=r"^step 1: the normal load P = 200000.0 N/m forms a contact"):
         fr.simulate(near, history, SPEC)
-
-
-def sliding_cycle(contact, steps=48):
-    """A cycle ``delta = 2 delta_t sin(t)`` under ``P = P0 (1 + 0.3 sin(1.5 t))``, ``delta_t`` the transition
-    displacement at ``P0`` (eq D6): it slides both ways, under a rising and a falling P, and sticks again."""
-    t = np.linspace(0.0, 2 * np.pi, steps + 1)
-    fP = contact.f * contact.P
-    transition = contact.displacement_compliance * fP + contact.f * contact.p0 * contact.a / (2 * contact.E_star)
-    P = contact.P * (1 + 0.3 * np.sin(1.5 * t))
-    return fr.History(np.full(t.size, np.nan), np.zeros(t.size), [0, steps], None, P, 2 * transition * np.sin(t))
 
 
 @pytest.fixture(scope="module")

@@ -4,7 +4,8 @@ and one stepped increment by increment, bit for bit; under displacement control,
 
 import numpy as np
 import pytest
-from engine.test_displacement_varying_load import L, assert_slides_at_f_P, prescribed, sliding_cycle
+from displacement_speed import prescribed, sliding_cycle
+from engine.test_displacement_varying_load import L, assert_slides_at_f_P
 from harness import hertz_contact, rounded_flat_contact
 from varying_accuracy import SCENES, PackageRun, compare
 
