@@ -419,6 +419,7 @@ class NormalModel(CellFields, Model):
         locked = self.forces(state.slip, *before)
         slip, ds, density = state.slip, np.zeros(self.x.size), np.zeros(self.x.size)
         g, dissipation, P_begin, done = locked, 0.0, before[2], 0.0  # done: the fraction of the increment solved
+        solved, m_before = None, None  # the part before, on m_before pairs: its G slip serves the next on as many
         sign = np.sign(after[0])
         sliding = du is not None and sign * before[0] >= self.sliding_force(before[2])  # every part slides
         for fraction, m in self.parts(before[2], after[2]):
@@ -432,7 +433,8 @@ class NormalModel(CellFields, Model):
                 solved = self._on_the_point(slip, sign, sigma_, m, limit, share)
             else:
                 g_stuck = Q_ * self.punch(m) + sigma_ * self.bulk_forces(m)
-                solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes])
+                product = solved.product if m == m_before else None
+                solved = solve_increment(self.stiffness(m), g_stuck, limit[nodes], slip[nodes], guess[nodes], product)
             g_begin, slip, g = g, slip.copy(), np.zeros(self.x.size)
             slip[nodes], g[nodes] = solved.slip, solved.g
             ds[nodes] += solved.ds
@@ -440,7 +442,7 @@ class NormalModel(CellFields, Model):
             mean = (start + limit[nodes]) / 2  # trapezoidal rule in P
             density[nodes] += mean / self.h * np.abs(solved.ds)
             dissipation += float(np.dot(mean, np.abs(solved.ds)))
-            P_begin, done = P_, fraction
+            P_begin, done, m_before = P_, fraction, m
             slip = self.free_surface(slip, g, sigma_, m)
         edges = (True, True) if du is not None else self.edges_slip(before, after)
         slid = state.slid if du is None else state.slid + du

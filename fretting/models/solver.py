@@ -167,15 +167,18 @@ class Stiffness:
 
 @dataclass(frozen=True, eq=False)
 class Increment:
-    """Solution of one increment: new slip [m], its increment ``ds`` [m] and the traction ``g`` [Pa] at the nodes."""
+    """Solution of one increment: new slip [m], its increment ``ds`` [m] and the traction ``g`` [Pa] at the nodes;
+    ``product``, ``G slip`` [Pa] of the new slip (``g = g_stuck - product``), for a next solve on the same ``G``
+    (None: not formed)."""
 
     slip: np.ndarray
     ds: np.ndarray
     g: np.ndarray
     iterations: int
+    product: np.ndarray | None = None
 
 
-def solve_increment(G, g_stuck, limit, slip=None, guess=None):
+def solve_increment(G, g_stuck, limit, slip=None, guess=None, product=None):
     """Slip increment that restores the friction conditions at every node.
 
     Parameters
@@ -193,6 +196,9 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
         Slip directions (+1, -1; 0: stuck) to try first, e.g. those of the increment before.
         A start only: the answer does not depend on it (the last working set fixes it), the
         number of linear solves does.
+    product : ndarray, shape (N,), optional
+        ``G slip`` [Pa], where the caller has it (`Increment.product` of a solve on the same ``G`` that
+        ended at `slip`): spares the product with the whole of ``G``.
 
     Returns
     -------
@@ -208,17 +214,20 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
     new = slip
     factor = _Factor(stiffness)
     direction = np.zeros(g_stuck.size, dtype=np.int8)  # +1, -1: slipping; 0: stuck
-    g = g_stuck - G @ slip
+    product = G @ slip if product is None else product
+    g = g_stuck - product
     over = _over(stiffness, np.arange(g.size), g, g_stuck, limit, slip)
     if over.size == 0:  # Coulomb's law holds without slip: nothing moves, not even by rounding
-        return Increment(slip, np.zeros_like(slip), g, 0)
+        return Increment(slip, np.zeros_like(slip), g, 0, product)
     if guess is not None:  # and the nodes whose traction exceeds the limit already
         direction[:] = guess
         direction[over] = np.sign(g[over])
         if direction.all():
             direction[:] = 0
         new = _minimise(factor, g_stuck, limit, slip, new, direction)
-        g = g_stuck - G @ new
+        product = G @ new
+        g = g_stuck - product
+    product = product.copy()  # the caller's is left as it was; its rows follow the slip below
     single, iteration = False, 0
     while (released := _over(stiffness, np.flatnonzero(direction == 0), g, g_stuck, limit, new)).size:
         iteration += 1
@@ -234,10 +243,9 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None):
             # follow. Their excess is rounding of the equilibrium they close (the stuck nodes'
             # traction takes the sum of the slipping ones' residuals, near sliding).
             break
-        stuck = np.flatnonzero(direction == 0)
-        g[stuck] = _rows_product(G, stuck, new, g_stuck)
-    g[direction != 0] = _rows_product(G, np.flatnonzero(direction), new, g_stuck)
-    return Increment(new, new - slip, g, iteration)
+        _rows_of(G, np.flatnonzero(direction == 0), new, g_stuck, product, g)
+    _rows_of(G, np.flatnonzero(direction), new, g_stuck, product, g)
+    return Increment(new, new - slip, g, iteration, product)
 
 
 def _minimise(factor, g_stuck, limit, slip, new, direction):
@@ -305,6 +313,13 @@ def _rows_product(G, rows, v, g_stuck):
     """``(g_stuck - G v)[rows]`` for ascending node numbers `rows`: only the rows asked for are
     multiplied, those of the stuck nodes for the releases, those of the slipping ones for a solve."""
     return g_stuck[rows] - _rows_times(G, rows, v)
+
+
+def _rows_of(G, rows, new, g_stuck, product, g):
+    """Write ``(G new)[rows]`` into `product` and the traction ``(g_stuck - G new)[rows]`` into `g`, for ascending
+    node numbers `rows` (as `_rows_product`)."""
+    product[rows] = _rows_times(G, rows, new)
+    g[rows] = g_stuck[rows] - product[rows]
 
 
 def _rows_times(M, rows, v, of=None):

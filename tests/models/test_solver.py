@@ -45,6 +45,27 @@ def test_an_increment_near_sliding_is_the_same_by_either_way(model):
     assert np.abs(by_complement.slip - by_cholesky.slip).max() <= 1e-11 * np.abs(by_cholesky.slip).max()
 
 
+@pytest.mark.parametrize("tension", [0.0, 0.3])
+def test_an_increment_given_the_product_it_returned_is_the_increment_that_forms_it(model, tension):
+    """`Increment.product` is ``G slip`` of its slip (by rows, to rounding), and a next solve given it (the
+    parts of a varying load's increment on the same cells) is the solve that forms it, bit for bit, and
+    leaves it as it was: from a slipped state, on to further slip and back, under Q alone and with sigma."""
+    contact, kept = model.contact, solver.Stiffness(model.G)
+    fP, fp0 = contact.f * contact.P, contact.f * contact.p0
+    first = solver.solve_increment(kept, model.g_stuck(0.5 * fP, tension * fp0), model.limit)
+    exact = model.G @ first.slip
+    assert np.abs(first.product - exact).max() <= 1e-13 * np.abs(exact).max()
+    guess, kept_product = np.sign(first.ds).astype(np.int8), first.product.copy()
+    for Q in (0.6 * fP, 0.2 * fP):
+        g_stuck = model.g_stuck(Q, tension * fp0)
+        given = solver.solve_increment(kept, g_stuck, model.limit, first.slip, guess, first.product)
+        formed = solver.solve_increment(kept, g_stuck, model.limit, first.slip, guess)
+        assert given.ds.any()
+        for name in ("slip", "ds", "g", "product"):
+            np.testing.assert_array_equal(getattr(given, name), getattr(formed, name))
+    np.testing.assert_array_equal(first.product, kept_product)
+
+
 @pytest.mark.parametrize("complement", [0.0, solver.COMPLEMENT])
 def test_one_ulp_below_sliding_settles_by_either_way(monkeypatch, complement):
     """Q = nextafter(f P, 0) on the adapted mesh: the one node left stuck closes the equilibrium and
