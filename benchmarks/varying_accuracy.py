@@ -233,7 +233,7 @@ def compare(result, reference, contact):
         both, expected = both[~np.isnan(expected)], expected[~np.isnan(expected)]  # where the reference has a slip
         largest = np.max(np.abs(expected), initial=0.0)
         found = result.slip.values[k, both] - result.slip.values[k - 1, both]
-        figures["slip"] = np.max(np.abs(found - expected)) / (
+        figures["slip"] = np.max(np.abs(found - expected), initial=0.0) / (
             largest if largest > SLIVER * history_slip else history_slip
         )
         avoid = np.concatenate([[-a[k], a[k]], reference.avoid(k, contact.f)])

@@ -127,7 +127,10 @@ def displaced(model, state, loads, step=None):
     end = math.copysign(sliding * (1 - BRACKET), -start)
     stuck = begin - start / contact.compliance_under(loads.P)  # meets delta if nothing more slips
     if abs(stuck - begin) < abs(end - begin):  # the nearer end, where it brackets Q
-        begin, start, end = (stuck, missed(stuck), end) if missed(stuck) * start > 0 else (begin, start, stuck)
+        if missed(stuck) * start > 0:  # short of Q by rounding: the search goes on from it
+            begin, start = stuck, missed(stuck)
+        else:
+            end = stuck
     eps = np.finfo(float).eps
     if missed(end) * start > 0:
         if not model.slides:

@@ -120,8 +120,8 @@ class Stepper:
                 raise HistoryError(
                     f"{self._spec.description} does not follow {names}: give it no other than the contact's"
                 )
-            loads, solved = displaced(self._model, self._state, loads)
-            outcome, self._state = advance(self._model, self._state, loads, solved=solved)
+            loads, trial = displaced(self._model, self._state, loads)
+            outcome, self._state = advance(self._model, self._state, loads, solved=trial)
         self._fresh = False
         return outcome
 

@@ -214,7 +214,7 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None, product=None):
     new = slip
     factor = _Factor(stiffness)
     direction = np.zeros(g_stuck.size, dtype=np.int8)  # +1, -1: slipping; 0: stuck
-    product = G @ slip if product is None else product
+    product = G @ slip if product is None else product.copy()  # its rows follow the slip below: the caller's stays
     g = g_stuck - product
     over = _over(stiffness, np.arange(g.size), g, g_stuck, limit, slip)
     if over.size == 0:  # Coulomb's law holds without slip: nothing moves, not even by rounding
@@ -227,7 +227,6 @@ def solve_increment(G, g_stuck, limit, slip=None, guess=None, product=None):
         new = _minimise(factor, g_stuck, limit, slip, new, direction)
         product = G @ new
         g = g_stuck - product
-    product = product.copy()  # the caller's is left as it was; its rows follow the slip below
     single, iteration = False, 0
     while (released := _over(stiffness, np.flatnonzero(direction == 0), g, g_stuck, limit, new)).size:
         iteration += 1
