@@ -22,9 +22,11 @@ A varying normal load ``P`` (docs/theory/normal-load.md): the normal and tangent
 uncouple for similar materials, so the pressure at each load is that of the constant-load problem.
 Points of the grid outside the current contact carry a friction limit of zero: they move freely
 (zero traction), and a point that enters the contact sticks with the relative displacement it had.
-Each step is cut into parts that change ``P`` by at most `LOAD_PART` of the contact's ``P``, each an
-implicit increment under the friction limit of its end load, its energy ``int f (p_begin + p_end)
-|ds| / 2 dx`` (trapezoidal in ``P``).
+Each step is cut into parts that change ``P`` by at most `LOAD_PART` of the contact's ``P``, and at the
+loads where points enter or leave (`part_ends`), each an implicit increment under the friction limit
+of its end load, its energy ``int f (p_begin + p_end) |ds| / 2 dx`` (trapezoidal in ``P``). A point
+slips in a step where it moves in a part that ends with it in contact: the free surfaces' motion
+before it enters is not slip, so a band that enters and sticks counts as stuck.
 """
 
 import math
@@ -123,6 +125,32 @@ def increment(G, g_trial, limit, direction, tolerance):
     raise GrossSlip(f"dense method 4: the slip set did not settle in {ITERATIONS} iterations")
 
 
+def entry_loads(contact, x):
+    """The load [N/m] at which each point `x` [m from the centre] enters the contact of a symmetric profile
+    whose half-width grows with ``P`` (``P(a)``, the profile's ``load``; zero inside the contact of no load);
+    ``-inf`` at every point of any other profile (its parts are not cut, `part_ends`)."""
+    profile = contact.profile
+    if not (profile.SYMMETRIC and hasattr(profile, "load")):
+        return np.full(x.size, -np.inf)
+    return profile.load(np.abs(x), contact.E_star)
+
+
+def part_ends(P_from, P_to, largest, entries):
+    """``(fraction, load)`` at the end of each part of a step from `P_from` to `P_to` [N/m]: equal parts that
+    change ``P`` by at most `largest` [N/m], cut also at the `entries` crossed (`entry_loads`), so that a
+    point enters or leaves the contact only at the end of a part, free up to it and stuck from it with
+    its relative displacement then (Jaeger 1998: a band that enters under ``|dQ -/+ (pi a / 4) dsigma|
+    <= f dP`` sticks). The load of a cut is the entry itself, at which the point is still out of contact."""
+    count = max(1, math.ceil(abs(P_to - P_from) / largest))
+    fractions = np.arange(1, count + 1) / count
+    if P_to == P_from:
+        return [(float(w), P_to) for w in fractions]
+    loads = np.concatenate([P_from + fractions[:-1] * (P_to - P_from), [P_to]])
+    crossed = entries[(entries > min(P_from, P_to)) & (entries < max(P_from, P_to))]
+    loads = np.unique(np.concatenate([loads, crossed]))[:: 1 if P_to > P_from else -1]
+    return [(float((load - P_from) / (P_to - P_from)), float(load)) for load in loads]
+
+
 def simulate(contact, history, nodes, load_part=LOAD_PART):
     """Method 4 on `nodes` Chebyshev-Gauss points over the history's largest contact: a `Run`.
 
@@ -143,7 +171,8 @@ def simulate(contact, history, nodes, load_part=LOAD_PART):
     A = max(abs(c - centre) + a for a, c in normals.values())
     t, G = stiffness(contact.E_star, A, nodes)
     x, root, weight = centre + A * t, np.sqrt(1 - t**2), A * np.pi / nodes
-    limit_at = lambda load: contact.f * normal(contact, load, x)[2] * root  # noqa: E731
+    entries = entry_loads(contact, x - centre)
+    limit_at = lambda load: contact.f * normal(contact, load, x)[2] * root * (entries < load)  # noqa: E731
     stuck = lambda Q, sigma: (Q / np.pi + sigma * A * t / 4) / A  # noqa: E731
     steps = len(history)
     q, slips, p, stick = (np.zeros((steps, nodes)) for _ in range(4))
@@ -155,15 +184,14 @@ def simulate(contact, history, nodes, load_part=LOAD_PART):
     slip, direction = np.zeros(nodes), np.zeros(nodes)
     tolerance = ROUNDING * limit.max()
     for k in range(1, steps):
-        parts = max(1, math.ceil(abs(P[k] - P[k - 1]) / (load_part * contact.P)))
         moved = np.zeros(nodes)
-        for w in np.arange(1, parts + 1) / parts:
-            Q, sigma, load = ((1 - w) * v[k - 1] + w * v[k] for v in (history.Q, history.sigma, P))
+        for w, load in part_ends(P[k - 1], P[k], load_part * contact.P, entries):
+            Q, sigma = ((1 - w) * v[k - 1] + w * v[k] for v in (history.Q, history.sigma))
             end = limit if P[k] == P[k - 1] else limit_at(load)
             g_trial = stuck(Q, sigma) - G @ slip
             ds, g, direction = increment(G, g_trial, end, direction, tolerance)
             dissipation[k] += weight * np.abs(ds) @ ((limit + end) / 2)
-            slip, limit, moved = slip + ds, end, moved + np.abs(ds)
+            slip, limit, moved = slip + ds, end, moved + np.abs(ds) * (end > 0)
         q[k], slips[k], p[k], stick[k] = g / root, slip, limit / (contact.f * root), moved == 0
     a, centres = np.array([normals[load] for load in P]).T
     return Run(x, q, slips, p, stick.astype(bool), dissipation, a, centres, contact.f, contact.p0)

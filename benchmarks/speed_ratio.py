@@ -26,7 +26,8 @@ step skipped), the same measure applied to both codes from the fields they recor
   and over the truth's largest of the step after the first `harness.FIRST_STEPS` steps (whose slip
   zones are slivers at the contact edges: their largest slip is under about 1 % of what follows);
 - **traction** [f p0]: ``|q - q_true|`` at the run's points, leaving out `accuracy.BAND` a around
-  the truth's stick ends, the stick/slip boundaries its memory keeps and the contact edges.
+  the truth's stick ends, the stick/slip boundaries its memory keeps, the contact edges and, where ``P``
+  varies, the edges of the contacts of the steps before (the traction of a band that entered kinks there).
 
 The truth is interpolated linearly to each run's points. For each scene and measure: the cheapest
 ``N`` from which every finer ``N`` scanned equals or beats the default's error, and its CPU time
@@ -176,41 +177,66 @@ def stick_zones(run, k, episodes):
     of the episode (`episodes`, of `episode_slip`) next to one that stayed. So ``|s|^(2/3)`` is
     linear in ``x``: of the two slips, the one whose ``|s|^(2/3)`` is nearer a line through the
     three slipping points next to the zone is extrapolated from the first two to zero, and kept
-    between the zone's last point and its slipping neighbour (the middle of the two where fewer
-    than two points slip there). A zone that reaches the last point in contact ends at the contact
-    edge.
+    between the zone's last point and its slipping neighbour; where fewer than two points slip there,
+    the friction deficit ``f p - s q`` of the zone's last two points (``s`` the sign of the slipping
+    neighbour's traction) is, by its square-root law (`_kink`). A zone that reaches the last point in
+    contact ends where the deficit of its last two points, against the sign of the last one's traction,
+    extrapolates to zero between it and the contact edge (`_kink`; a slip zone narrower than the spacing
+    there), or at the edge.
     """
     inside = np.flatnonzero(run.p[k] > 0)
     x = run.x[inside]
     laws = [np.abs(s[inside]) ** (2 / 3) for s in (run.slip[k] - run.slip[k - 1], episodes[k])]
     stuck = run.stick[k, inside].astype(int)
+    q, limit = run.q[k, inside], run.f * run.p[k, inside]
     edges = (run.centre[k] - run.a[k], run.centre[k] + run.a[k])
     change = np.flatnonzero(np.diff(np.concatenate([[0], stuck, [0]])))
     zones = []
     for first, stop in zip(change[::2], change[1::2], strict=True):
-        start = edges[0] if first == 0 else _end(x, laws, first, -1)
-        end = edges[1] if stop == x.size else _end(x, laws, stop - 1, 1)
+        if first == 0:
+            start = _kink(x, limit - np.sign(q[0]) * q, 0, -1, edges[0], edges[0])
+        else:
+            start = _end(x, laws, limit - np.sign(q[first - 1]) * q, first, -1)
+        if stop == x.size:
+            end = _kink(x, limit - np.sign(q[-1]) * q, x.size - 1, 1, edges[1], edges[1])
+        else:
+            end = _end(x, laws, limit - np.sign(q[stop]) * q, stop - 1, 1)
         zones.append((start, end))
     return np.array(zones).reshape(-1, 2)
 
 
-def _end(x, laws, i, side):
+def _end(x, laws, deficit, i, side):
     """Where the ``|s|^(2/3)`` of `laws` that is straightest at the three points past the stick
     point `i` on `side` (+1, -1), linear through the first two, reaches zero, within ``[x_i, x_(i +
-    side)]``."""
+    side)]``; where fewer than two points slip there, or neither law grows away from the zone, the
+    `_kink` of the traction's `deficit` (the middle of the two points where that does not place it)."""
     o, beyond, third = i + side, i + 2 * side, i + 3 * side
-    middle = (x[i] + x[o]) / 2
-    if not 0 <= beyond < x.size:
-        return middle
-    found, straightest = middle, np.inf
-    for v in laws:
+    found, straightest = None, np.inf
+    for v in laws if 0 <= beyond < x.size else ():
         if v[beyond] <= v[o]:
             continue
         slope = (v[beyond] - v[o]) / (x[beyond] - x[o])
         bend = abs(v[o] + slope * (x[third] - x[o]) - v[third]) / v[third] if 0 <= third < x.size else np.inf
-        if bend < straightest or found is middle:
+        if bend < straightest or found is None:
             found, straightest = x[o] - v[o] / slope, bend
+    if found is None:
+        return _kink(x, deficit, i, side, x[o], (x[i] + x[o]) / 2)
     return float(np.clip(found, min(x[i], x[o]), max(x[i], x[o])))
+
+
+def _kink(x, deficit, i, side, bound, otherwise):
+    """Where the square of the friction `deficit` [Pa] of the stick points `i` and ``i - side`` (the stick
+    zone's side), linear through them, reaches zero, within ``[x_i, bound]``: inside a stick zone the traction
+    falls short of its limit by ``K sqrt(|x - e|)`` next to its end ``e`` (the square-root kink, as in
+    Cattaneo-Mindlin, eq 19 of the seed paper), and by ``(f - r) p`` next to a contact edge that a band
+    entered stuck at the ratio ``r`` of shear to pressure, which reaches zero at the edge. `otherwise` where
+    the deficit does not fall towards the end."""
+    inner = i - side
+    if not 0 <= inner < x.size or deficit[inner] ** 2 <= deficit[i] ** 2:
+        return otherwise
+    v1, v2 = deficit[i] ** 2, deficit[inner] ** 2
+    found = x[i] + v1 * (x[i] - x[inner]) / (v2 - v1)
+    return float(np.clip(found, min(x[i], bound), max(x[i], bound)))
 
 
 @dataclass(frozen=True, eq=False)
@@ -228,10 +254,9 @@ class Truth:
         episodes = episode_slip(run)
         zones = [whole] + [stick_zones(run, k, episodes) for k in range(1, run.q.shape[0])]
         memory = accuracy.memory_kinks(run.x, run.stick)
-        kinks = [
-            np.concatenate([z.ravel(), m, [c - a, c + a]])
-            for z, m, a, c in zip(zones, memory, run.a, run.centre, strict=True)
-        ]
+        lower, upper = run.centre - run.a, run.centre + run.a
+        edges = [np.concatenate([lower[: k + 1], upper[: k + 1]]) for k in range(run.a.size)]
+        kinks = [np.concatenate([z.ravel(), m, e]) for z, m, e in zip(zones, memory, edges, strict=True)]
         return cls(run, zones, kinks, np.cumsum(run.dissipation))
 
 
