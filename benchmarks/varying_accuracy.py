@@ -19,8 +19,9 @@ the change between the two is printed, and must lie well below the targets.
 
 Figures, each the worst over the steps of a history (`compare`):
 
-- stick ends [a of the step's contact], each end of the stick zone about the centre (with ``sigma`` it is not
-  symmetric);
+- stick ends [a of the step's contact]: `fretting.analysis.accuracy.zone_distance` between the stick zones, as
+  the trajectories benchmark and the speed-ratio page measure them (their ends matched in order; a zone that
+  one run has and the other lacks counts by half its width);
 - slip: at the step's nodes in contact, over the reference's largest there, as the README and the trajectories
   benchmark hold it (over the history's largest at the first `harness.FIRST_STEPS` steps, whose slip zones are
   slivers at the edges, and where the step has no slip);
@@ -54,7 +55,7 @@ import numpy as np
 from harness import FIRST_STEPS, hertz_contact, rounded_flat_contact
 
 import fretting as fr
-from fretting.analysis.accuracy import BAND
+from fretting.analysis.accuracy import BAND, zone_distance
 from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART, Varying
 from fretting.physics.superposition import Superposition, geometry
 
@@ -175,14 +176,14 @@ class ExactRun:
     def traction(self, k, x):
         return self.memory[k].traction(x)
 
-    def ends(self, k):
-        """The ends [m] of the stick zone about the centre at step `k` (symmetric: ``sigma = 0``)."""
-        return -self.stick[k], self.stick[k]
+    def zones(self, k):
+        """The stick zone [m] of step `k`, ``(start, end)`` rows (symmetric: ``sigma = 0``; none where it slides)."""
+        return np.array([[-self.stick[k], self.stick[k]]]) if self.stick[k] > 0 else np.zeros((0, 2))
 
     def avoid(self, k, f):
         """Where the traction of step `k` may kink [m]: its stick ends and the band edges where ``lambda`` jumps."""
         kinks = self.memory[k].kinks(KINK * f)
-        return np.concatenate([self.ends(k), kinks, -kinks])
+        return np.concatenate([[-self.stick[k], self.stick[k]], kinks, -kinks])
 
 
 class PackageRun:
@@ -191,8 +192,6 @@ class PackageRun:
     def __init__(self, result):
         self.result = result
         self.energy = np.cumsum(result.dissipation.values)
-        self.central = [central_zone(result, k) for k in range(result.sizes["step"])]
-        self.stick = [(end - start) / 2 for start, end in self.central]
         self._x = result.x.values
 
     def slip(self, k, x):
@@ -214,8 +213,11 @@ class PackageRun:
     def traction(self, k, x):
         return np.interp(x, self._x, self.result.q.values[k])
 
-    def ends(self, k):
-        return self.central[k]
+    def zones(self, k):
+        """The stick zones [m] of step `k`, ``(start, end)`` rows."""
+        start, end = self.result.stick_start.values[k], self.result.stick_end.values[k]
+        keep = ~np.isnan(start)
+        return np.column_stack([start[keep], end[keep]])
 
     def avoid(self, k, f):
         """Where the traction of step `k` may kink [m]: the ends of its stick zones, and those of every earlier step
@@ -224,17 +226,6 @@ class PackageRun:
         starts, ends = r.stick_start.values[: k + 1], r.stick_end.values[: k + 1]
         zones = np.concatenate([starts[~np.isnan(starts)], ends[~np.isnan(ends)]])
         return np.concatenate([zones, r.a.values[:k], -r.a.values[:k]])
-
-
-def central_zone(result, k):
-    """The ends [m] of the stick zone about the centre at step `k` (that whose middle is nearest the centre;
-    ``(0, 0)``: none)."""
-    start, end = result.stick_start.values[k], result.stick_end.values[k]
-    keep = ~np.isnan(start)
-    if not keep.any():
-        return 0.0, 0.0
-    i = int(np.argmin(np.abs((start[keep] + end[keep]) / 2)))
-    return float(start[keep][i]), float(end[keep][i])
 
 
 def compare(result, reference, contact):
@@ -251,7 +242,7 @@ def compare(result, reference, contact):
         np.nanmax(np.abs(reference.slip(k, x[np.abs(x) < a[k]])), initial=0.0) for k in range(result.sizes["step"])
     )
     for k in range(1, result.sizes["step"]):
-        figures = {"stick": max(abs(u - v) for u, v in zip(own.ends(k), reference.ends(k), strict=True)) / a[k]}
+        figures = {"stick": zone_distance(own.zones(k), reference.zones(k)) / a[k]}
         inside, expected = _where_known(reference.slip, k, np.flatnonzero(np.abs(x) < a[k]), x)
         largest = np.max(np.abs(expected), initial=0.0) if k > FIRST_STEPS else 0.0
         error = np.max(np.abs(result.slip.values[k, inside] - expected), initial=0.0)
