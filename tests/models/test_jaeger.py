@@ -44,8 +44,8 @@ def test_the_default_is_exact_where_jaeger_applies(contact):
 
 def test_cells_converge_to_it_at_every_step(contact, recede):
     """Method 4 on cells (`Varying`), refined from 384 to 1536 cells, nears the exact model at every step: stick
-    ends, slip, traction and energy of benchmarks/varying_accuracy.py, each the worst over the steps, at least
-    halved, and within the targets at 1536 cells but for the slip increment of a step (its zone a few cells wide)."""
+    ends, traction and energy of benchmarks/varying_accuracy.py, each the worst over the steps, at least halved
+    and within the targets at 1536 cells, and the slip a step adds nearer (its zone a few cells wide)."""
     history, exact = recede
     reference = PackageRun(exact)
     worst = [
