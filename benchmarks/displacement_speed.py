@@ -23,6 +23,7 @@ import numpy as np
 import fretting as fr
 from fretting.engine import follow
 from fretting.loading.examples import example_path
+from fretting.models.exact import transition_displacement
 
 #: The contact of tests/engine/test_displacement_varying_load.py, its datum 5 mm from the middle.
 CONTACT = fr.Contact(fr.Hertz(0.05), E_star=115e9, f=0.6, P=1e5, datum=5e-3)
@@ -40,10 +41,9 @@ def sliding_cycle(contact, steps=48):
     displacement at ``P0`` (eq D6): it slides both ways, under a rising and a falling P, and sticks again (the
     history of tests/engine/test_displacement_varying_load.py)."""
     t = np.linspace(0.0, 2 * np.pi, steps + 1)
-    fP = contact.f * contact.P
-    transition = contact.displacement_compliance * fP + contact.f * contact.p0 * contact.a / (2 * contact.E_star)
     P = contact.P * (1 + 0.3 * np.sin(1.5 * t))
-    return fr.History(np.full(t.size, np.nan), np.zeros(t.size), [0, steps], None, P, 2 * transition * np.sin(t))
+    delta = 2 * transition_displacement(contact) * np.sin(t)
+    return fr.History(np.full(t.size, np.nan), np.zeros(t.size), [0, steps], None, P, delta)
 
 
 def scenes():
