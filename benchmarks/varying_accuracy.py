@@ -14,8 +14,8 @@ Histories (`SCENES`), on the Hertz contact of `harness.hertz_contact` and the ro
 Reference. With ``sigma = 0``: Jaeger's superposition (`fretting.physics.superposition`, which the default runs
 there: `fretting.models.Jaeger`), exact to rounding in its stick ends, slip, traction and energy on Hertz, and on
 the rounded flat to the convergence of its quadratures (tests/physics/test_superposition.py). With ``sigma``:
-method 4 on `FINE` cells with parts a quarter of the default's, shown converged by the run on `FINER` cells:
-the change between the two is printed, and must lie well below the targets.
+method 4 on twice the scored run's cells with parts a quarter of its, shown converged by the run on four times
+its cells (`references`): the change between the two is printed, and must lie well below the targets.
 
 Figures, each the worst over the steps of a history (`compare`):
 
@@ -68,10 +68,6 @@ SLIVER = 1e-6
 
 #: Jumps of ``lambda`` [f] that put a kink in the exact traction (left out of the traction error).
 KINK = 1e-2
-
-#: Cells and load part of the self-reference, and of the finer run that shows it converged.
-FINE = (2 * DEFAULT_CELLS, DEFAULT_LOAD_PART / 4)
-FINER = (4 * DEFAULT_CELLS, DEFAULT_LOAD_PART / 4)
 
 STEPS = 16  # per cycle or segment
 
@@ -278,6 +274,12 @@ def line(label, worst, where, seconds=None):
     return f"  {label:<28}{cells}{time_}"
 
 
+def references(cells, part):
+    """``(cells, load_part)`` of the self-reference of a run on `cells` cells in parts of `part`, and of the finer run
+    that shows it converged: twice and four times the cells, a quarter of the parts."""
+    return (2 * cells, part / 4), (4 * cells, part / 4)
+
+
 def run(contact, history, cells, part):
     start = time.process_time()
     result = fr.simulate(contact, history, model=Varying(cells, load_part=part))
@@ -290,10 +292,11 @@ def main(argv=None):
     parser.add_argument("--flat-scenes", default=",".join(SCENES), help="on the rounded flat")
     parser.add_argument("--cells", type=int, default=DEFAULT_CELLS)
     parser.add_argument("--load-part", type=float, default=DEFAULT_LOAD_PART)
-    parser.add_argument("--no-finer", action="store_true", help="skip the FINER run (the self-reference's check)")
-    parser.add_argument("--no-fine", action="store_true", help="skip the FINE run against the exact reference")
+    parser.add_argument("--no-finer", action="store_true", help="skip the finer run (the self-reference's check)")
+    parser.add_argument("--no-fine", action="store_true", help="skip the self-reference's run against the exact one")
     parser.add_argument("--page", type=Path, help="also write the output to this Markdown page")
     args = parser.parse_args(argv)
+    fine_spec, finer_spec = references(args.cells, args.load_part)
     out = []
 
     def say(text=""):
@@ -314,20 +317,20 @@ def main(argv=None):
                 reference = ExactRun(contact, history)
                 say(line("cells vs exact", *compare(result, reference, contact), seconds))
                 if not args.no_fine:
-                    fine, fine_seconds = run(contact, history, *FINE)
-                    say(line(f"Varying{FINE} vs exact", *compare(fine, reference, contact), fine_seconds))
+                    fine, fine_seconds = run(contact, history, *fine_spec)
+                    say(line(f"Varying{fine_spec} vs exact", *compare(fine, reference, contact), fine_seconds))
                 start = time.process_time()
                 default = fr.simulate(contact, history)
                 default_seconds = time.process_time() - start
                 say(line(f"default ({default.attrs['model']}) vs exact", *compare(default, reference, contact),
                          default_seconds))  # fmt: skip
             else:
-                fine, fine_seconds = run(contact, history, *FINE)
+                fine, fine_seconds = run(contact, history, *fine_spec)
                 reference = PackageRun(fine)
-                say(line(f"cells vs Varying{FINE}", *compare(result, reference, contact), seconds))
+                say(line(f"cells vs Varying{fine_spec}", *compare(result, reference, contact), seconds))
                 if not args.no_finer:
-                    finer, finer_seconds = run(contact, history, *FINER)
-                    say(line(f"{FINE} vs {FINER}", *compare(fine, PackageRun(finer), contact), finer_seconds))
+                    finer, finer_seconds = run(contact, history, *finer_spec)
+                    say(line(f"{fine_spec} vs {finer_spec}", *compare(fine, PackageRun(finer), contact), finer_seconds))
     if args.page:
         args.page.write_text(page(out, argv))
     return 0
