@@ -1,10 +1,11 @@
 """The varying-load model (method 4 on cells) against Jaeger's exact superposition: its energy on a history that
-slips nowhere, whatever ``f`` (issue 38), and its stick zones at the limit ratio."""
+slips nowhere, whatever ``f`` (issue 38), and its stick zones at the limit ratio; and the scenes with a bulk
+tension that the varying-load page scores it on."""
 
 import numpy as np
 import pytest
-from harness import hertz_contact
-from varying_accuracy import ExactRun, PackageRun, boundary
+from harness import hertz_contact, rounded_flat_contact
+from varying_accuracy import SCENES, TENSION, ExactRun, PackageRun, boundary
 
 import fretting as fr
 from fretting.models.normal import Varying
@@ -45,3 +46,20 @@ def test_stick_zone_at_the_limit_ratio_is_one_zone_with_jaeger_s_ends():
     for k in range(1, len(history)):
         assert own.zones(k).shape == exact.zones(k).shape == (1, 2)
         np.testing.assert_allclose(own.zones(k), exact.zones(k), rtol=0, atol=1e-3 * result.a.values[k])
+
+
+@pytest.mark.parametrize("scene", ["inphase", "boundary", "recede"])
+@pytest.mark.parametrize("contact", [hertz_contact(), rounded_flat_contact()], ids=["hertz", "flat"])
+def test_a_tensioned_scene_loads_one_edge_as_the_scene_without_tension(scene, contact):
+    """The ``_sigma`` scenes of benchmarks/varying_accuracy.py: ``sigma / (f p0) = TENSION Q / (f P0)``, under the
+    scene's ``P``, and at each step the fully stuck traction's increment at the edge the tension loads most,
+    ``dQ + (pi a / 4) dsigma`` (``a`` the contact's), is the scene's ``dQ``: loops near the shakedown boundary
+    stay near it there."""
+    plain, tensioned = SCENES[scene](contact), SCENES[f"{scene}_sigma"](contact)
+    np.testing.assert_array_equal(tensioned.P, plain.P)
+    np.testing.assert_allclose(
+        tensioned.sigma / (contact.f * contact.p0), TENSION * tensioned.Q / (contact.f * contact.P), rtol=1e-12
+    )
+    edge = np.diff(tensioned.Q) + np.pi * contact.a / 4 * np.diff(tensioned.sigma)
+    np.testing.assert_allclose(edge, np.diff(plain.Q), rtol=1e-9, atol=1e-9 * contact.f * contact.P)
+    assert np.abs(tensioned.sigma).max() > 0.1 * contact.f * contact.p0
