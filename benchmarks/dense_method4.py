@@ -129,10 +129,9 @@ def entry_loads(contact, x):
     """The load [N/m] at which each point `x` [m from the centre] enters the contact of a symmetric profile
     whose half-width grows with ``P`` (``P(a)``, the profile's ``load``; zero inside the contact of no load);
     ``-inf`` at every point of any other profile (its parts are not cut, `part_ends`)."""
-    profile = contact.profile
-    if not (profile.SYMMETRIC and hasattr(profile, "load")):
+    if not contact.profile.grows_with_load():
         return np.full(x.size, -np.inf)
-    return profile.load(np.abs(x), contact.E_star)
+    return contact.profile.load(np.abs(x), contact.E_star)
 
 
 def part_ends(P_from, P_to, largest, entries):

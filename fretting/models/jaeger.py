@@ -81,7 +81,7 @@ class Jaeger(ModelSpec):
         return {"model": self.name, "cells": int(self.cells)} | spans
 
     def holds_for(self, contact: Contact, history: History | None) -> str | None:
-        if not (contact.profile.SYMMETRIC and contact.profile.VANISHING_EDGES):
+        if not contact.profile.grows_with_load():
             return f"{contact.profile!r} is not a symmetric profile whose contact grows with the load"
         if history is not None and history.largest_loads()[1] > 0:
             return "the history has a bulk tension sigma"

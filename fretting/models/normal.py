@@ -189,7 +189,7 @@ class Varying(ModelSpec):
         return {"model": self.name, "cells": int(self.cells)} | spans | {"load_part": float(self.load_part)}
 
     def holds_for(self, contact: Contact, history: History | None) -> str | None:
-        if not (contact.profile.SYMMETRIC and hasattr(contact.profile, "load")):
+        if not contact.profile.grows_with_load():
             return f"{contact.profile!r} is not a symmetric profile whose contact grows with P (Hertz, RoundedFlat)"
         if self.resolved and history is not None and history.P is not None:
             largest = float(contact.profile.half_width(float(history.P.max()), contact.E_star)[0])

@@ -114,10 +114,15 @@ class Profile(abc.ABC):
         return super().__new__(cls)
 
     @classmethod
+    def grows_with_load(cls) -> bool:
+        """Whether the profile is symmetric and its contact grows with the load (`SYMMETRIC` and
+        `VANISHING_EDGES`): it then gives `load` and `load_slope` (`required`)."""
+        return bool(cls.SYMMETRIC and cls.VANISHING_EDGES)
+
+    @classmethod
     def required(cls) -> dict[str, dict[str, str]]:
         """What the class must give: ``{which profiles: {method: its signature and what it returns [units]}}``."""
-        growing = cls.SYMMETRIC and cls.VANISHING_EDGES
-        return {"every profile": _EVERY_PROFILE} | ({_GROWING_KIND: _GROWING} if growing else {})
+        return {"every profile": _EVERY_PROFILE} | ({_GROWING_KIND: _GROWING} if cls.grows_with_load() else {})
 
     @abc.abstractmethod
     def half_width(self, P: float, E_star: float) -> tuple[float, float]:

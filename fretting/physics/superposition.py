@@ -121,7 +121,7 @@ class Geometry:
     f: float
 
     def __post_init__(self):
-        if not (self.profile.SYMMETRIC and self.profile.VANISHING_EDGES):
+        if not self.profile.grows_with_load():
             raise ValueError(f"{self.profile!r}: Jaeger's superposition needs a symmetric contact that grows with P")
 
     @functools.cached_property
