@@ -55,6 +55,7 @@ from threadpoolctl import threadpool_limits  # noqa: E402
 
 import fretting as fr  # noqa: E402
 from fretting.analysis import accuracy  # noqa: E402
+from fretting.models.method4 import deficit_end  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 
@@ -189,18 +190,19 @@ def stick_zones(run, k, episodes):
     laws = [np.abs(s[inside]) ** (2 / 3) for s in (run.slip[k] - run.slip[k - 1], episodes[k])]
     stuck = run.stick[k, inside].astype(int)
     q, limit = run.q[k, inside], run.f * run.p[k, inside]
+    deficit = lambda j: limit - np.sign(q[j]) * q  # noqa: E731  (against the limit of the sign of q at j)
     edges = (run.centre[k] - run.a[k], run.centre[k] + run.a[k])
     change = np.flatnonzero(np.diff(np.concatenate([[0], stuck, [0]])))
     zones = []
     for first, stop in zip(change[::2], change[1::2], strict=True):
         if first == 0:
-            start = _kink(x, limit - np.sign(q[0]) * q, 0, -1, edges[0], edges[0])
+            start = _kink(x, deficit(0), 0, -1, edges[0], edges[0])
         else:
-            start = _end(x, laws, limit - np.sign(q[first - 1]) * q, first, -1)
+            start = _end(x, laws, deficit(first - 1), first, -1)
         if stop == x.size:
-            end = _kink(x, limit - np.sign(q[-1]) * q, x.size - 1, 1, edges[1], edges[1])
+            end = _kink(x, deficit(-1), x.size - 1, 1, edges[1], edges[1])
         else:
-            end = _end(x, laws, limit - np.sign(q[stop]) * q, stop - 1, 1)
+            end = _end(x, laws, deficit(stop), stop - 1, 1)
         zones.append((start, end))
     return np.array(zones).reshape(-1, 2)
 
@@ -226,16 +228,13 @@ def _end(x, laws, deficit, i, side):
 
 def _kink(x, deficit, i, side, bound, otherwise):
     """Where the square of the friction `deficit` [Pa] of the stick points `i` and ``i - side`` (the stick
-    zone's side), linear through them, reaches zero, within ``[x_i, bound]``: inside a stick zone the traction
-    falls short of its limit by ``K sqrt(|x - e|)`` next to its end ``e`` (the square-root kink, as in
-    Cattaneo-Mindlin, eq 19 of the seed paper), and by ``(f - r) p`` next to a contact edge that a band
-    entered stuck at the ratio ``r`` of shear to pressure, which reaches zero at the edge. `otherwise` where
-    the deficit does not fall towards the end."""
-    inner = i - side
-    if not 0 <= inner < x.size or deficit[inner] ** 2 <= deficit[i] ** 2:
+    zone's side) reaches zero (`fretting.models.method4.deficit_end`, the square-root kink), within ``[x_i,
+    bound]``; the same law holds next to a contact edge that a band entered stuck at the ratio ``r`` of shear to
+    pressure, where the deficit ``(f - r) p`` reaches zero at the edge. `otherwise` where the deficit does not
+    fall towards the end."""
+    found = deficit_end(x, deficit, i, i - side)
+    if found is None:
         return otherwise
-    v1, v2 = deficit[i] ** 2, deficit[inner] ** 2
-    found = x[i] + v1 * (x[i] - x[inner]) / (v2 - v1)
     return float(np.clip(found, min(x[i], bound), max(x[i], bound)))
 
 

@@ -60,7 +60,7 @@ import numpy as np
 from harness import FIRST_STEPS, hertz_contact, rounded_flat_contact
 
 import fretting as fr
-from fretting.analysis.accuracy import BAND, zone_distance
+from fretting.analysis.accuracy import BAND, run_zones, zone_distance
 from fretting.models.normal import DEFAULT_CELLS, DEFAULT_LOAD_PART, Varying
 from fretting.physics.superposition import Superposition, geometry
 
@@ -201,7 +201,7 @@ class ExactRun:
     def avoid(self, k, f):
         """Where the traction of step `k` may kink [m]: its stick ends and the band edges where ``lambda`` jumps."""
         kinks = self.memory[k].kinks(KINK * f)
-        return np.concatenate([[-self.stick[k], self.stick[k]], kinks, -kinks])
+        return np.concatenate([self.zones(k).ravel(), kinks, -kinks])
 
 
 class PackageRun:
@@ -233,9 +233,7 @@ class PackageRun:
 
     def zones(self, k):
         """The stick zones [m] of step `k`, ``(start, end)`` rows."""
-        start, end = self.result.stick_start.values[k], self.result.stick_end.values[k]
-        keep = ~np.isnan(start)
-        return np.column_stack([start[keep], end[keep]])
+        return run_zones(self.result, k)
 
     def avoid(self, k, f):
         """Where the traction of step `k` may kink [m]: the ends of its stick zones, and those of every earlier step

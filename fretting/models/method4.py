@@ -17,7 +17,7 @@ import numpy as np
 from fretting.models.base import Model, Outcome
 from fretting.models.solver import Stiffness, solve_increment
 
-__all__ = ["Method4Model", "on_the_point", "stick_zones"]
+__all__ = ["Method4Model", "deficit_end", "extrapolated_end", "on_the_point", "stick_zones"]
 
 
 class Method4Model(Model):
@@ -174,3 +174,19 @@ def extrapolated_end(position, d, slipping, beyond):
     if v2 <= v1:
         return None
     return position[slipping] - v1 * (position[beyond] - position[slipping]) / (v2 - v1)
+
+
+def deficit_end(position, deficit, stuck, inner):
+    """Where the friction deficit of a stick zone reaches zero past its node `stuck`, or None if it cannot be told.
+
+    Next to a stick end ``c`` the traction of the stick zone falls short of its limit by ``K sqrt(|x - c|)``
+    (the square-root kink of eq 19 for Cattaneo-Mindlin), so ``deficit^2`` (``f p - s q``, ``s`` the sign of the
+    slip zone's traction) is extrapolated linearly from `stuck` and its neighbour `inner` further into the stick
+    zone (`position`: the nodes' coordinates). None when `inner` is off the grid or has the smaller deficit.
+    """
+    if not 0 <= inner < deficit.size:
+        return None
+    v1, v2 = deficit[stuck] ** 2, deficit[inner] ** 2
+    if v2 <= v1:
+        return None
+    return position[stuck] + v1 * (position[stuck] - position[inner]) / (v2 - v1)

@@ -82,7 +82,7 @@ from scipy import linalg, optimize
 
 from fretting._compiled import njit
 from fretting.models.base import Model, ModelSpec, Outcome
-from fretting.models.method4 import extrapolated_end, on_the_point, stick_zones
+from fretting.models.method4 import deficit_end, extrapolated_end, on_the_point, stick_zones
 from fretting.models.solver import Increment, Stiffness, solve_increment
 from fretting.physics.surface import SurfaceStress
 
@@ -648,19 +648,19 @@ def edge_end(t, deficit, side):
     Its slip zone then lies between that node and the contact edge ``t = side``, narrower than a cell
     (as a receding edge leaves it), with no slipping node: ``deficit^2`` (`kink_end`; against the limit
     of the sign of the outermost node's traction, which leans towards the edge's slip zone) is extrapolated
-    linearly to zero from the two outermost nodes, within ``[t_outer, side]``. Where the deficit does
+    linearly to zero from the two outermost nodes (`fretting.models.method4.deficit_end`), within
+    ``[t_outer, side]``. Where the deficit does
     not fall outwards (a step that moves the edge by several cells leaves the outermost node far
     from its limit) nothing places the end: it is the middle of ``[t_outer, side]``, as
     `fretting.models.method4.stick_zones` takes the middle between two nodes it cannot tell apart.
     The end is the edge itself where the node lies at or beyond it.
     """
     outer, inner = (t.size - 1, t.size - 2) if side > 0 else (0, 1)
-    v1, v2 = deficit[outer] ** 2, deficit[inner] ** 2
     if side * t[outer] >= 1:
         return side
-    if v2 <= v1:
+    estimate = deficit_end(t, deficit, outer, inner)
+    if estimate is None:
         return float((t[outer] + side) / 2)
-    estimate = t[outer] + v1 * (t[outer] - t[inner]) / (v2 - v1)
     return float(np.clip(estimate, *sorted((t[outer], side))))
 
 
