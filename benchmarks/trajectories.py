@@ -34,7 +34,7 @@ import numpy as np
 from harness import FIRST_STEPS, asymmetric_flat
 
 import fretting as fr
-from fretting.analysis.accuracy import BAND, memory_kinks, traction_error, zone_distance
+from fretting.analysis.accuracy import BAND, memory_kinks, traction_error, zone_distance, zone_pairs
 from fretting.loading.examples import EXAMPLES
 from fretting.models.galerkin import located_end, refine
 from fretting.models.method4 import stick_zones
@@ -215,11 +215,6 @@ def with_located_ends(fields, contact):
 # -- Scores ---------------------------------------------------------------------------------------
 
 
-def _zones(start, end):
-    pairs = np.stack([start, end], axis=-1)
-    return pairs[~np.isnan(pairs[:, 0])]
-
-
 def score(run, ref, contact, history):
     """Worst errors of `run` against `ref` over the steps: ``name: (value, step)``."""
     a, fp0 = contact.a, contact.f * contact.p0
@@ -234,8 +229,8 @@ def score(run, ref, contact, history):
             worst[name] = (float(value), int(step))
 
     for k in range(1, len(history)):
-        ref_zones = _zones(ref["stick_start"][k], ref["stick_end"][k])
-        keep("stick_a", zone_distance(_zones(run["stick_start"][k], run["stick_end"][k]), ref_zones) / a, k)
+        ref_zones = zone_pairs(ref["stick_start"][k], ref["stick_end"][k])
+        keep("stick_a", zone_distance(zone_pairs(run["stick_start"][k], run["stick_end"][k]), ref_zones) / a, k)
         error = np.abs(run["slip"][k] - np.interp(x, xr, ref["slip"][k])).max()
         keep("slip_history", error / largest if largest else 0.0, k)
         step_largest = np.abs(ref["slip"][k]).max()

@@ -24,7 +24,7 @@ import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
 
 import fretting as fr  # noqa: E402
-from fretting.analysis.accuracy import BAND, monotonic_dissipation, traction_error, zone_distance  # noqa: E402
+from fretting.analysis.accuracy import BAND, monotonic_dissipation, traction_error, zone_distance, zone_pairs  # noqa: E402
 from fretting.loading.examples import EXAMPLES, examples  # noqa: E402
 from fretting.physics import closed_forms as cf  # noqa: E402
 
@@ -97,12 +97,6 @@ def verdict(value, target):
 # -- Closed forms -----------------------------------------------------------------------------------
 
 
-def zones(step):
-    """Stick zones of one step of a result, as (start, end) rows [m]."""
-    pairs = np.stack([step.stick_start.values, step.stick_end.values], axis=-1)
-    return pairs[~np.isnan(pairs[:, 0])]
-
-
 def proportional(contact, psi, tau=0.0):
     """The default's straight path to ``Q = psi f P``, ``sigma = tau f p0``: its last step, its
     model and nodes, and the energy [J/m] it dissipated on the way."""
@@ -119,7 +113,8 @@ def errors(contact, step, expected_zone, q_exact, slip_exact=None):
     a, x = contact.a, step.x.values
     exclude = np.r_[expected_zone, -a, a]
     row = {
-        "stick": zone_distance(zones(step), np.array([expected_zone])) / a,
+        "stick": zone_distance(zone_pairs(step.stick_start.values, step.stick_end.values), np.array([expected_zone]))
+        / a,
         "traction": traction_error(x, step.q.values, q_exact, exclude, BAND * a) / (contact.f * contact.p0),
     }
     if slip_exact is not None:

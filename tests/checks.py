@@ -5,6 +5,7 @@ import warnings
 import numpy as np
 
 import fretting as fr
+from fretting.analysis.accuracy import zone_pairs
 
 RESOLVED = 1e-2  # of the feature's own size
 PROJECT = 1e-3  # of a (ends), of f p0 (traction), of the largest slip
@@ -26,8 +27,7 @@ def simulate_as_a_user(contact, history, **options):
 
 def zones(result):
     """Stick zones of the increment ending at `result`'s step, as (start, end) rows [m]."""
-    pairs = np.stack([result.stick_start.values, result.stick_end.values], axis=-1)
-    return pairs[~np.isnan(pairs[:, 0])]
+    return zone_pairs(result.stick_start.values, result.stick_end.values)
 
 
 def assert_zones(result, expected, tolerance):

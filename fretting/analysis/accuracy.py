@@ -45,6 +45,7 @@ __all__ = [
     "score",
     "traction_error",
     "zone_distance",
+    "zone_pairs",
 ]
 
 #: Band left out of the traction error around each stick/slip boundary and inside each edge [a].
@@ -182,10 +183,16 @@ def memory_kinks(x: np.ndarray, stick: np.ndarray) -> list[np.ndarray]:
     return [middle[np.abs(np.diff(row)) > 1] for row in last]
 
 
+def zone_pairs(start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """Stick zones ``(start, end)`` [m], shape (n_zones, 2), from one step's ``stick_start`` and ``stick_end`` [m]
+    (NaN past its zones)."""
+    pairs = np.stack([start, end], axis=-1)
+    return pairs[~np.isnan(pairs[:, 0])]
+
+
 def run_zones(result: xr.Dataset, k: int) -> np.ndarray:
     """Stick zones ``(start, end)`` [m] of row `k` of a result of `fretting.simulate`, shape (n_zones, 2)."""
-    pairs = np.stack([result.stick_start.values[k], result.stick_end.values[k]], axis=-1)
-    return pairs[~np.isnan(pairs[:, 0])]
+    return zone_pairs(result.stick_start.values[k], result.stick_end.values[k])
 
 
 def score(result: xr.Dataset, reference: Reference) -> dict[str, float]:

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from checks import zones
 from conftest import final
 from scipy import integrate
 
@@ -22,12 +23,6 @@ BOUNDARY_BAND = 0.02  # [a], see the module docstring
 
 def away_from(x, ends, a):
     return np.all(np.abs(np.subtract.outer(x, np.asarray(ends))) > BOUNDARY_BAND * a, axis=-1)
-
-
-def zones(result):
-    """Stick zones of the increment ending at `result`'s step, as (start, end) pairs [m]."""
-    pairs = np.stack([result.stick_start.values, result.stick_end.values], axis=-1)
-    return pairs[~np.isnan(pairs[:, 0])]
 
 
 @pytest.mark.parametrize("psi", [0.05, 0.2, 0.5, 0.8, 0.95])
