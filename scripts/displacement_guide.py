@@ -105,8 +105,9 @@ the sliding extreme. Under force control `|Q| >= f P` stays an error (`GrossSlip
 `P` every model that runs a history of `delta` follows gross slip: the exact model of `Q` alone (a
 symmetric profile, no bulk tension) and method 4 with a bulk tension `sigma`, on the Chebyshev grid
 (`fr.models.Grid`), the Galerkin mesh with its nodes given (`fr.models.Mesh(theta=...)`) and the cells of
-`fr.models.Varying` (the default where `sigma` moves off the in-phase line). Under a varying `P` the cells
-of `fr.models.Varying` follow `delta` into gross slip and back, sliding at `f P(t)`
+`fr.models.Varying` (the default where `sigma` moves off the in-phase line). Under a varying `P` the exact
+model of Jäger's superposition (`fr.models.Jaeger`, the default without `sigma`) and the cells of
+`fr.models.Varying` follow `delta` into gross slip and back, sliding at `f P(t)`
 ([theory](../theory/displacement.md#varying-load)).
 
 With `sigma` the contact slides with `q = +-f p` everywhere and each point slips by the step's `d delta`
