@@ -236,8 +236,9 @@ def drivers(names):
 
 
 def _energy_spans(steps, recorded):
-    """`adaptation._spans` with every span `ENERGY_SPAN`: no refinement for the stick ends."""
-    return np.full((steps.size, 2), mesh_module.ENERGY_SPAN)
+    """`adaptation._spans` with every span `ENERGY_SPAN` and the grading `ENERGY_GRADING`: no refinement for the
+    stick ends."""
+    return np.tile([mesh_module.ENERGY_SPAN, mesh_module.ENERGY_SPAN, mesh_module.ENERGY_GRADING], (steps.size, 1))
 
 
 def ends(names):

@@ -786,20 +786,21 @@ def increments(scene, Q, sigma=None):
     return np.array(ds), np.array(g)
 
 
-def adapt(contact, Q, sigma=None, rtol=gk.DEFAULT_RTOL, theta=None, passes=30):
+def adapt(contact, Q, sigma=None, rtol=gk.DEFAULT_RTOL, theta=None, passes=30, grading=gk.ENERGY_GRADING):
     """Refine until the mesh stays: the scene, its increments ``ds`` and ``g``, and the number of passes.
 
     The loop of the Galerkin issue, by hand: run the path ``Q[k], sigma[k]`` [N/m, Pa], reduce
     the element targets of every increment, refine, from `theta` (default
     `fretting.models.galerkin.initial_theta`): the energy stage of
-    `fretting.models.galerkin.adaptation.adapted_model`, elements of ``ENERGY_SPAN rtol a``.
+    `fretting.models.galerkin.adaptation.adapted_model`, elements of ``ENERGY_SPAN rtol a``, graded
+    around the boundaries by `grading` (`fretting.models.galerkin.element_targets`).
     """
     theta = gk.initial_theta() if theta is None else theta
     for count in range(1, passes + 1):
         scene = gk.Mesh(theta=theta).build(contact)
         ds, g = increments(scene, Q, sigma)
         refined = gk.refine(
-            theta, gk.element_targets(theta, ds, rtol, scene.breakpoints, gk.ENERGY_SPAN, gk.ENERGY_SPAN)
+            theta, gk.element_targets(theta, ds, rtol, scene.breakpoints, gk.ENERGY_SPAN, gk.ENERGY_SPAN, grading)
         )
         if refined is theta:
             return scene, ds, g, count

@@ -14,8 +14,10 @@ for, and refinement), `adaptation` (the mesh adapted to a history, run by the en
 from fretting.models.galerkin.adaptation import MAX_TURN, adapted_model
 from fretting.models.galerkin.kernels import clausen1, clausen3_complement, stiffness
 from fretting.models.galerkin.mesh import (
+    BOUNDARY_GRADING,
     BOUNDARY_SPAN,
     DEFAULT_RTOL,
+    ENERGY_GRADING,
     ENERGY_SPAN,
     boundaries,
     boundary_fraction,
@@ -30,11 +32,13 @@ from fretting.models.galerkin.mesh import (
 from fretting.models.galerkin.model import CAPPED, MAX_DEFAULT_MESH, MAX_DEFAULT_WORK, GalerkinModel, Mesh
 
 __all__ = [
+    "BOUNDARY_GRADING",
     "BOUNDARY_SPAN",
     "CAPPED",
     "MAX_DEFAULT_MESH",
     "MAX_DEFAULT_WORK",
     "DEFAULT_RTOL",
+    "ENERGY_GRADING",
     "ENERGY_SPAN",
     "MAX_TURN",
     "GalerkinModel",

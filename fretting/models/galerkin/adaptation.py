@@ -34,7 +34,9 @@ import numpy as np
 
 from fretting.errors import GrossSlipError, SolverError
 from fretting.models.galerkin.mesh import (
+    BOUNDARY_GRADING,
     BOUNDARY_SPAN,
+    ENERGY_GRADING,
     ENERGY_SPAN,
     LEVELS_PER_PASS,
     MIN_SIZE,
@@ -438,7 +440,7 @@ class _Adaptation:
                 ds = outcome.ds
                 np.minimum(
                     targets,
-                    element_targets(model.theta, ds, rtol, model.breakpoints, ENERGY_SPAN, ENERGY_SPAN),
+                    element_targets(model.theta, ds, rtol, model.breakpoints, ENERGY_SPAN, ENERGY_SPAN, ENERGY_GRADING),
                     out=targets,
                 )
                 if (edges := _unseen_edges(model, outcome, turning, step)) is not None:
@@ -537,12 +539,13 @@ def remapped(state, theta, finer):
 
 
 def _spans(steps, recorded):
-    """The spans (``swept``, ``end`` of `element_targets`) of each increment between the turning
-    points at the history's `steps`, shape (len(steps), 2): `BOUNDARY_SPAN` where a step strictly
-    inside the increment (``swept``), or its last step (``end``), is in `recorded` (None: all are),
-    else `ENERGY_SPAN`. Row 0, the starting state, is never solved."""
+    """The spans and the grading (``swept``, ``end``, ``grading`` of `element_targets`) of each increment
+    between the turning points at the history's `steps`, shape (len(steps), 3): `BOUNDARY_SPAN` where a
+    step strictly inside the increment (``swept``), or its last step (``end``), is in `recorded` (None:
+    all are), else `ENERGY_SPAN`; `BOUNDARY_GRADING` where either is (the traction of those steps is
+    read next to their stick ends), else `ENERGY_GRADING`. Row 0, the starting state, is never solved."""
     if recorded is None:
-        return np.full((steps.size, 2), BOUNDARY_SPAN)
+        return np.tile([BOUNDARY_SPAN, BOUNDARY_SPAN, BOUNDARY_GRADING], (steps.size, 1))
     recorded = np.asarray(recorded, dtype=np.int64)
     marks = np.zeros(int(steps[-1]) + 2, dtype=np.int64)
     marks[recorded[recorded <= steps[-1]] + 1] = 1  # a run stopped by gross slip records no later step
@@ -550,7 +553,9 @@ def _spans(steps, recorded):
     first = np.concatenate([[0], steps[:-1] + 1])  # one past the turning point before
     inside = counted[steps] - counted[first]  # steps first .. steps - 1
     last = counted[steps + 1] - counted[steps]
-    return np.where(np.stack([inside, last], axis=1) > 0, BOUNDARY_SPAN, ENERGY_SPAN)
+    spans = np.where(np.stack([inside, last], axis=1) > 0, BOUNDARY_SPAN, ENERGY_SPAN)
+    grading = np.where((inside > 0) | (last > 0), BOUNDARY_GRADING, ENERGY_GRADING)
+    return np.column_stack([spans, grading])
 
 
 def _bisected_size(theta, targets):

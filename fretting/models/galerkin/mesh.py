@@ -74,9 +74,18 @@ ENERGY_SPAN = 50.0
 #: larger span the traction's ``d ln d`` there errs most at the node nearest the end of a rounded
 #: flat (tests/models/test_galerkin.py::test_rounded_flat).
 BREAKPOINT_SPAN = 0.5
-#: Around a boundary elements grow at most like this fraction of their distance from it, so
-#: that the square-root kink of the traction is seen through gently graded elements.
-BOUNDARY_GRADING = 0.5
+#: Around a boundary of an increment whose steps are recorded, elements grow at most like this
+#: fraction of their distance from it, so that the square-root kink of the traction is seen through
+#: gently graded elements: the nodal traction (`fretting.models.galerkin.quadrature.recovery`, a
+#: quadratic through three hat means) cannot follow the kink across elements of a size near their
+#: distance from it, and in the stick zone next to an end it errs less the smaller this fraction,
+#: for more nodes: the traction and the nodes at other values,
+#: docs/validation/galerkin-constants.md#boundary_grading.
+BOUNDARY_GRADING = 0.25
+#: The same fraction where only the energy is asked for (the mesh adapted to the energy, and the
+#: increments none of whose steps is recorded): the hat moments, and so the energy, are right
+#: through coarser grading than the traction read from them.
+ENERGY_GRADING = 0.5
 #: Nodes slipping one way beyond a stick/slip boundary that `located_end` needs before it also
 #: extrapolates from the second and third: with four, both lie inside the zone, off its far end.
 RESOLVED_NODES = 4
@@ -114,7 +123,14 @@ def initial_theta(M=None):
 
 
 def element_targets(
-    theta, ds, rtol=DEFAULT_RTOL, breakpoints=(), swept=BOUNDARY_SPAN, end=BOUNDARY_SPAN, levels=LEVELS_PER_PASS
+    theta,
+    ds,
+    rtol=DEFAULT_RTOL,
+    breakpoints=(),
+    swept=BOUNDARY_SPAN,
+    end=BOUNDARY_SPAN,
+    grading=None,
+    levels=LEVELS_PER_PASS,
 ):
     """Largest element sizes [rad] that resolve the stick and slip zones of an increment.
 
@@ -129,7 +145,7 @@ def element_targets(
       it (or of its distance to the nearest of `breakpoints`, where the pressure has a singular
       derivative), since the energy error a boundary leaves falls like ``(size / w)^(5/2)``, and at most
       ``end rtol a`` in x, the accuracy asked of the located ends;
-    - around a boundary, ``BOUNDARY_GRADING`` times the distance from it;
+    - around a boundary, `grading` times the distance from it;
     - at each of `breakpoints`, ``BREAKPOINT_SPAN BOUNDARY_SPAN rtol a`` in x, graded the same way, whatever
       the increment: the traction inherits the pressure's singular derivative there;
     - a zone seen at fewer than `MIN_ZONE_NODES` nodes (its width is a guess), or neighbours
@@ -159,6 +175,10 @@ def element_targets(
         boundaries of the steps inside the increment) and of those holding the increment's own
         boundaries: `BOUNDARY_SPAN` where those steps' stick ends are recorded, `ENERGY_SPAN`
         where only the energy is.
+    grading : float, optional
+        Largest element around a boundary or a breakpoint, as a fraction of its distance from it:
+        `BOUNDARY_GRADING` (None, read when called) where the steps' traction is recorded,
+        `ENERGY_GRADING` where only the energy is.
 
     Returns
     -------
@@ -169,13 +189,14 @@ def element_targets(
     if ds.shape[-1] != theta.size or ds.ndim not in (1, 2):
         raise ValueError(f"ds must have {theta.size} values a row, one per node of theta; found shape {ds.shape}")
     if ds.ndim == 2:
-        rows = [element_targets(theta, row, rtol, breakpoints, swept, end, levels) for row in ds]
+        rows = [element_targets(theta, row, rtol, breakpoints, swept, end, grading, levels) for row in ds]
         return np.minimum.reduce(rows, initial=np.inf)
+    grading = BOUNDARY_GRADING if grading is None else grading
     d = ds[::-1]  # theta order
     h = np.diff(theta)
     targets = np.full(h.size, np.inf)
     for point in breakpoints:  # the traction has the pressure's singular derivative there
-        targets = np.minimum(targets, _graded_toward(theta, point, BREAKPOINT_SPAN * _span(point, rtol)))
+        targets = np.minimum(targets, _graded_toward(theta, point, BREAKPOINT_SPAN * _span(point, rtol), grading))
     status = np.sign(d)
     inside, positions = _boundaries(theta, d)
     if inside.size == 0:
@@ -198,7 +219,7 @@ def element_targets(
     for zone, (k, position) in enumerate(zip(inside, ends[1:-1], strict=True)):  # between zone and zone + 1
         scale = min(width[zone], width[zone + 1], *(abs(position - b) or np.inf for b in breakpoints))
         size = min(boundary_fraction(rtol) * scale, _span(position, rtol, end))
-        targets = np.minimum(targets, _graded_toward(theta, position, size))
+        targets = np.minimum(targets, _graded_toward(theta, position, size, grading))
         if status[k] * status[k + 1] < 0:
             targets[k] = min(targets[k], h[k] / 2)
     return np.maximum(targets, MIN_SIZE if levels is None else np.maximum(h / 2**levels, MIN_SIZE))
@@ -223,10 +244,10 @@ def _graded_from_edge(theta, left, rtol):
     return np.maximum(zone_fraction(rtol) * distance, EDGE_SIZE)
 
 
-def _graded_toward(theta, position, size):
-    """Targets [rad]: `size` at `position`, growing like ``BOUNDARY_GRADING`` times the distance from it."""
+def _graded_toward(theta, position, size, grading):
+    """Targets [rad]: `size` at `position`, growing like `grading` times the distance from it."""
     distance = np.maximum(np.maximum(theta[:-1] - position, position - theta[1:]), 0.0)
-    return np.maximum(size, BOUNDARY_GRADING * distance)
+    return np.maximum(size, grading * distance)
 
 
 def zone_fraction(rtol):
@@ -262,14 +283,14 @@ def _boundaries(theta, d):
 
 def tightened(theta, positions, levels=LEVELS_PER_PASS):
     """Targets [rad] that bisect the elements holding `positions` [rad] `levels` times, graded
-    around them like a boundary's (``BOUNDARY_GRADING``): where the energy of an increment whose
-    boundaries these are still changes from one mesh to the next
+    around them like a boundary's where only the energy is asked for (``ENERGY_GRADING``): where
+    the energy of an increment whose boundaries these are still changes from one mesh to the next
     (`fretting.models.galerkin.adaptation.adapted_model`)."""
     h = np.diff(theta)
     targets = np.full(h.size, np.inf)
     for position in positions:
         k = min(int(np.searchsorted(theta, position, side="right")) - 1, h.size - 1)
-        targets = np.minimum(targets, _graded_toward(theta, position, max(h[k] / 2**levels, MIN_SIZE)))
+        targets = np.minimum(targets, _graded_toward(theta, position, max(h[k] / 2**levels, MIN_SIZE), ENERGY_GRADING))
     return targets
 
 
