@@ -253,6 +253,28 @@ def test_traction_keeps_coulomb_and_recovers_third_order(hertz):
     assert errors[1] < 1e-4 and errors[0] / errors[1] > 6
 
 
+@pytest.mark.parametrize(("psi", "tau"), [(0.3, 0.0), (0.5, 0.5)])
+def test_the_traction_next_to_a_stick_end_is_read_through_graded_elements(hertz, monkeypatch, psi, tau):
+    """The nodal traction (a quadratic through three hat means) follows the square-root kink next to a stick end
+    only through elements a small fraction of their distance from it: the mesh of recorded steps, graded at
+    `BOUNDARY_GRADING`, reads Nowell-Hills in the stick zone within 1e-4 f p0 away from the ends, where the
+    energy's grading, `ENERGY_GRADING`, leaves more than twice that."""
+    Q, sigma = psi * hertz.f * hertz.P, tau * hertz.f * hertz.p0
+    history = fr.History.piecewise_linear([0.0, Q], [0.0, sigma], 32)
+    b, e = cf.stick_half_width(hertz, Q), cf.nowell_hills_offset(hertz, sigma)
+
+    def traction_error():
+        step = fr.simulate(hertz, history, rtol=gk.DEFAULT_RTOL).isel(step=-1)
+        exact = cf.nowell_hills_traction(hertz, Q, sigma, step.x.values)
+        ends = [e - b, e + b, -hertz.a, hertz.a]
+        band = accuracy.BAND * hertz.a
+        return accuracy.traction_error(step.x.values, step.q.values, exact, ends, band) / (hertz.f * hertz.p0)
+
+    graded = traction_error()
+    monkeypatch.setattr(gk.adaptation, "BOUNDARY_GRADING", gk.ENERGY_GRADING)
+    assert graded < 1e-4 and traction_error() > 2e-4
+
+
 # --- closed forms --------------------------------------------------------------------------------
 
 
