@@ -112,9 +112,9 @@ def errors(contact, step, expected_zone, q_exact, slip_exact=None):
     """Stick-end [a], traction [f p0] (away from the stick ends and edges) and slip errors of one step."""
     a, x = contact.a, step.x.values
     exclude = np.r_[expected_zone, -a, a]
+    zones = zone_pairs(step.stick_start.values, step.stick_end.values)
     row = {
-        "stick": zone_distance(zone_pairs(step.stick_start.values, step.stick_end.values), np.array([expected_zone]))
-        / a,
+        "stick": zone_distance(zones, np.array([expected_zone])) / a,
         "traction": traction_error(x, step.q.values, q_exact, exclude, BAND * a) / (contact.f * contact.p0),
     }
     if slip_exact is not None:

@@ -83,8 +83,9 @@ BREAKPOINT_SPAN = 0.5
 #: docs/validation/galerkin-constants.md#boundary_grading.
 BOUNDARY_GRADING = 0.25
 #: The same fraction where only the energy is asked for (the mesh adapted to the energy, and the
-#: increments none of whose steps is recorded): the hat moments, and so the energy, are right
-#: through coarser grading than the traction read from them.
+#: increments none of whose steps is recorded): the hat moments, and so the slip and the energy,
+#: are right through coarser grading than the traction read from them (the slip at either fraction,
+#: docs/validation/galerkin-constants.md#boundary_grading; the energy, docs/validation/speed-ratio.md).
 ENERGY_GRADING = 0.5
 #: Nodes slipping one way beyond a stick/slip boundary that `located_end` needs before it also
 #: extrapolates from the second and third: with four, both lie inside the zone, off its far end.
