@@ -436,6 +436,31 @@ def test_a_slip_zone_at_one_edge_node_is_refined():
     assert gk.element_targets(theta, ds)[16 - 9] < np.diff(theta)[16 - 9]
 
 
+def test_slips_of_the_size_of_rounding_are_read_as_stuck(monkeypatch):
+    """Nodes back at their limit where a loop closes, started slipping, slip by the solve's rounding either
+    way (`mesh.settled`): they make no zones, which would otherwise each be refined down to MIN_SIZE."""
+    theta = gk.uniform_theta(32)
+    ds = np.zeros(theta.size)
+    ds[:4], ds[-4:] = -1e-9 * np.arange(4, 0, -1), 1e-9 * np.arange(1, 5)
+    chattering = ds.copy()
+    chattering[10:20:2], chattering[11:20:4] = 3e-25, -2e-25
+    np.testing.assert_array_equal(gk.element_targets(theta, chattering), gk.element_targets(theta, ds))
+    np.testing.assert_array_equal(mesh.boundaries(theta, chattering), mesh.boundaries(theta, ds))
+    monkeypatch.setattr(mesh, "CHATTER", 0.0)
+    assert mesh.boundaries(theta, chattering).size > mesh.boundaries(theta, ds).size == 2
+
+
+def test_a_loop_closed_at_a_turning_point_is_refined_for_no_zone_of_rounding():
+    """Q alone, 0 -> -0.82 -> 0.15 -> -0.82 f P on a Hertz contact, the mesh asked for: the last step closes
+    the loop (Masing), where the nodes that slipped on the first branch and stuck since are back at their
+    limit. No element of the adapted mesh is refined toward the smallest size the targets allow."""
+    contact = harness.family_contact("hertz", (0.5,), 0.3, 3e5)
+    path = np.array([0.0, -0.8245680769766501, 0.15002777154926972, -0.8245680769766501])
+    history = fr.History.piecewise_linear(path * contact.f * contact.P, None, 4)
+    result = fr.simulate(contact, history, rtol=fr.DEFAULT_RTOL)
+    assert np.abs(np.diff(result.theta.values)).min() > 100 * mesh.MIN_SIZE
+
+
 def test_settled_mesh_resolves_tiny_stick_zone():
     """Q = 0.999999 f P: the stick zone of half-width 0.001 a has several elements."""
     contact = hertz_contact()

@@ -23,6 +23,7 @@ __all__ = [
     "initial_theta",
     "located_end",
     "refine",
+    "settled",
     "tightened",
     "uniform_theta",
     "zone_fraction",
@@ -94,6 +95,11 @@ RESOLVED_NODES = 4
 MIN_ZONE_NODES = 3
 #: Bisections asked of an element in one pass at most (a factor 4 in size).
 LEVELS_PER_PASS = 2
+#: Slip increment, as a fraction of the increment's largest, at or below which a node counts as stuck
+#: where the zones of an increment are read (`settled`): the rounding of the solver's slips is about
+#: 1e-16 of them, and a slip zone whose slip is this small lies within about ``CHATTER^(2/3)`` of its
+#: width from its end (eq 19), far inside the accuracy asked of any end.
+CHATTER = 1e-10
 #: Largest size ratio of neighbouring elements.
 GRADING = 2.0
 #: Rounding allowance on that ratio: bisected elements are halves up to rounding.
@@ -193,7 +199,7 @@ def element_targets(
         rows = [element_targets(theta, row, rtol, breakpoints, swept, end, grading, levels) for row in ds]
         return np.minimum.reduce(rows, initial=np.inf)
     grading = BOUNDARY_GRADING if grading is None else grading
-    d = ds[::-1]  # theta order
+    d = settled(ds)[::-1]  # theta order
     h = np.diff(theta)
     targets = np.full(h.size, np.inf)
     for point in breakpoints:  # the traction has the pressure's singular derivative there
@@ -272,7 +278,20 @@ def boundary_fraction(rtol):
 def boundaries(theta, ds):
     """Stick/slip boundaries [rad] of the slip increment `ds` [m] (scene order, as for
     `element_targets`) on the mesh `theta` [rad], ascending, each placed by `_boundary_position`."""
-    return _boundaries(theta, np.asarray(ds, dtype=float)[::-1])[1]
+    return _boundaries(theta, settled(ds)[::-1])[1]
+
+
+def settled(ds):
+    """The slip increment `ds` [m] with every slip of at most `CHATTER` of its largest set to zero.
+
+    Where a load path closes a loop at a turning point, the nodes that slipped on the branch before and
+    stuck since are back at their friction limit exactly (Masing's rule; Mindlin & Deresiewicz 1953): the
+    increment leaves them stuck in exact arithmetic, but a solve started with them slipping (from the
+    directions of a coarser mesh) may leave some slipping by the rounding of the solve, either way. Read
+    as zones, they would split the stick zone into zones a node wide, each refined down to `MIN_SIZE`.
+    """
+    ds = np.asarray(ds, dtype=float)
+    return np.where(np.abs(ds) > CHATTER * np.max(np.abs(ds), initial=0.0), ds, 0.0)
 
 
 def _boundaries(theta, d):
