@@ -47,6 +47,7 @@ from fretting.models.state import State
 from fretting.physics.closed_forms import (
     compliance_scale,
     dissipation_scale,
+    masing_arrival,
     masing_increment,
     masing_origin,
     slip_series,
@@ -292,7 +293,8 @@ class ExactModel(Model):
             turning, dissipation = state.memory, 0.0
         else:
             turning, dissipation = self._walked(state.memory, state.Q, Q)
-        slip, q, delta_Q, c = self._at(turning, Q)
+        slip, q, delta_Q = self._at(turning, Q)
+        c = self._solution(*masing_arrival(state.memory, state.Q, Q), Q).c
         if slid:
             slip, delta_Q = slip + slid, delta_Q + slid  # a uniform slip is its own delta_Q (eq D4)
         a = self.contact.a
@@ -407,15 +409,14 @@ class ExactModel(Model):
         return slip, q, self._dissipated(walk, branches), walk.memory, still
 
     def _at(self, turning, Q):
-        """Slip [m], traction [Pa] at the nodes, ``delta_Q`` [m] and the stick half-width [m] at `Q`
-        with the open `turning` points.
+        """Slip [m], traction [Pa] at the nodes and ``delta_Q`` [m] at `Q` with the open `turning` points.
 
         Summed branch by branch from the first, so a state reached again repeats bit for bit,
         and where the last branch sticks its terms are exact zeros: ``ds == 0`` exactly there.
         """
         origin, factor = masing_origin(turning)
         last = self._solution(origin, factor, Q)
-        return *_added(self._memory(tuple(turning)), last, _signed(origin, factor, Q)), last.c
+        return _added(self._memory(tuple(turning)), last, _signed(origin, factor, Q))
 
     def _memory(self, turning):
         """Slip, traction and ``delta_Q`` at the last of the `turning` points, summed over their

@@ -31,6 +31,7 @@ __all__ = [
     "cattaneo_mindlin_compliance",
     "cattaneo_mindlin_dissipation",
     "mindlin_deresiewicz_energy",
+    "masing_arrival",
     "masing_origin",
     "masing_increment",
     "masing_walk",
@@ -298,6 +299,15 @@ def masing_increment(turning: Sequence[float], Q_from: float, Q_to: float) -> tu
         if not passes:
             return tuple(turning), pieces
         start, turning = end, turning[:-2]
+
+
+def masing_arrival(turning: Sequence[float], Q_from: float, Q_to: float) -> tuple[float, float]:
+    """Start [N/m] and factor of the branch on which the load arrives at `Q_to` from `Q_from` with the open
+    `turning` points before the change (`masing_increment`): that after the turning points left open, but for
+    a change that ends exactly where it closes a loop, whose points slip on the closing branch up to the end:
+    the older branch goes on only past it, so the stick zone of the change is the closing branch's."""
+    walked = [piece for piece in masing_increment(turning, Q_from, Q_to)[1] if piece[2] != piece[3]]
+    return walked[-1][:2] if walked else masing_origin(turning)
 
 
 def masing_walk(Q: ArrayLike) -> tuple[list[tuple[float, ...]], list[list[Piece]]]:

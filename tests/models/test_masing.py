@@ -240,6 +240,22 @@ def test_a_decaying_history_keeps_every_turning_point(hertz):
     assert result.total_dissipation.values == pytest.approx(expected, rel=1e-9)
 
 
+def test_a_step_that_closes_a_loop_has_the_closing_branch_s_stick_zone(hertz):
+    """0 -> 0.8 -> -0.8 -> 0.4 -> -0.4 -> 0.4 -> 0.5 f P: the step to 0.4 f P closes the inner loop. The
+    points between the older branch's stick end and the closing branch's do not slip in it, so the stick
+    zone of that increment is the closing branch's, ``a sqrt(1 - 0.8 / 2)``, the nodes with ``ds = 0``;
+    past it the older branch from -0.8 f P goes on, ``a sqrt(1 - 1.3 / 2)`` at 0.5 f P."""
+    path = np.array([0.0, 0.8, -0.8, 0.4, -0.4, 0.4, 0.5])
+    history = fr.History.piecewise_linear(path * hertz.f * hertz.P, None, 1)
+    result = exact(hertz, history)
+    x = result.x.values - hertz.centre
+    for step, c in ((5, hertz.a * np.sqrt(1 - 0.4)), (6, hertz.a * np.sqrt(1 - 0.65))):
+        zone = result.isel(step=step)
+        ends = np.array([zone.stick_start.item(), zone.stick_end.item()]) - hertz.centre
+        np.testing.assert_allclose(ends, [-c, c], rtol=1e-12)
+        np.testing.assert_array_equal(zone.stick.values.astype(bool), np.abs(x) < c)
+
+
 def test_nodes_hold_thin_slip_zones_and_small_stick_zones(hertz):
     """The edge nodes: a slip zone 8e-12 a wide holds 4 or more (measured 9), the reversed zones
     of a 1e-6 fP cycle (1 - c/a = 5e-7) about 40; the stick-zone nodes: none added at Q/fP = 0.996
