@@ -6,6 +6,7 @@ import numpy as np
 
 import fretting as fr
 from fretting.analysis.accuracy import zone_pairs
+from fretting.models.method4 import INWARD
 
 RESOLVED = 1e-2  # of the feature's own size
 PROJECT = 1e-3  # of a (ends), of f p0 (traction), of the largest slip
@@ -61,7 +62,8 @@ def assert_friction_conditions(result, contact):
 def assert_zone_ends_are_consistent(result):
     """At every step: one stick zone per run of stuck nodes, in order along x; ``start <= end``;
     each zone overlaps its run and lies between the slipping nodes around it (or the contact's
-    ends), so zones do not overlap and lie within the contact."""
+    ends), so zones do not overlap and lie within the contact; and it covers its run but for at most
+    `INWARD` of the spacing beyond each end of it, as far inside as an end is ever placed."""
     x = result.x.values
     edge = np.array([-1.0, 1.0]) * result.attrs["a"] + result.attrs["centre"]
     bounded = np.concatenate([[edge[0]], x, [edge[1]]])  # a slipping node's place, or the contact's end
@@ -77,6 +79,9 @@ def assert_zone_ends_are_consistent(result):
         assert np.all(bounded[first] <= start) and np.all(end <= bounded[last + 2]), f"step {step}: past a slip node"
         assert np.all(start <= x[last]) and np.all(x[first] <= end), f"step {step}: a zone misses its stuck nodes"
         assert edge[0] <= start.min() and end.max() <= edge[1], f"step {step}: outside the contact"
+        inward = INWARD * (1 + 1e-9) * np.diff(bounded)
+        covered = (start <= x[first] + inward[first]) & (x[last] - inward[last + 1] <= end)
+        assert covered.all(), f"step {step}: a zone leaves stuck nodes out"
 
 
 def away_from(x, ends, a):

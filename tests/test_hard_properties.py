@@ -141,12 +141,15 @@ Q_ONLY_MODELS = st.sampled_from([{}, {"rtol": fr.DEFAULT_RTOL}])
 @given(scene=scenes(SMOOTH), turning=nested_turning_points(), steps=st.integers(1, 6), model=Q_ONLY_MODELS)
 def test_return_point_memory_of_nested_loops(scene, turning, steps, model):
     """Q only, any profile, either model: after the nested excursions t1, t2, ..., tm, coming back
-    through t_{m-1}, t_{m-3}, ... closes one loop at each and restores the state of its first visit."""
+    through t_{m-1}, t_{m-3}, ... closes one loop at each and restores the state of its first visit;
+    the stick zones of the steps that close them are those of the nodes that did not slip."""
     m = len(turning)
     back = turning[m - 2 :: -2]
     path = np.array([0.0, *turning, *back])
     history = fr.History.piecewise_linear(path * scene.f * scene.P, None, steps)
-    slip = simulate_as_a_user(scene, history, record=history.vertex_step, **model).slip.values
+    result = simulate_as_a_user(scene, history, record=history.vertex_step, **model)
+    assert_zone_ends_are_consistent(result)
+    slip = result.slip.values
     scale = np.abs(slip).max()
     for j, k in enumerate(range(m - 1, 0, -2)):  # turning point t_k (1-based) and its return
         first, again = slip[k], slip[m + 1 + j]
