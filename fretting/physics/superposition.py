@@ -336,8 +336,13 @@ class Bands:
         falling = s * self.g(self.edges)
         k = falling.size - np.searchsorted(falling[::-1], s * G, side="left") - 1  # the last edge with s g >= s G
         band = np.minimum(k, self.ratio.size - 1)
-        load = (G - self.cumulative[band] + self.ratio[band] * self.loads[band]) / (self.ratio[band] - self.limit)
+        numerator = G - self.cumulative[band] + self.ratio[band] * self.loads[band]
+        slope = self.ratio[band] - self.limit  # zero over a band at the limit: s g is flat there
+        load = np.divide(numerator, slope, out=np.zeros(np.shape(numerator)), where=slope != 0)
         c = np.clip(self.geometry.half_width(np.maximum(load, 0.0)), self.edges[band], self.edges[band + 1])
+        # A band at the limit is found only where the rounding of g puts its upper edge a hair below G: the
+        # largest c is that edge, past which s g falls below G.
+        c = np.where(slope == 0, self.edges[band + 1], c)
         return np.where(k == self.ratio.size, self.edges[-1], c)
 
     def pieces(self, c1, c0):

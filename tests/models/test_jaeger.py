@@ -57,6 +57,25 @@ def test_cells_converge_to_it_at_every_step(contact, recede):
     assert worst[1]["increment"] < worst[0]["increment"]
 
 
+def test_a_slip_zone_that_reaches_a_band_at_the_limit_to_rounding_ends_past_it():
+    """Nested loops of Q under P = P0 (1 + 0.05 |Q| / (f P0)) on Hertz: a slip zone's inner end solves
+    ``g(c) = Q - s f P`` (`fretting.physics.superposition.Bands.inverse`), flat over a band that entered at
+    the limit, and the rounding of ``g`` can put that band's upper edge a hair past the value sought (it
+    divided by zero there). The run ends, its stick ends and energy at every step within the targets of
+    method 4 on 1536 cells."""
+    contact = hertz_contact()
+    path = np.array([0.0, -0.49594927128908944, 0.3709192320216966, -0.1894695224532163, 0.04213907493920421])
+    path = np.append(path, path[[3, 1]])
+    history = fr.History.piecewise_linear(path * contact.f * contact.P, None, 3, P=contact.P * (1 + 0.05 * abs(path)))
+    exact = fr.simulate(contact, history)
+    assert exact.attrs["model"] == "jaeger"
+    cells = fr.simulate(contact, history, model=Varying(1536))
+    for end in ("stick_start", "stick_end"):
+        np.testing.assert_allclose(exact[end].values, cells[end].values, rtol=0, atol=1e-3 * contact.a)
+    energy = np.cumsum(exact.dissipation.values)
+    np.testing.assert_allclose(np.cumsum(cells.dissipation.values), energy, rtol=0, atol=1e-4 * energy[-1])
+
+
 def test_energy_density_sums_to_the_energy(contact, recede):
     """The energy density of each increment at the nodes, over the cells, sums to the increment's energy (the
     midpoint rule on cells 1/768 of the largest contact wide: to 1e-3 of the largest increment's)."""
