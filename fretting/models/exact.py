@@ -298,7 +298,9 @@ class ExactModel(Model):
         if slid:
             slip, delta_Q = slip + slid, delta_Q + slid  # a uniform slip is its own delta_Q (eq D4)
         a = self.contact.a
-        zones = [] if c == 0 else [(-c / a, c / a)]
+        # no stick zone where the whole contact slides by a slip `slid` added in the increment, nor at c = 0; the
+        # corrective contact of a rounded flat on the point of sliding is the flat, c = b, which has not slipped yet
+        zones = [] if c == 0 or slid != state.slid else [(-c / a, c / a)]
         if Q == state.Q and slid == state.slid:
             return ExactOutcome(q, np.zeros(slip.size), slip, 0.0, turning, [(-1.0, 1.0)], delta_Q, slid, Q=Q)
         return ExactOutcome(q, slip - state.slip, slip, dissipation + sliding, turning, zones, delta_Q, slid, Q=Q)

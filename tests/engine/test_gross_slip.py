@@ -209,6 +209,20 @@ def test_other_symmetric_profiles_slide(profile):
         assert energy[0] == pytest.approx(4 * fP * 0.3 * delta_t, rel=1e-9)
 
 
+@pytest.mark.parametrize("profile", [fr.Hertz(0.05), fr.RoundedFlat(2e-4, 0.02)], ids=["hertz", "rounded_flat"])
+def test_a_step_that_slides_has_no_stick_zone(profile):
+    """Every node of a step in gross slip slides by its uniform slip: no node sticks and no stick zone is
+    reported, also on a rounded flat, whose corrective contact on the point of sliding is its flat; the
+    steps in partial slip keep theirs."""
+    contact = fr.Contact(profile, 115e9, 0.6, 1e5, datum=L)
+    result = fr.simulate(contact, sliding_cycles(1.5 * transition_displacement(contact), 1, 8), fr.models.Exact())
+    sliding = result.regime.values == REGIMES.index("gross_slip")
+    assert sliding.any() and (~sliding[1:]).any()
+    assert not result.stick.values[sliding].any()
+    assert np.isnan(result.stick_start.values[sliding]).all() and np.isnan(result.stick_end.values[sliding]).all()
+    assert not np.isnan(result.stick_start.values[~sliding]).any()
+
+
 def test_a_model_that_does_not_slide_refuses_a_slide_with_the_contract_error():
     """`Model.slide`'s default is the gross-slip error naming the model that follows it, not a stub."""
     contact = fr.Contact(fr.Hertz(0.05), 115e9, 0.6, 1e5)
