@@ -19,6 +19,9 @@ history moves, and its own conditions hold):
    (`Varying()`); so too where it prescribes the displacement ``delta`` with a ``sigma`` off the
    in-phase line, whose ``Q`` of every step the mesh cannot adapt to before the run (`Mesh.holds_for`).
 
+Where none of them runs the history (an asymmetric profile under a varying ``P``, or under a prescribed
+``delta``), a HistoryError gives each one's reason, and says where method 4 on a grid runs it.
+
 Every other decision is the spec's own (`ModelSpec.model_for`, `continued`, `is_default`); the
 engine hands a spec its loop (`fretting.engine.follow.follow`) for the passes of an adaptation.
 """
@@ -105,10 +108,26 @@ def built_model(
     Raises HistoryError where the model cannot run the history (`ModelSpec.refusal`).
     """
     if spec is None:
-        default = next(spec for spec in DEFAULTS if spec.refusal(contact, history) is None)
+        default = next((spec for spec in DEFAULTS if spec.refusal(contact, history) is None), None)
+        if default is None:
+            raise HistoryError(_no_default(contact, history))
         return _said(default.default_model(contact, history, follow, recorded))
     check(spec, contact, history)
     return _said(spec.model_for(contact, history, follow, recorded))
+
+
+def _no_default(contact: Contact, history: History) -> str:
+    """Why no spec of `DEFAULTS` runs `history` on `contact`: each one's reason (`ModelSpec.refusal`), told once
+    and naming the profile by its class (a table's repr holds the table), and the grid where it would run it
+    (not a default: its accuracy is that of the nodes asked for)."""
+    reasons, profile = {}, contact.profile
+    for spec in DEFAULTS:
+        reason = spec.refusal(contact, history).replace(repr(profile), f"the {type(profile).__name__} profile")
+        reasons.setdefault(reason, []).append(spec.name)
+    told = "; ".join(f"{', '.join(names)}: {reason}" for reason, names in reasons.items())
+    runs = Grid().refusal(contact, history) is None
+    grid = " (method 4 on a grid does: ask for it with nodes=, --nodes)" if runs else ""
+    return f"no default model runs this history{grid}: {told}"
 
 
 def check(spec: ModelSpec, contact: Contact, history: History) -> None:

@@ -4,6 +4,7 @@ step by step, Mindlin-Deresiewicz's loop energy under +-delta* cycles, split run
 
 import math
 
+import harness
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -154,6 +155,24 @@ def test_default_model_of_a_displacement_history(contact):
     assert fr.choose_model(contact, tension).name == "varying"
     with pytest.raises(fr.HistoryError, match="a history of delta finds only as it runs"):
         fr.simulate(contact, tension, fr.models.Mesh())
+
+
+def test_a_history_no_default_runs_is_a_one_line_error_naming_why():
+    """On an asymmetric profile the displacement (the mesh adapts to the Q of every step, which delta finds only
+    as it runs) and a varying P (Jaeger's model and the cells need a symmetric profile that grows with P) have
+    no default: a HistoryError with each default's reason, and the grid where it runs the history."""
+    asymmetric = harness.family_contact("asymmetric", (5e-4, 0.01, 0.04), 0.6, 3e5)
+    contact = fr.Contact(asymmetric.profile, asymmetric.E_star, asymmetric.f, asymmetric.P, datum=L)
+    displaced = fr.History.piecewise_linear(delta=[0, -5.7e-7, 1.2e-6], steps_per_segment=4)
+    with pytest.raises(
+        fr.HistoryError, match=r"no default model runs this history \(method 4 on a grid does: .*nodes="
+    ) as error:
+        fr.simulate(contact, displaced)
+    assert "\n" not in str(error.value) and "mesh: the mesh adapts to the Q of every step" in str(error.value)
+    assert fr.simulate(contact, displaced, nodes=64).attrs["model"] == "grid"
+    loaded = fr.History.piecewise_linear([0, 1e4, -1e4], None, 4, P=[3e5, 3.3e5, 2.9e5])
+    with pytest.raises(fr.HistoryError, match="no default model runs this history: exact, inphase, mesh: .* varies"):
+        fr.simulate(contact, loaded)
 
 
 def test_stepper_steps_a_displacement(contact):
