@@ -277,7 +277,7 @@ class Recorder:
             data
             | {
                 "sigma": history.sigma[steps],
-                "p": model.contact.pressure(model.x),
+                "p": model.pressure_at(model.contact.P),
                 "x": model.x,
                 "step": steps,
                 "vertex_step": history.vertex_step,

@@ -7,6 +7,7 @@ import math
 import harness
 import numpy as np
 import pytest
+from checks import assert_friction_conditions
 from scipy.integrate import quad
 
 import fretting as fr
@@ -155,6 +156,20 @@ def test_default_model_of_a_displacement_history(contact):
     assert fr.choose_model(contact, tension).name == "varying"
     with pytest.raises(fr.HistoryError, match="a history of delta finds only as it runs"):
         fr.simulate(contact, tension, fr.models.Mesh())
+
+
+def test_the_cells_keep_coulomb_s_law_in_the_pressure_the_result_holds(contact):
+    """A displacement with sigma runs on the cells (`Varying`), whose friction limit is f times their own
+    pressure, Jaeger's superposition of discrete flat punches: the result's p is that pressure, so that
+    |q| <= f p, and q = f p sign(ds) where a node slips, at every node of every step, also at the
+    outermost cells in contact, where the closed form at the cell centres differs from it."""
+    history = fr.History.piecewise_linear(delta=[0, 8e-7, -8e-7, 4e-7], sigma=[0, 6e7, -6e7, 2e7], steps_per_segment=4)
+    result = fr.simulate(contact, history)
+    assert result.attrs["model"] == "varying"
+    assert_friction_conditions(result, contact)
+    np.testing.assert_array_equal(
+        result.p.values, fr.models.Varying().resolved_for(contact, history).build(contact).pressure_at(contact.P)
+    )
 
 
 def test_a_history_no_default_runs_is_a_one_line_error_naming_why():
