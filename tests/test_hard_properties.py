@@ -156,6 +156,27 @@ def test_return_point_memory_of_nested_loops(scene, turning, steps, model):
         np.testing.assert_allclose(again, first, rtol=0, atol=1e-9 * scale, err_msg=f"t{k} = {turning[k - 1]:.3g}")
 
 
+@settings(max_examples=30, deadline=None)
+@given(
+    scene=scenes(["hertz", "rounded_flat"]),
+    turning=nested_turning_points(),
+    steps=st.integers(1, 4),
+    lift=st.floats(0.01, 0.2),
+)
+def test_nested_loops_under_a_load_that_varies_with_the_shear(scene, turning, steps, lift):
+    """Q through nested excursions and back under ``P = P0 (1 + lift |Q| / (f P0))``, Hertz or a rounded flat, the
+    default (Jaeger's superposition): the run ends (a slip zone whose inner end fell on a band at the limit to
+    rounding ended in a traceback), no increment dissipates a negative energy, and at every step the stick
+    zones cover the nodes in contact that did not slip."""
+    m = len(turning)
+    path = np.array([0.0, *turning, *turning[m - 2 :: -2]])
+    history = fr.History.piecewise_linear(path * scene.f * scene.P, None, steps, P=scene.P * (1 + lift * np.abs(path)))
+    result = simulate_as_a_user(scene, history)
+    assert result.attrs["model"] == "jaeger"
+    assert np.all(result.dissipation.values >= 0)
+    assert_zone_ends_are_consistent(result)
+
+
 @settings(max_examples=10, deadline=None)
 @given(
     scene=scenes(SMOOTH),
