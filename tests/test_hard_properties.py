@@ -165,9 +165,9 @@ def test_return_point_memory_of_nested_loops(scene, turning, steps, model):
 )
 def test_nested_loops_under_a_load_that_varies_with_the_shear(scene, turning, steps, lift):
     """Q through nested excursions and back under ``P = P0 (1 + lift |Q| / (f P0))``, Hertz or a rounded flat, the
-    default (Jaeger's superposition): the run ends (a slip zone whose inner end fell on a band at the limit to
-    rounding ended in a traceback), no increment dissipates a negative energy, and at every step the stick
-    zones cover the nodes in contact that did not slip."""
+    default (Jaeger's superposition): the run ends (also where a slip zone's inner end falls on a band at the
+    limit to rounding), no increment dissipates a negative energy, and at every step the stick zones cover
+    the nodes in contact that did not slip."""
     m = len(turning)
     path = np.array([0.0, *turning, *turning[m - 2 :: -2]])
     history = fr.History.piecewise_linear(path * scene.f * scene.P, None, steps, P=scene.P * (1 + lift * np.abs(path)))

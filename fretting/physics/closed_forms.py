@@ -302,10 +302,13 @@ def masing_increment(turning: Sequence[float], Q_from: float, Q_to: float) -> tu
 
 
 def masing_arrival(turning: Sequence[float], Q_from: float, Q_to: float) -> tuple[float, float]:
-    """Start [N/m] and factor of the branch on which the load arrives at `Q_to` from `Q_from` with the open
-    `turning` points before the change (`masing_increment`): that after the turning points left open, but for
-    a change that ends exactly where it closes a loop, whose points slip on the closing branch up to the end:
-    the older branch goes on only past it, so the stick zone of the change is the closing branch's."""
+    """Start [N/m] and factor of the branch along which the load reaches `Q_to` from `Q_from`, with the open
+    `turning` points before the change (`masing_increment`): the stick zone of the change is that branch's.
+
+    It is the branch after the turning points left open, except where the change ends exactly at the turning
+    point at which it closes a loop: it arrives there on the closing branch, and the older branch goes on only
+    past that point.
+    """
     walked = [piece for piece in masing_increment(turning, Q_from, Q_to)[1] if piece[2] != piece[3]]
     return walked[-1][:2] if walked else masing_origin(turning)
 

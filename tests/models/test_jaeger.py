@@ -60,9 +60,9 @@ def test_cells_converge_to_it_at_every_step(contact, recede):
 def test_a_slip_zone_that_reaches_a_band_at_the_limit_to_rounding_ends_past_it():
     """Nested loops of Q under P = P0 (1 + 0.05 |Q| / (f P0)) on Hertz: a slip zone's inner end solves
     ``g(c) = Q - s f P`` (`fretting.physics.superposition.Bands.inverse`), flat over a band that entered at
-    the limit, and the rounding of ``g`` can put that band's upper edge a hair past the value sought (it
-    divided by zero there). The run ends, its stick ends and energy at every step within the targets of
-    method 4 on 1536 cells."""
+    the limit, and the rounding of ``g`` can put that band's upper edge a hair past the value sought, where
+    the band's own formula has no answer. The run ends, its stick ends and energy at every step within the
+    targets of method 4 on 1536 cells."""
     contact = hertz_contact()
     path = np.array([0.0, -0.49594927128908944, 0.3709192320216966, -0.1894695224532163, 0.04213907493920421])
     path = np.append(path, path[[3, 1]])
