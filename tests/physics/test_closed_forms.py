@@ -11,18 +11,12 @@ import math
 
 import numpy as np
 import pytest
-from checks import zones
+from checks import BOUNDARY_BAND, away_from, zones
 from conftest import final
 from scipy import integrate
 
 import fretting as fr
 from fretting.physics import closed_forms as cf
-
-BOUNDARY_BAND = 0.02  # [a], see the module docstring
-
-
-def away_from(x, ends, a):
-    return np.all(np.abs(np.subtract.outer(x, np.asarray(ends))) > BOUNDARY_BAND * a, axis=-1)
 
 
 @pytest.mark.parametrize("psi", [0.05, 0.2, 0.5, 0.8, 0.95])
