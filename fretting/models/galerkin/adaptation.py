@@ -553,9 +553,9 @@ def _spans(steps, recorded):
     first = np.concatenate([[0], steps[:-1] + 1])  # one past the turning point before
     inside = counted[steps] - counted[first]  # steps first .. steps - 1
     last = counted[steps + 1] - counted[steps]
-    spans = np.where(np.stack([inside, last], axis=1) > 0, BOUNDARY_SPAN, ENERGY_SPAN)
-    grading = np.where((inside > 0) | (last > 0), BOUNDARY_GRADING, ENERGY_GRADING)
-    return np.column_stack([spans, grading])
+    located = np.stack([inside, last], axis=1) > 0
+    spans = np.where(located, BOUNDARY_SPAN, ENERGY_SPAN)
+    return np.column_stack([spans, np.where(located.any(axis=1), BOUNDARY_GRADING, ENERGY_GRADING)])
 
 
 def _bisected_size(theta, targets):
